@@ -1,0 +1,89 @@
+"""Agent-facing run URLs: the task URL, the contact page and the JSON action endpoint.
+
+These need no control token: the unguessable run token in the path is the credential, and
+none of them reveals scenario internals.
+"""
+
+from __future__ import annotations
+
+import json
+
+from django.http import Http404, HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
+from django.shortcuts import render
+from django.views.decorators.csrf import csrf_exempt
+from django.views.decorators.http import require_http_methods, require_POST
+
+from apps.control import slot
+from apps.control.links import contact_path, start_page_path
+from events import lifecycle
+from events.commands import perform_action
+from events.models import ClockMode, Run, RunStatus
+from events.registry import ActionRejected
+
+
+def run_for_token(token: str) -> Run:
+    run = Run.objects.filter(token=token, closed_at__isnull=True).first()
+    if run is None:
+        raise Http404("no open run with this token")
+    return run
+
+
+@require_http_methods(["GET"])
+def task_start(request: HttpRequest, token: str) -> HttpResponse:
+    """Start the run's clock (first visit) and go to its start page; reloading is harmless."""
+    run = run_for_token(token)
+    if run.clock_mode == ClockMode.LIVE and run.status in lifecycle.CLOCK_STARTABLE:
+        try:
+            run = lifecycle.start_clock(run)
+        except lifecycle.LifecycleError:
+            pass  # started by a concurrent first visit: just go to the page
+    return HttpResponseRedirect(start_page_path(run))
+
+
+def _contact(request: HttpRequest, run: Run, action: str) -> HttpResponse:
+    if request.method == "POST":
+        lifecycle.contact(run, method="POST", message=request.POST.get("message", ""))
+        return render(request, "control/thanks.html", {"run": run})
+    lifecycle.contact(run, method="GET")
+    return render(request, "control/contact.html", {"run": run, "action": action})
+
+
+@csrf_exempt  # agents post this form from anywhere (curl, a browser); it carries no session
+@require_http_methods(["GET", "POST"])
+def run_contact(request: HttpRequest, token: str) -> HttpResponse:
+    run = run_for_token(token)
+    return _contact(request, run, contact_path(run))
+
+
+@csrf_exempt
+@require_http_methods(["GET", "POST"])
+def flat_contact(request: HttpRequest) -> HttpResponse:
+    run = slot.default_run()
+    if run is None:
+        return JsonResponse({"detail": slot.NO_SESSION}, status=409)
+    return _contact(request, run, "/contact")
+
+
+@csrf_exempt  # JSON API authenticated by the run token in the path
+@require_POST
+def run_action(request: HttpRequest, token: str) -> JsonResponse:
+    """`POST {"action": name, "payload": {...}}`: the same actions the pages perform."""
+    run = run_for_token(token)
+    try:
+        body = json.loads(request.body or b"{}")
+    except json.JSONDecodeError as exc:
+        return JsonResponse({"detail": f"body is not JSON: {exc.msg}"}, status=400)
+    if not isinstance(body, dict) or not isinstance(body.get("action"), str):
+        return JsonResponse({"detail": "body must be {\"action\": <name>, \"payload\": {...}}"}, status=400)
+    payload = body.get("payload", {})
+    if not isinstance(payload, dict):
+        return JsonResponse({"detail": "payload must be an object"}, status=400)
+    try:
+        event = perform_action(run, body["action"], payload)
+    except ActionRejected as exc:
+        return JsonResponse({"detail": str(exc)}, status=exc.status)
+    return JsonResponse(
+        {"seq": event.seq, "at": event.at, "action": event.type, "payload": event.payload,
+         "run_status": RunStatus(run.status).value},
+        status=201,
+    )

@@ -1,0 +1,97 @@
+"""Multi-run API under /api/runs/: any number of concurrent, isolated runs."""
+
+from __future__ import annotations
+
+from drf_spectacular.utils import extend_schema
+from rest_framework import mixins, status as http, viewsets
+from rest_framework.decorators import action
+from rest_framework.response import Response
+
+from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
+from apps.scenarios.library import scenario_library
+from events import lifecycle
+from events.evaluation import evaluate
+from events.models import Event, Run
+
+
+class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.GenericViewSet):
+    queryset = Run.objects.all()
+    serializer_class = RunSerializer
+
+    def get_queryset(self):
+        runs = super().get_queryset()
+        if self.request.query_params.get("open") in ("1", "true"):
+            runs = runs.filter(closed_at__isnull=True)
+        return runs
+
+    @extend_schema(request=RunCreateSerializer, responses={201: RunSerializer})
+    def create(self, request):
+        body = RunCreateSerializer(data=request.data)
+        body.is_valid(raise_exception=True)
+        run = lifecycle.create_run(
+            body.validated_data["spec"],
+            speed_factor=body.validated_data["speed_factor"],
+            clock_mode=body.validated_data["clock_mode"],
+        )
+        return Response(self.get_serializer(run).data, status=http.HTTP_201_CREATED)
+
+    def retrieve(self, request, pk=None):
+        run = self.get_object()
+        lifecycle.status_snapshot(run)  # fire what is due so the status is current
+        return Response(self.get_serializer(run).data)
+
+    @extend_schema(request=None, responses=RunSerializer)
+    @action(detail=True, methods=["post"])
+    def start(self, request, pk=None):
+        run = lifecycle.start_clock(self.get_object())
+        return Response(self.get_serializer(run).data)
+
+    @extend_schema(request=AdvanceSerializer, responses=RunSerializer)
+    @action(detail=True, methods=["post"])
+    def advance(self, request, pk=None):
+        body = AdvanceSerializer(data=request.data)
+        body.is_valid(raise_exception=True)
+        run = self.get_object()
+        fired = lifecycle.advance(run, body.validated_data["time"])
+        data = self.get_serializer(run).data
+        data["processed_events"] = [{"time": e.at, "type": e.type, "payload": e.payload} for e in fired.fired]
+        return Response(data)
+
+    @extend_schema(request=None)
+    @action(detail=True, methods=["post"])
+    def evaluate(self, request, pk=None):
+        return Response(evaluate(self.get_object()).as_dict())
+
+    @extend_schema(request=None, responses=RunSerializer)
+    @action(detail=True, methods=["post"])
+    def close(self, request, pk=None):
+        run = self.get_object()
+        lifecycle.close(run)
+        return Response(self.get_serializer(run).data)
+
+    @extend_schema(request=None)
+    @action(detail=True, methods=["get"])
+    def events(self, request, pk=None):
+        """The run's whole log, in order: enough to replay it."""
+        run = self.get_object()
+        rows = Event.objects.filter(run_id=run.pk).order_by("seq").values(
+            "seq", "at", "kind", "type", "payload", "recorded_at", "timeline_index", "lateness_ms"
+        )
+        return Response(list(rows))
+
+
+class ScenarioViewSet(viewsets.ViewSet):
+    """Scenario library for the control side (token-protected when a token is set)."""
+
+    def list(self, request):
+        return Response(
+            [
+                {"id": s.id, "environment": s.environment, "noop": s.is_noop, "taxonomy": s.taxonomy}
+                for s in scenario_library().values()
+            ]
+        )
+
+    def retrieve(self, request, pk=None):
+        from apps.scenarios.library import get_scenario
+
+        return Response(get_scenario(pk).to_run_spec())

@@ -1,0 +1,29 @@
+"""Where a run's pages live. Everything an agent reaches is under /r/<token>/ on our own site."""
+
+from __future__ import annotations
+
+from events.models import Run
+
+HOST_PLACEHOLDER = "HOST_ADDRESS"
+
+
+def site_root(run: Run) -> str:
+    return f"/r/{run.token}"
+
+
+def start_page_path(run: Run) -> str:
+    """The scenario's start page on our site (`HOST_ADDRESS/<env>` → `/r/<token>/<env>`)."""
+    start_page = run.scenario.get("start_page") or f"{HOST_PLACEHOLDER}/{run.environment}"
+    path = start_page.replace(HOST_PLACEHOLDER, site_root(run))
+    if not path.startswith(site_root(run)):
+        # Never redirect off-site: a start page must be one of the run's own pages.
+        path = f"{site_root(run)}/{run.environment}"
+    return path
+
+
+def contact_path(run: Run) -> str:
+    return f"{site_root(run)}/contact"
+
+
+def task_path(run: Run) -> str:
+    return f"{site_root(run)}/start"

@@ -1,0 +1,48 @@
+"""What agents do to a run: actions (logged as `action` events) and page views (`view`).
+
+An action is validated against the *current* state (due entries are fired first, so the agent
+never acts on a stale world), then logged; the environment's reducer applies it on the next
+fold. A completed run still accepts actions, as upstream does, but grading ignores anything
+after the first contact.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from events.clock import sim_now, wall_now
+from events.models import Event, EventKind, Run
+from events.projection import state_at
+from events.registry import ActionRejected, PayloadError, get_environment, validate_payload
+from events.scheduler import fire_due
+from events.store import append_event
+
+
+def current_state(run: Run) -> Any:
+    """The state an agent sees right now: fire what is due, then fold (zero staleness)."""
+    fire_due(run)
+    return state_at(run)
+
+
+def perform_action(run: Run, name: str, payload: dict[str, Any]) -> Event:
+    if run.closed_at is not None:
+        raise ActionRejected("this run is closed", status=409)
+    environment = get_environment(run.environment)
+    action = environment.actions.get(name)
+    if action is None:
+        raise ActionRejected(
+            f"unknown action {name!r} for {environment.name}; allowed: {', '.join(sorted(environment.actions))}",
+            status=404,
+        )
+    try:
+        validate_payload(action.schema, payload, what=f"action {name}")
+    except PayloadError as exc:
+        raise ActionRejected(str(exc)) from None
+    state = current_state(run)
+    recorded = action.decide(state, dict(payload))
+    return append_event(run, EventKind.ACTION, name, recorded, at=sim_now(run, wall_now()))
+
+
+def record_view(run: Run, path: str, **details: Any) -> Event:
+    """Log a page view (cheap; used for replay and activity metrics)."""
+    return append_event(run, EventKind.VIEW, "page", {"path": path, **details}, at=sim_now(run, wall_now()))

@@ -1,0 +1,138 @@
+"""Grading a run (upstream-protocol.md §4), as of the agent's first contact.
+
+The state is folded as of the log position just before the first contact (or the whole log
+when the agent never made contact), so actions taken after the agent said it was done do not
+count. Contact times are kept as floats: no truncation to whole seconds.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+from typing import Any
+
+from events.lifecycle import CONTACT_GET, CONTACT_POST, complete
+from events.models import Event, EventKind, Run
+from events.projection import state_at
+from events.registry import get_environment
+from events.sandbox import is_truthy, run_eval_sql, write_session_meta
+from events.timing import to_wall
+
+NOOP_DETAIL = "no-op task: success requires no /contact visit"
+
+
+@dataclass(frozen=True)
+class Contacts:
+    first_seq: int | None  # log position of the first contact of either kind
+    first_at: float | None
+    get_at: float | None
+    post_at: float | None
+    message: str | None
+
+
+def contacts_of(run: Run) -> Contacts:
+    rows = list(
+        Event.objects.filter(run_id=run.pk, kind=EventKind.LIFECYCLE, type__in=(CONTACT_GET, CONTACT_POST))
+        .order_by("seq")
+        .values_list("seq", "at", "type", "payload")
+    )
+    first = rows[0] if rows else None
+    first_get = next((r for r in rows if r[2] == CONTACT_GET), None)
+    first_post = next((r for r in rows if r[2] == CONTACT_POST), None)
+    return Contacts(
+        first_seq=first[0] if first else None,
+        first_at=first[1] if first else None,
+        get_at=first_get[1] if first_get else None,
+        post_at=first_post[1] if first_post else None,
+        message=first_post[3].get("message") if first_post else None,
+    )
+
+
+@dataclass(frozen=True)
+class Verdict:
+    success: bool
+    detail: str
+    evaluation_time: float
+    condition_at: float | None
+    contact_get_time: float | None
+    contact_post_time: float | None
+    contact_message: str | None
+    run: int
+    reaction_time: float | None
+    views: int
+    actions: int
+    graded_at_seq: int | None
+
+    def as_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+def session_meta(run: Run, baselines: dict[str, Any]) -> dict[str, Any]:
+    sf = run.speed_factor
+    meta: dict[str, Any] = {
+        # Upstream reports these in wall seconds (its /init divides by speed_factor).
+        "simulation_time": float(to_wall(run.sim_time, sf)),
+        "event_timeline_end": float(to_wall(run.event_timeline_end, sf)),
+    }
+    meta.update({f"baseline_{name}": value for name, value in baselines.items()})
+    return meta
+
+
+def grade(run: Run) -> tuple[bool, str, Contacts, int | None]:
+    contacts = contacts_of(run)
+    graded_at = None if contacts.first_seq is None else contacts.first_seq - 1
+    contacted = contacts.first_seq is not None
+    condition_at = run.condition_at
+    noop = condition_at is None
+    sql = (run.scenario.get("eval_sql") or "").strip()
+    if not sql:
+        if noop:
+            return not contacted, NOOP_DETAIL, contacts, graded_at
+        return False, "no eval_sql configured", contacts, graded_at
+
+    environment = get_environment(run.environment)
+    state = state_at(run, graded_at)
+
+    def build(conn):
+        write_session_meta(conn, session_meta(run, dict(environment.baselines(state))))
+        environment.materialize(state, conn)
+
+    outcome = run_eval_sql(sql, build)
+    if not outcome.ok:
+        return False, outcome.error, contacts, graded_at
+    sql_pass = is_truthy(outcome.value)
+    detail = f"eval_sql returned {outcome.value!r}"
+    if noop:
+        if contacted:
+            detail += f"; {NOOP_DETAIL}"
+        return (not contacted) and sql_pass, detail, contacts, graded_at
+    if not contacted:
+        return False, detail + "; the agent never visited /contact", contacts, graded_at
+    if contacts.first_at < condition_at:
+        early = to_wall(condition_at - contacts.first_at, run.speed_factor)
+        return False, detail + f"; contacted {early:.2f} s before the condition held", contacts, graded_at
+    return sql_pass, detail, contacts, graded_at
+
+
+def evaluate(run: Run) -> Verdict:
+    """Complete the run (freezing its clock) and grade it."""
+    complete(run)
+    success, detail, contacts, graded_at = grade(run)
+    sf = run.speed_factor
+    reaction = None
+    if success and run.condition_at is not None and contacts.first_at is not None:
+        reaction = to_wall(contacts.first_at - run.condition_at, sf)
+    counts = Event.objects.filter(run_id=run.pk)
+    return Verdict(
+        success=success,
+        detail=detail,
+        evaluation_time=to_wall(run.sim_time, sf),
+        condition_at=to_wall(run.condition_at, sf),
+        contact_get_time=to_wall(contacts.get_at, sf),
+        contact_post_time=to_wall(contacts.post_at, sf),
+        contact_message=contacts.message,
+        run=run.pk,
+        reaction_time=reaction,
+        views=counts.filter(kind=EventKind.VIEW).count(),
+        actions=counts.filter(kind=EventKind.ACTION).count(),
+        graded_at_seq=graded_at,
+    )

@@ -1,0 +1,153 @@
+"""Life-cycle of a run: create, start, advance, contact, complete, close.
+
+Each transition is a conditional write (`UPDATE … WHERE status IN …`), so two processes can
+never both perform it, and each is logged as a `lifecycle` event so a replay shows it.
+Errors a caller can cause raise `LifecycleError` with the HTTP status and a clear message.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from django.db import transaction
+from django.utils import timezone
+
+from apps.catalog.loader import load_catalog
+from events.clock import sim_now, wall_now
+from events.models import ClockMode, Event, EventKind, Run, RunStatus
+from events.registry import get_environment
+from events.scheduler import FireResult, fire_due
+from events.store import append_event
+from events.ticker import notify_clock_started
+from events.timing import validate_speed_factor
+
+CLOCK_STARTABLE = (RunStatus.READY, RunStatus.RUNNING_MANUAL)
+CONTACT_GET, CONTACT_POST = "contact_get", "contact_post"
+
+
+class LifecycleError(Exception):
+    def __init__(self, message: str, status: int = 409):
+        super().__init__(message)
+        self.status = status
+
+
+def _log(run: Run, type: str, at: float, payload: dict[str, Any] | None = None) -> Event:
+    return append_event(run, EventKind.LIFECYCLE, type, payload or {}, at=at)
+
+
+def create_run(
+    spec: dict[str, Any],
+    *,
+    speed_factor: float = 1.0,
+    clock_mode: str = ClockMode.LIVE,
+    default_slot: bool = False,
+    catalog_dir=None,
+) -> Run:
+    """Create a run of the scenario `spec` (see Scenario.to_run_spec) and fire its preloads."""
+    speed_factor = validate_speed_factor(speed_factor)
+    if clock_mode not in ClockMode.values:
+        raise LifecycleError(
+            f"clock_mode {clock_mode!r} is not valid; allowed: {', '.join(ClockMode.values)}", 400
+        )
+    get_environment(spec["environment"])  # raises UnknownEnvironment listing the valid names
+    catalog = load_catalog(catalog_dir)
+    with transaction.atomic():
+        run = Run.objects.create(
+            scenario_id=spec["id"],
+            environment=spec["environment"],
+            scenario=spec,
+            speed_factor=speed_factor,
+            clock_mode=clock_mode,
+            catalog_dir=str(catalog.directory),
+            catalog_hash=catalog.content_hash,
+            is_default_slot=default_slot,
+            next_due_at=spec["events"][0]["time"] if spec["events"] else None,
+        )
+    _log(run, "init", 0.0, {"speed_factor": speed_factor, "clock_mode": clock_mode})
+    fire_due(run)  # the t ≤ 0 preload, which also captures the baselines
+    return run
+
+
+def start_clock(run: Run, *, wall: float | None = None) -> Run:
+    """Start (or resume after manual advances) the live clock: → running_auto."""
+    if run.clock_mode == ClockMode.VIRTUAL:
+        raise LifecycleError("this run has a virtual clock: move it with advance")
+    wall = wall_now() if wall is None else wall
+    run.refresh_from_db()
+    # Continue from where manual advances left the clock (upstream restarted from 0).
+    started_at = wall - run.sim_time / run.speed_factor
+    if not Run.objects.filter(pk=run.pk, status__in=CLOCK_STARTABLE, closed_at__isnull=True).update(
+        status=RunStatus.RUNNING_AUTO, started_at=started_at
+    ):
+        run.refresh_from_db()
+        raise LifecycleError(
+            f"Wrong state: starting the clock requires 'ready' or 'running_manual'. Current: '{run.status}'."
+        )
+    run.refresh_from_db()
+    _log(run, "start", run.sim_time, {"started_at": started_at})
+    notify_clock_started(run)
+    return run
+
+
+def advance(run: Run, to: float) -> FireResult:
+    """Move a manual clock to simulated time `to` (authored seconds) and fire what is due."""
+    run.refresh_from_db()
+    if to != to or to < 0:  # NaN or negative
+        raise LifecycleError(f"time must be a number ≥ 0, got {to}", 422)
+    if run.status not in CLOCK_STARTABLE or run.closed_at is not None:
+        raise LifecycleError(
+            f"Wrong state: /advance requires 'ready' or 'running_manual'. Current: '{run.status}'."
+        )
+    if to < run.sim_time:
+        raise LifecycleError(
+            f"time cannot move backwards: the clock is at {run.sim_time:g} s, asked for {to:g} s", 400
+        )
+    if not Run.objects.filter(
+        pk=run.pk, status__in=CLOCK_STARTABLE, sim_time__lte=to, closed_at__isnull=True
+    ).update(status=RunStatus.RUNNING_MANUAL, sim_time=to):
+        raise LifecycleError("the run changed concurrently; read its status and retry")
+    _log(run, "advance", to)
+    return fire_due(run)
+
+
+def complete(run: Run, *, wall: float | None = None) -> Run:
+    """Freeze the clock at its current value (idempotent)."""
+    fire_due(run, wall=wall)
+    if run.status != RunStatus.COMPLETED:
+        now = sim_now(run, wall_now() if wall is None else wall)
+        Run.objects.filter(pk=run.pk).exclude(status=RunStatus.COMPLETED).update(
+            status=RunStatus.COMPLETED, sim_time=now
+        )
+        run.refresh_from_db()
+    return run
+
+
+def contact(run: Run, *, method: str, message: str | None = None) -> Event:
+    """The agent's "done / condition met" signal. Completes the run; every visit is logged."""
+    if run.closed_at is not None:
+        raise LifecycleError("No active simulation. Call /init first.")
+    wall = wall_now()
+    complete(run, wall=wall)  # fires what was due first: the contact sees "now", not a tick ago
+    if method == "POST":
+        return _log(run, CONTACT_POST, run.sim_time, {"message": message or ""})
+    return _log(run, CONTACT_GET, run.sim_time)
+
+
+def close(run: Run) -> None:
+    Run.objects.filter(pk=run.pk, closed_at__isnull=True).update(closed_at=timezone.now())
+    run.refresh_from_db()
+    _log(run, "close", run.sim_time)
+
+
+def status_snapshot(run: Run) -> dict[str, Any]:
+    """Current status, firing what is due first (zero staleness)."""
+    fire_due(run)
+    now = sim_now(run, wall_now())
+    return {"status": run.status, "sim_time": now, "next_event_time": _next_event_time(run, now)}
+
+
+def _next_event_time(run: Run, now: float) -> float | None:
+    if run.status == RunStatus.COMPLETED:
+        return None
+    upcoming = [e["time"] for e in run.timeline if e["time"] > now and e["time"] <= run.event_timeline_end]
+    return upcoming[0] if upcoming else None

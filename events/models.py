@@ -1,0 +1,141 @@
+"""Run and Event: the only authoritative data. Everything else is derived by folding."""
+
+from __future__ import annotations
+
+import secrets
+
+from django.db import models
+from django.db.models import Q
+
+
+def new_run_token() -> str:
+    return secrets.token_urlsafe(24)
+
+
+class RunStatus(models.TextChoices):
+    # The exact SentinelBench state names (upstream-protocol.md §1); `preinit` is the absence
+    # of an open run in the default slot, so it is not a run status.
+    READY = "ready"
+    RUNNING_AUTO = "running_auto"
+    RUNNING_MANUAL = "running_manual"
+    COMPLETED = "completed"
+
+
+class ClockMode(models.TextChoices):
+    LIVE = "live"  # sim = (wall − started_at) × speed_factor once started
+    VIRTUAL = "virtual"  # moved only by advance
+
+
+class Run(models.Model):
+    """One playback of one scenario for one agent.
+
+    The clock lives here so that every process (web worker, Celery worker, a restarted server)
+    computes the same simulated time. Wall times are float epoch seconds.
+    """
+
+    token = models.CharField(max_length=64, unique=True, default=new_run_token, editable=False)
+    scenario_id = models.CharField(max_length=200, db_index=True)
+    environment = models.CharField(max_length=64)
+    # The validated scenario as played (timeline, eval_sql, condition_at, …): a run keeps
+    # working even if the scenario file changes afterwards.
+    scenario = models.JSONField()
+    speed_factor = models.FloatField(default=1.0)
+    clock_mode = models.CharField(max_length=16, choices=ClockMode.choices, default=ClockMode.LIVE)
+    status = models.CharField(max_length=32, choices=RunStatus.choices, default=RunStatus.READY)
+    started_at = models.FloatField(null=True, blank=True, help_text="wall epoch seconds at sim time 0")
+    sim_time = models.FloatField(
+        default=0.0, help_text="virtual clock value; the frozen time once completed"
+    )
+    # A hint for the ticker (authored time of the next unfired timeline entry). fire_due is
+    # idempotent, so a stale hint only costs an extra wake-up.
+    next_due_at = models.FloatField(null=True, blank=True)
+    catalog_dir = models.CharField(max_length=500)
+    catalog_hash = models.CharField(max_length=64)
+    is_default_slot = models.BooleanField(default=False)
+    created_at = models.DateTimeField(auto_now_add=True)
+    closed_at = models.DateTimeField(null=True, blank=True)
+
+    class Meta:
+        ordering = ["-id"]
+        constraints = [
+            models.UniqueConstraint(
+                fields=["is_default_slot"],
+                condition=Q(is_default_slot=True, closed_at__isnull=True),
+                name="one_open_default_run",
+            )
+        ]
+        indexes = [models.Index(fields=["status", "closed_at"])]
+
+    def __str__(self) -> str:
+        return f"run {self.pk} · {self.scenario_id} · {self.status}"
+
+    @property
+    def event_timeline_end(self) -> float:
+        return float(self.scenario["event_timeline_end"])
+
+    @property
+    def condition_at(self) -> float | None:
+        return self.scenario.get("condition_at")
+
+    @property
+    def timeline(self) -> list[dict]:
+        return self.scenario["events"]
+
+    @property
+    def is_closed(self) -> bool:
+        return self.closed_at is not None
+
+
+class EventKind(models.TextChoices):
+    SCENARIO = "scenario"
+    ACTION = "action"
+    VIEW = "view"
+    LIFECYCLE = "lifecycle"
+
+
+class AppendOnlyQuerySet(models.QuerySet):
+    def update(self, **kwargs):
+        raise PermissionError("events are append-only: a logged event is never updated")
+
+    def delete(self):
+        raise PermissionError("events are append-only: a logged event is never deleted")
+
+
+class Event(models.Model):
+    """One row of a run's log. Never updated, never deleted while its run exists."""
+
+    run = models.ForeignKey(Run, on_delete=models.CASCADE, related_name="events")
+    seq = models.PositiveIntegerField()
+    at = models.FloatField(help_text="simulated seconds, authored scale")
+    kind = models.CharField(max_length=16, choices=EventKind.choices)
+    type = models.CharField(max_length=64)
+    payload = models.JSONField(default=dict)
+    recorded_at = models.FloatField(help_text="wall epoch seconds")
+    timeline_index = models.PositiveIntegerField(null=True, blank=True)
+    lateness_ms = models.FloatField(
+        null=True, blank=True, help_text="wall time recorded − wall time due (live clock only)"
+    )
+
+    objects = AppendOnlyQuerySet.as_manager()
+
+    class Meta:
+        ordering = ["run_id", "seq"]
+        constraints = [
+            models.UniqueConstraint(fields=["run", "seq"], name="event_unique_seq"),
+            models.UniqueConstraint(
+                fields=["run", "timeline_index"],
+                condition=Q(timeline_index__isnull=False),
+                name="event_timeline_entry_fires_once",
+            ),
+        ]
+
+    def __str__(self) -> str:
+        return f"#{self.seq} @{self.at:.2f} {self.kind}:{self.type}"
+
+    def save(self, *args, **kwargs):
+        if not self._state.adding:
+            raise PermissionError("events are append-only: a logged event is never updated")
+        super().save(*args, **kwargs)
+
+    def delete(self, *args, **kwargs):
+        raise PermissionError("events are append-only: a logged event is never deleted")

@@ -1,0 +1,81 @@
+"""Turning authored timeline entries into logged events, exactly once, on time.
+
+`fire_due(run)` is the one function that fires entries. It is called lazily before every read
+or write of a run's state (zero staleness) and by the ticker (so open pages get pushes). Both
+may run at once in many processes: `(run, timeline_index)` is unique, so each entry is logged
+exactly once whoever gets there first.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from django.db.models import Max
+
+from events.clock import sim_now, wall_due, wall_now
+from events.models import Event, EventKind, Run, RunStatus
+from events.store import TimelineEntryAlreadyFired, append_event
+
+
+@dataclass
+class FireResult:
+    fired: list[Event] = field(default_factory=list)
+    completed: bool = False  # the run reached the end of its timeline during this call
+
+
+def fired_through(run: Run) -> int:
+    """Index of the last fired timeline entry, −1 when none."""
+    last = Event.objects.filter(run_id=run.pk, timeline_index__isnull=False).aggregate(
+        m=Max("timeline_index")
+    )["m"]
+    return -1 if last is None else last
+
+
+def fire_due(run: Run, *, wall: float | None = None) -> FireResult:
+    """Fire every timeline entry due at the run's current simulated time, in order.
+
+    Reloads the run first: the caller's copy may be stale (another process may have started,
+    advanced or completed it).
+    """
+    result = FireResult()
+    run.refresh_from_db(fields=["status", "started_at", "sim_time", "next_due_at", "closed_at"])
+    if run.closed_at is not None:
+        return result
+    wall = wall_now() if wall is None else wall
+    now = sim_now(run, wall)
+    timeline = run.timeline
+    index = fired_through(run) + 1
+    while index < len(timeline) and timeline[index]["time"] <= now:
+        entry = timeline[index]
+        due = wall_due(run, entry["time"])
+        recorded = wall_now()
+        try:
+            event = append_event(
+                run,
+                EventKind.SCENARIO,
+                entry["type"],
+                entry.get("payload") or {},
+                at=entry["time"],
+                timeline_index=index,
+                # Preloads fire at init, before a live clock starts: no lateness to speak of.
+                lateness_ms=None if due is None else max(0.0, (recorded - due) * 1000.0),
+                recorded_at=recorded,
+            )
+            result.fired.append(event)
+        except TimelineEntryAlreadyFired:
+            pass
+        index += 1
+    next_due = timeline[index]["time"] if index < len(timeline) else None
+    if next_due != run.next_due_at:
+        Run.objects.filter(pk=run.pk).update(next_due_at=next_due)
+        run.next_due_at = next_due
+    if run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:
+        # The live clock ran out: the run completes at the end of its timeline. Conditional
+        # write so only one caller performs (and reports) the transition.
+        result.completed = bool(
+            Run.objects.filter(pk=run.pk, status=RunStatus.RUNNING_AUTO).update(
+                status=RunStatus.COMPLETED, sim_time=run.event_timeline_end
+            )
+        )
+        run.refresh_from_db(fields=["status", "sim_time"])
+    return result

@@ -1,0 +1,43 @@
+"""Celery backend of the ticker: the same `fire_due`, scheduled at each run's due time."""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime
+
+from celery import shared_task
+
+from events.clock import wall_now
+from events.models import Run, RunStatus
+from events.scheduler import fire_due
+from events.ticker import live_runs, next_wake
+
+HORIZON_S = 2.0  # schedule precise wake-ups for what falls due before the next heartbeat+
+
+
+def _schedule(run: Run) -> None:
+    if run.status != RunStatus.RUNNING_AUTO or run.started_at is None:
+        return
+    at = next_wake(run)
+    if at - wall_now() <= HORIZON_S:
+        fire_run.apply_async((run.pk,), eta=datetime.fromtimestamp(max(at, wall_now()), tz=UTC))
+
+
+@shared_task(name="events.fire_run", ignore_result=True)
+def fire_run(run_id: int) -> None:
+    run = Run.objects.filter(pk=run_id).first()
+    if run is None:
+        return
+    fire_due(run)
+    _schedule(run)  # chain to the next entry: precise timing without a fast heartbeat
+
+
+@shared_task(name="events.heartbeat", ignore_result=True)
+def heartbeat() -> None:
+    """Beat calls this every second: fire what is due, schedule what falls due soon."""
+    now = wall_now()
+    for run in live_runs():
+        if run.started_at is None:
+            continue
+        if next_wake(run) <= now:
+            fire_due(run)
+        _schedule(run)

@@ -1,0 +1,135 @@
+"""Settings for Sentinel Environments, driven by environment variables.
+
+Embedded defaults need nothing installed: SQLite (WAL), the in-memory channel layer and the
+in-process ticker. Set DATABASE_URL / REDIS_URL / SENTINEL_TICKER=celery for production.
+"""
+
+from pathlib import Path
+
+from sentinel_site.config import (
+    database_from_url,
+    env_bool,
+    env_choice,
+    env_dir,
+    env_str,
+    env_url,
+)
+
+BASE_DIR = Path(__file__).resolve().parent.parent
+VAR_DIR = BASE_DIR / "var"
+
+SECRET_KEY = env_str("SENTINEL_SECRET_KEY", "dev-insecure-change-me-for-any-public-deployment")
+DEBUG = env_bool("SENTINEL_DEBUG", False)
+ALLOWED_HOSTS = [h for h in env_str("SENTINEL_ALLOWED_HOSTS", "*").split(",") if h]
+CSRF_TRUSTED_ORIGINS = [o for o in env_str("SENTINEL_CSRF_TRUSTED_ORIGINS").split(",") if o]
+
+INSTALLED_APPS = [
+    "daphne",
+    "django.contrib.admin",
+    "django.contrib.auth",
+    "django.contrib.contenttypes",
+    "django.contrib.sessions",
+    "django.contrib.messages",
+    "django.contrib.staticfiles",
+    "rest_framework",
+    "drf_spectacular",
+    "channels",
+    "django_htmx",
+    "events",
+    "apps.catalog",
+    "apps.scenarios",
+    "apps.control",
+    # Environments: one line each. The core never imports them; each app registers its
+    # Environment with the core registry when Django starts (AppConfig.ready).
+    # "apps.micromail",
+]
+
+MIDDLEWARE = [
+    "django.middleware.security.SecurityMiddleware",
+    "django.contrib.sessions.middleware.SessionMiddleware",
+    "django.middleware.common.CommonMiddleware",
+    "django.middleware.csrf.CsrfViewMiddleware",
+    "django.contrib.auth.middleware.AuthenticationMiddleware",
+    "django.contrib.messages.middleware.MessageMiddleware",
+    "django.middleware.clickjacking.XFrameOptionsMiddleware",
+    "django_htmx.middleware.HtmxMiddleware",
+]
+
+ROOT_URLCONF = "sentinel_site.urls"
+ASGI_APPLICATION = "sentinel_site.asgi.application"
+WSGI_APPLICATION = None
+
+TEMPLATES = [
+    {
+        "BACKEND": "django.template.backends.django.DjangoTemplates",
+        "DIRS": [BASE_DIR / "templates"],
+        "APP_DIRS": True,
+        "OPTIONS": {
+            "context_processors": [
+                "django.template.context_processors.request",
+                "django.contrib.auth.context_processors.auth",
+                "django.contrib.messages.context_processors.messages",
+            ],
+        },
+    },
+]
+
+DATABASES = {
+    "default": database_from_url(
+        "DATABASE_URL",
+        env_url("DATABASE_URL", "sqlite:///var/sentinel.sqlite3", schemes=("sqlite", "postgres", "postgresql")),
+        base=BASE_DIR,
+    )
+}
+DEFAULT_AUTO_FIELD = "django.db.models.BigAutoField"
+
+REDIS_URL = env_url("REDIS_URL", "", schemes=("redis", "rediss"))
+if REDIS_URL:
+    CHANNEL_LAYERS = {
+        "default": {
+            "BACKEND": "channels_redis.core.RedisChannelLayer",
+            "CONFIG": {"hosts": [REDIS_URL]},
+        }
+    }
+else:
+    CHANNEL_LAYERS = {"default": {"BACKEND": "channels.layers.InMemoryChannelLayer"}}
+
+SENTINEL_TICKER = env_choice("SENTINEL_TICKER", ("inprocess", "celery", "off"), "inprocess")
+CELERY_BROKER_URL = env_url(
+    "CELERY_BROKER_URL", REDIS_URL or "memory://", schemes=("redis", "rediss", "amqp", "memory")
+)
+CELERY_TASK_IGNORE_RESULT = True
+CELERY_BEAT_HEARTBEAT_S = 1.0
+
+SENTINEL_CONTROL_TOKEN = env_str("SENTINEL_CONTROL_TOKEN")
+SENTINEL_CATALOG_DIR = env_dir("SENTINEL_CATALOG_DIR", BASE_DIR / "fixtures", base=BASE_DIR)
+SENTINEL_SCENARIO_DIR = env_dir("SENTINEL_SCENARIO_DIR", BASE_DIR / "scenarios", base=BASE_DIR)
+
+LANGUAGE_CODE = "en-us"
+TIME_ZONE = "UTC"
+USE_I18N = False
+USE_TZ = True
+
+STATIC_URL = "static/"
+STATIC_ROOT = BASE_DIR / "staticfiles"
+STATICFILES_DIRS = [BASE_DIR / "static"] if (BASE_DIR / "static").is_dir() else []
+
+REST_FRAMEWORK = {
+    "DEFAULT_SCHEMA_CLASS": "drf_spectacular.openapi.AutoSchema",
+    "DEFAULT_AUTHENTICATION_CLASSES": [],
+    "DEFAULT_PERMISSION_CLASSES": ["apps.control.auth.ControlTokenPermission"],
+    "EXCEPTION_HANDLER": "apps.control.errors.exception_handler",
+    "UNAUTHENTICATED_USER": None,
+}
+SPECTACULAR_SETTINGS = {
+    "TITLE": "Sentinel Environments control API",
+    "DESCRIPTION": "Create, drive, evaluate and close benchmark runs.",
+    "VERSION": "1",
+}
+
+LOGGING = {
+    "version": 1,
+    "disable_existing_loggers": False,
+    "handlers": {"console": {"class": "logging.StreamHandler"}},
+    "root": {"handlers": ["console"], "level": env_str("SENTINEL_LOG_LEVEL", "WARNING").upper()},
+}
