@@ -125,6 +125,8 @@ SPECTACULAR_SETTINGS = {
     "TITLE": "Sentinel Environments control API",
     "DESCRIPTION": "Create, drive, evaluate and close benchmark runs.",
     "VERSION": "1",
+    "SERVE_PERMISSIONS": ["apps.control.auth.ControlTokenPermission"],
+    "PREPROCESSING_HOOKS": ["apps.control.schema.only_api_paths"],
 }
 
 LOGGING = {

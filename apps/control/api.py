@@ -83,6 +83,8 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
 class ScenarioViewSet(viewsets.ViewSet):
     """Scenario library for the control side (token-protected when a token is set)."""
 
+    serializer_class = None  # free-form scenario documents
+
     def list(self, request):
         return Response(
             [
