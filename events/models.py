@@ -12,6 +12,10 @@ def new_run_token() -> str:
     return secrets.token_urlsafe(24)
 
 
+_SPEC_CACHE_SIZE = 4096
+_spec_cache: dict[int, dict] = {}
+
+
 class RunStatus(models.TextChoices):
     # The exact SentinelBench state names (upstream-protocol.md §1); `preinit` is the absence
     # of an open run in the default slot, so it is not a run status.
@@ -70,16 +74,30 @@ class Run(models.Model):
         return f"run {self.pk} · {self.scenario_id} · {self.status}"
 
     @property
+    def spec(self) -> dict:
+        """The scenario as played. Immutable per run, so hot paths (the ticker) defer the
+        column and read it from a per-process cache instead of decoding JSON every tick."""
+        if "scenario" not in self.get_deferred_fields():
+            return self.scenario
+        spec = _spec_cache.get(self.pk)
+        if spec is None:
+            spec = Run.objects.filter(pk=self.pk).values_list("scenario", flat=True).get()
+            if len(_spec_cache) >= _SPEC_CACHE_SIZE:
+                _spec_cache.pop(next(iter(_spec_cache)))
+            _spec_cache[self.pk] = spec
+        return spec
+
+    @property
     def event_timeline_end(self) -> float:
-        return float(self.scenario["event_timeline_end"])
+        return float(self.spec["event_timeline_end"])
 
     @property
     def condition_at(self) -> float | None:
-        return self.scenario.get("condition_at")
+        return self.spec.get("condition_at")
 
     @property
     def timeline(self) -> list[dict]:
-        return self.scenario["events"]
+        return self.spec["events"]
 
     @property
     def is_closed(self) -> bool:

@@ -31,14 +31,15 @@ def fired_through(run: Run) -> int:
     return -1 if last is None else last
 
 
-def fire_due(run: Run, *, wall: float | None = None) -> FireResult:
+def fire_due(run: Run, *, wall: float | None = None, fresh: bool = False) -> FireResult:
     """Fire every timeline entry due at the run's current simulated time, in order.
 
-    Reloads the run first: the caller's copy may be stale (another process may have started,
-    advanced or completed it).
+    Reloads the run first unless the caller just loaded it (`fresh`): the caller's copy may be
+    stale (another process may have started, advanced or completed it).
     """
     result = FireResult()
-    run.refresh_from_db(fields=["status", "started_at", "sim_time", "next_due_at", "closed_at"])
+    if not fresh:
+        run.refresh_from_db(fields=["status", "started_at", "sim_time", "next_due_at", "closed_at"])
     if run.closed_at is not None:
         return result
     wall = wall_now() if wall is None else wall

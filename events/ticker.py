@@ -35,9 +35,7 @@ def next_wake(run: Run) -> float:
 
 
 def live_runs():
-    return Run.objects.filter(status=RunStatus.RUNNING_AUTO, closed_at__isnull=True).only(
-        "id", "scenario", "speed_factor", "started_at", "next_due_at", "status", "sim_time", "closed_at", "clock_mode"
-    )
+    return Run.objects.filter(status=RunStatus.RUNNING_AUTO, closed_at__isnull=True).defer("scenario")
 
 
 def tick(wall: float | None = None) -> float:
@@ -49,7 +47,7 @@ def tick(wall: float | None = None) -> float:
             continue
         at = next_wake(run)
         if at <= wall:
-            fire_due(run)
+            fire_due(run, fresh=True)
             if run.status == RunStatus.RUNNING_AUTO:
                 at = next_wake(run)
         wake = min(wake, at)

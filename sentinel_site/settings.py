@@ -39,9 +39,10 @@ INSTALLED_APPS = [
     "apps.catalog",
     "apps.scenarios",
     "apps.control",
+    "apps.agent_site",
     # Environments: one line each. The core never imports them; each app registers its
     # Environment with the core registry when Django starts (AppConfig.ready).
-    # "apps.micromail",
+    "apps.micromail",
 ]
 
 MIDDLEWARE = [

@@ -43,3 +43,29 @@ def upstream_dir() -> Path:
     if not UPSTREAM.is_dir():
         pytest.skip("../shared/upstream is absent")
     return UPSTREAM
+
+
+@pytest.fixture
+def running_ticker(settings, django_db_blocker):
+    """The configured ticker backend, really running: in-process thread, or a Celery worker+beat.
+
+    The Celery worker is a real subprocess pointed at the test database, so tests using this
+    fixture must use `transaction=True` (the worker only sees committed rows).
+    """
+    if settings.SENTINEL_TICKER == "celery":
+        from tests.celery_worker import celery_worker
+
+        with celery_worker():
+            yield "celery"
+        return
+    import threading
+
+    from events.ticker import run_ticker_in_thread
+
+    stop = threading.Event()
+    thread = run_ticker_in_thread(stop)
+    try:
+        yield "inprocess"
+    finally:
+        stop.set()
+        thread.join(timeout=5)

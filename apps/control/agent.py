@@ -8,24 +8,18 @@ from __future__ import annotations
 
 import json
 
-from django.http import Http404, HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
+from django.http import HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
 from django.shortcuts import render
 from django.views.decorators.csrf import csrf_exempt
 from django.views.decorators.http import require_http_methods, require_POST
 
+from apps.agent_site.pages import run_for_token
 from apps.control import slot
 from apps.control.links import contact_path, start_page_path
 from events import lifecycle
 from events.commands import perform_action
 from events.models import ClockMode, Run, RunStatus
 from events.registry import ActionRejected
-
-
-def run_for_token(token: str) -> Run:
-    run = Run.objects.filter(token=token, closed_at__isnull=True).first()
-    if run is None:
-        raise Http404("no open run with this token")
-    return run
 
 
 @require_http_methods(["GET"])

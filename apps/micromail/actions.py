@@ -1,0 +1,215 @@
+"""What an agent can do to the mailbox: `Action(schema, decide, reduce)` per action name.
+
+`decide(mail, payload)` checks the request against the current mailbox and returns the
+payload to log (adding what it decided: a generated id, whether a delete purges). `reduce`
+applies a logged action; it trusts the log and never raises, so replay always succeeds (an id
+purged meanwhile simply changes nothing).
+
+Flags are set explicitly (flag / unflag), not toggled as upstream did: an agent that repeats a
+request, or two tabs that race, cannot flip the flag back by accident.
+"""
+
+from __future__ import annotations
+
+import re
+import uuid
+from collections.abc import Callable, Mapping
+from types import MappingProxyType
+from typing import Any
+
+from apps.micromail.state import (
+    FOLDERS,
+    Email,
+    EmailState,
+    Mail,
+    with_emails,
+    with_state,
+    without_email,
+)
+from events.registry import Action, ActionRejected, Field, LoggedEvent
+
+# Deliberately simple (what a client checks before sending), not RFC 5322.
+ADDRESS = re.compile(r"[^@\s,;<>]+@[^@\s,;<>]+\.[^@\s,;<>]+")
+PURGED_FROM = ("deleted", "drafts")  # deleting from these folders is permanent
+
+EMAIL_ID = {"email_id": Field(str, help="id of a message in the mailbox")}
+
+
+def existing_email(mail: Mail, email_id: str) -> Email:
+    """The message, or a 404: unknown, purged and not-yet-arrived ids look the same."""
+    email = mail.emails.get(email_id)
+    if email is None:
+        raise ActionRejected(f"no email {email_id!r} in this mailbox", status=404)
+    return email
+
+
+def decide_on_email(mail: Mail, payload: dict) -> dict:
+    existing_email(mail, payload["email_id"])
+    return payload
+
+
+def setting(**changes: Any) -> Callable[[Mail, LoggedEvent], Mail]:
+    """A reducer that sets fields of the message's state (read, flagged, pinned)."""
+
+    def reduce(mail: Mail, event: LoggedEvent) -> Mail:
+        return with_state(mail, event.payload["email_id"], **changes)
+
+    return reduce
+
+
+def reduce_move(mail: Mail, event: LoggedEvent) -> Mail:
+    return with_state(mail, event.payload["email_id"], folder=event.payload["folder"])
+
+
+def decide_delete(mail: Mail, payload: dict) -> dict:
+    existing_email(mail, payload["email_id"])
+    permanent = mail.folder_of(payload["email_id"]) in PURGED_FROM
+    return {**payload, "permanent": permanent}
+
+
+def reduce_delete(mail: Mail, event: LoggedEvent) -> Mail:
+    """Move to Deleted Items; from Deleted Items or Drafts, purge the message for good."""
+    email_id = event.payload["email_id"]
+    if event.payload.get("permanent"):
+        return without_email(mail, email_id)
+    return with_state(mail, email_id, folder="deleted")
+
+
+# --- composing ------------------------------------------------------------------------------------
+
+COMPOSE_SCHEMA = {
+    "to": Field(list, required=False, help="addresses"),
+    "cc": Field(list, required=False, help="addresses"),
+    "bcc": Field(list, required=False, help="addresses"),
+    "subject": Field(str, required=False),
+    "body": Field(str, required=False),
+    "draft_id": Field(str, required=False, help="the draft this replaces"),
+}
+
+
+def new_message_id(folder: str) -> str:
+    # Chosen once in decide() and logged, so replay reuses it (upstream's id shape).
+    return f"{folder}-{uuid.uuid4().hex[:12]}"
+
+
+def address_list(payload: dict, name: str, *, check: bool) -> list[str]:
+    values = payload.get(name, [])
+    if not all(isinstance(v, str) for v in values):
+        raise ActionRejected(f"payload field '{name}' must be a list of email address strings")
+    addresses = [v.strip() for v in values if v.strip()]
+    if check:
+        for address in addresses:
+            if not ADDRESS.fullmatch(address):
+                raise ActionRejected(f"'{address}' in {name} is not a valid email address")
+    return addresses
+
+
+def draft_to_replace(mail: Mail, payload: dict) -> dict:
+    draft_id = payload.get("draft_id")
+    if draft_id is None:
+        return {}
+    existing_email(mail, draft_id)
+    if mail.folder_of(draft_id) != "drafts":
+        raise ActionRejected(
+            f"email {draft_id!r} is not a draft (it is in {mail.folder_of(draft_id)})"
+        )
+    return {"draft_id": draft_id}
+
+
+def composed(payload: dict, *, check_addresses: bool) -> dict:
+    return {
+        "to": address_list(payload, "to", check=check_addresses),
+        "cc": address_list(payload, "cc", check=check_addresses),
+        "bcc": address_list(payload, "bcc", check=check_addresses),
+        "subject": payload.get("subject", ""),
+        "body": payload.get("body", ""),
+    }
+
+
+def decide_send(mail: Mail, payload: dict) -> dict:
+    message = composed(payload, check_addresses=True)
+    if not message["to"]:
+        raise ActionRejected("payload field 'to' needs at least one recipient")
+    return {"id": new_message_id("sent"), **message, **draft_to_replace(mail, payload)}
+
+
+def decide_save_draft(mail: Mail, payload: dict) -> dict:
+    # Drafts are work in progress: addresses are checked when the draft is sent.
+    message = composed(payload, check_addresses=False)
+    if not any(message.values()):
+        raise ActionRejected(
+            "an empty draft has nothing to save: give to, cc, bcc, subject or body"
+        )
+    replaced = draft_to_replace(mail, payload)
+    return {"id": replaced.get("draft_id") or new_message_id("drafts"), **message, **replaced}
+
+
+def written_by_self(mail: Mail, event: LoggedEvent) -> Email:
+    p = event.payload
+    return Email(
+        id=p["id"],
+        subject=p["subject"],
+        body=p["body"],
+        sender_name=mail.self_name,
+        sender_email=mail.self_email,
+        to=tuple(p["to"]),
+        cc=tuple(p["cc"]),
+        bcc=tuple(p["bcc"]),  # kept (upstream dropped it): the sender may look it up later
+        arrived_at=event.at,
+    )
+
+
+def reduce_send(mail: Mail, event: LoggedEvent) -> Mail:
+    """The message lands in Sent Items, read; a draft it was written from is removed."""
+    draft_id = event.payload.get("draft_id")
+    if draft_id:
+        mail = without_email(mail, draft_id)
+    sent = written_by_self(mail, event)
+    return with_emails(mail, [(sent, EmailState(folder="sent", is_read=True))])
+
+
+def reduce_save_draft(mail: Mail, event: LoggedEvent) -> Mail:
+    """Create a draft, or replace the content of the draft it edits (same id)."""
+    draft = written_by_self(mail, event)
+    return with_emails(mail, [(draft, EmailState(folder="drafts", is_read=True))])
+
+
+ACTIONS: Mapping[str, Action] = MappingProxyType(
+    {
+        "open_email": Action(
+            EMAIL_ID,
+            decide_on_email,
+            setting(is_read=True),
+            help="Open a message; like any mail client this marks it read.",
+        ),
+        "mark_read": Action(EMAIL_ID, decide_on_email, setting(is_read=True)),
+        "mark_unread": Action(EMAIL_ID, decide_on_email, setting(is_read=False)),
+        "flag": Action(EMAIL_ID, decide_on_email, setting(is_flagged=True)),
+        "unflag": Action(EMAIL_ID, decide_on_email, setting(is_flagged=False)),
+        "pin": Action(EMAIL_ID, decide_on_email, setting(is_pinned=True)),
+        "unpin": Action(EMAIL_ID, decide_on_email, setting(is_pinned=False)),
+        "move": Action(
+            {**EMAIL_ID, "folder": Field(str, choices=FOLDERS)},
+            decide_on_email,
+            reduce_move,
+        ),
+        "delete": Action(
+            EMAIL_ID,
+            decide_delete,
+            reduce_delete,
+            help="Move to Deleted Items; from Deleted Items or Drafts, delete permanently.",
+        ),
+        "send": Action(
+            COMPOSE_SCHEMA,
+            decide_send,
+            reduce_send,
+            help="Send a message from the self user (to is required; bcc is kept).",
+        ),
+        "save_draft": Action(
+            COMPOSE_SCHEMA,
+            decide_save_draft,
+            reduce_save_draft,
+            help="Save a draft, or update the draft given by draft_id.",
+        ),
+    }
+)

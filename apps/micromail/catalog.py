@@ -1,0 +1,91 @@
+"""Turning catalog records (SentinelBench format) into `Email` and `EmailState` values.
+
+Catalog tables: `micromail/emails.jsonl` (id, sender_id, subject, body, flags, cc, folder…) and
+`micromail/attachments.jsonl` (id, email_id, name, size). Unlike upstream, every attachment of
+an email is kept, not only the first.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from apps.micromail.state import ENVIRONMENT, Attachment, Email, EmailState
+
+UNKNOWN_SENDER = "Unknown Sender"
+
+
+def _addresses(value: Any) -> tuple[str, ...]:
+    if isinstance(value, str):
+        return (value,) if value else ()
+    return tuple(str(v) for v in value or ())
+
+
+# Catalogs are immutable and identified by their content hash: index each one once.
+_attachment_index: dict[tuple[str, str], Mapping[str, tuple[Attachment, ...]]] = {}
+
+
+def _attachments_by_email(catalog: Any) -> Mapping[str, tuple[Attachment, ...]]:
+    key = (str(catalog.directory), catalog.content_hash)
+    index = _attachment_index.get(key)
+    if index is None:
+        index = _attachment_index[key] = _index_attachments(catalog)
+    return index
+
+
+def _index_attachments(catalog: Any) -> Mapping[str, tuple[Attachment, ...]]:
+    grouped: dict[str, list[Attachment]] = {}
+    for record in catalog.table(ENVIRONMENT, "attachments").values():
+        grouped.setdefault(str(record.get("email_id")), []).append(
+            Attachment(
+                id=str(record["id"]),
+                name=str(record.get("name", "")),
+                size=str(record.get("size", "")),
+            )
+        )
+    return {email_id: tuple(items) for email_id, items in grouped.items()}
+
+
+def catalog_email(
+    catalog: Any, email_id: str, *, arrived_at: float, self_email: str
+) -> Email | None:
+    """The message `email_id` as it arrives at `arrived_at`; None if the catalog lacks it."""
+    record = catalog.table(ENVIRONMENT, "emails").get(email_id)
+    if record is None:
+        return None
+    sender = catalog.users.get(record.get("sender_id")) or {}
+    attachments = _attachments_by_email(catalog).get(email_id, ())
+    has_attachment = record.get("hasAttachment")
+    return Email(
+        id=email_id,
+        subject=str(record.get("subject", "")),
+        body=str(record.get("body", "")),
+        sender_name=str(sender.get("name") or UNKNOWN_SENDER),
+        sender_email=str(sender.get("email") or ""),
+        to=_addresses(record.get("recipients") or record.get("to")) or (self_email,),
+        cc=_addresses(record.get("cc")),
+        is_cc=bool(record.get("isCC", False)),
+        has_attachment=bool(attachments) if has_attachment is None else bool(has_attachment),
+        is_external=bool(record.get("isExternal", False)),
+        importance=str(record.get("importance") or "normal"),
+        mentions_me=bool(record.get("mentionsMe", False)),
+        attachments=attachments,
+        arrived_at=float(arrived_at),
+    )
+
+
+def catalog_state(catalog: Any, email_id: str, *, keep_read: bool) -> EmailState:
+    """Initial flags and folder: folder from the catalog, else junk if marked junk, else inbox.
+
+    `keep_read` keeps the catalog's isRead (preloaded history); newly delivered mail is unread.
+    """
+    record = catalog.table(ENVIRONMENT, "emails").get(email_id) or {}
+    folder = record.get("folder") or (
+        "junk" if record.get("junk") or record.get("isJunk") else "inbox"
+    )
+    return EmailState(
+        folder=str(folder),
+        is_read=bool(record.get("isRead", False)) if keep_read else False,
+        is_flagged=bool(record.get("isFlagged", False)),
+        is_pinned=bool(record.get("isPinned", False)),
+    )

@@ -1,0 +1,112 @@
+"""Prefilled compose forms (new, reply, reply all, forward, edit draft): pure functions of state.
+
+Nothing here changes the mailbox; a composition becomes mail only through the `send` or
+`save_draft` action.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from apps.micromail.actions import existing_email
+from apps.micromail.simclock import clock_time
+from apps.micromail.state import Email, Mail
+from events.registry import ActionRejected
+
+COMPOSE_MODES: tuple[str, ...] = ("new", "reply", "reply_all", "forward", "draft")
+_SEPARATORS = re.compile(r"[,;]")
+
+
+@dataclass(frozen=True)
+class Composition:
+    mode: str = "new"
+    to: tuple[str, ...] = ()
+    cc: tuple[str, ...] = ()
+    bcc: tuple[str, ...] = ()
+    subject: str = ""
+    body: str = ""
+    draft_id: str | None = None  # set when editing a draft: sending or saving replaces it
+
+
+def split_addresses(text: str) -> list[str]:
+    """Addresses typed in one field, separated by commas or semicolons (as upstream)."""
+    return [part.strip() for part in _SEPARATORS.split(text or "") if part.strip()]
+
+
+def join_addresses(addresses: Iterable[str]) -> str:
+    return ", ".join(addresses)
+
+
+def _prefixed(prefix: str, subject: str) -> str:
+    return subject if subject.lower().startswith(prefix.lower()) else f"{prefix} {subject}"
+
+
+def _without(addresses: Iterable[str], *excluded: str) -> tuple[str, ...]:
+    """Addresses minus `excluded` (case-insensitive), without repeats, in order."""
+    seen = {e.casefold() for e in excluded}
+    kept = []
+    for address in addresses:
+        if address.casefold() not in seen:
+            seen.add(address.casefold())
+            kept.append(address)
+    return tuple(kept)
+
+
+def _quoted(email: Email) -> str:
+    quoted = "\n".join(f"> {line}" if line else ">" for line in email.body.splitlines())
+    who = f"{email.sender_name} <{email.sender_email}>" if email.sender_email else email.sender_name
+    return f"\n\nOn {clock_time(email.arrived_at)}, {who} wrote:\n{quoted}"
+
+
+def _forwarded(email: Email) -> str:
+    lines = [
+        "",
+        "",
+        "---------- Forwarded message ----------",
+        f"From: {email.sender_name} <{email.sender_email}>",
+        f"To: {join_addresses(email.to)}",
+    ]
+    if email.cc:
+        lines.append(f"Cc: {join_addresses(email.cc)}")
+    lines += [f"Subject: {email.subject}", "", email.body]
+    return "\n".join(lines)
+
+
+def prefill(mail: Mail, mode: str, email_id: str | None) -> Composition:
+    """The compose form for `mode` about message `email_id` (ActionRejected 404 if absent)."""
+    if mode == "new" or email_id is None:
+        return Composition()
+    email = existing_email(mail, email_id)
+    me = mail.self_email
+    # Replying to one's own sent mail goes to its recipients, not back to oneself.
+    own = email.sender_email.casefold() == me.casefold()
+    reply_to = email.to if own else (email.sender_email,)
+    if mode == "reply":
+        return Composition(
+            mode, to=reply_to, subject=_prefixed("Re:", email.subject), body=_quoted(email)
+        )
+    if mode == "reply_all":
+        return Composition(
+            mode,
+            to=_without((*reply_to, *email.to), me),
+            cc=_without(email.cc, me, *reply_to, *email.to),
+            subject=_prefixed("Re:", email.subject),
+            body=_quoted(email),
+        )
+    if mode == "forward":
+        return Composition(mode, subject=_prefixed("Fwd:", email.subject), body=_forwarded(email))
+    if mode != "draft":
+        raise ActionRejected(f"unknown compose mode {mode!r}; allowed: {', '.join(COMPOSE_MODES)}")
+    if mail.folder_of(email.id) != "drafts":
+        raise ActionRejected(f"email {email.id!r} is not a draft")
+    return Composition(
+        mode,
+        to=email.to,
+        cc=email.cc,
+        bcc=email.bcc,
+        subject=email.subject,
+        body=email.body,
+        draft_id=email.id,
+    )

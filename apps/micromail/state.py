@@ -1,0 +1,268 @@
+"""The mailbox as immutable values, and the questions pages and baselines ask of it.
+
+`Mail` is what the reducers build and what every page, baseline and evaluation reads. It is
+never mutated: a reducer returns a new `Mail` (cheap copies of small dicts). Everything below
+`Mail` is a pure function of it, so the same log always shows the same mailbox.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field, replace
+from types import MappingProxyType
+from typing import Any
+
+ENVIRONMENT = "micromail"
+
+FOLDERS: tuple[str, ...] = ("inbox", "sent", "drafts", "archive", "junk", "deleted", "scheduled")
+FOLDER_TITLES: Mapping[str, str] = MappingProxyType(
+    {
+        "inbox": "Inbox",
+        "sent": "Sent Items",
+        "drafts": "Drafts",
+        "archive": "Archive",
+        "junk": "Junk Email",
+        "deleted": "Deleted Items",
+        "scheduled": "Scheduled",
+    }
+)
+QUICK_FILTERS: tuple[str, ...] = ("all", "unread", "flagged", "mentions")
+PREVIEW_LENGTH = 140
+
+# Used only when a catalog has no user marked isSelf (e.g. a minimal test catalog).
+FALLBACK_SELF: Mapping[str, Any] = MappingProxyType({"name": "Me", "email": "me@micromail.local"})
+
+EMPTY: Mapping = MappingProxyType({})
+
+
+@dataclass(frozen=True)
+class Attachment:
+    id: str
+    name: str
+    size: str
+
+
+@dataclass(frozen=True)
+class Email:
+    """The immutable content of one message (what upstream calls the email row)."""
+
+    id: str
+    subject: str
+    body: str
+    sender_name: str
+    sender_email: str
+    to: tuple[str, ...]
+    cc: tuple[str, ...] = ()
+    bcc: tuple[str, ...] = ()  # only ever set on mail the self user wrote
+    is_cc: bool = False
+    has_attachment: bool = False
+    is_external: bool = False
+    importance: str = "normal"  # "high" | "normal" | "low"
+    mentions_me: bool = False
+    attachments: tuple[Attachment, ...] = ()
+    arrived_at: float = 0.0  # simulated seconds, authored scale
+
+    @property
+    def preview(self) -> str:
+        """First 140 characters of the body on one line, as the message list shows it."""
+        return " ".join(self.body.split())[:PREVIEW_LENGTH]
+
+    @property
+    def attachment_names(self) -> str:
+        """Every attachment name joined with ", " ('' when none): the eval column."""
+        return ", ".join(a.name for a in self.attachments)
+
+
+@dataclass(frozen=True)
+class EmailState:
+    """What the user can change about a message."""
+
+    folder: str = "inbox"
+    is_read: bool = False
+    is_flagged: bool = False
+    is_pinned: bool = False
+
+
+@dataclass(frozen=True)
+class Mail:
+    # The catalog and self user are inputs, not state: excluded from equality so that two
+    # folds of the same log compare equal cheaply.
+    catalog: Any = field(compare=False, repr=False)
+    self_user: Mapping[str, Any] = field(
+        compare=False, repr=False, default_factory=lambda: FALLBACK_SELF
+    )
+    emails: Mapping[str, Email] = field(default_factory=lambda: EMPTY)  # in delivery order
+    states: Mapping[str, EmailState] = field(default_factory=lambda: EMPTY)
+    baselines: Mapping[str, int] = field(default_factory=lambda: EMPTY)
+
+    @property
+    def self_name(self) -> str:
+        return str(self.self_user.get("name") or FALLBACK_SELF["name"])
+
+    @property
+    def self_email(self) -> str:
+        return str(self.self_user.get("email") or FALLBACK_SELF["email"])
+
+    def has(self, email_id: str) -> bool:
+        return email_id in self.emails
+
+    def folder_of(self, email_id: str) -> str:
+        return self.states[email_id].folder
+
+
+def empty_mail(catalog: Any) -> Mail:
+    return Mail(catalog=catalog, self_user=getattr(catalog, "self_user", None) or FALLBACK_SELF)
+
+
+# --- building new states (used by reducers only) --------------------------------------------
+
+
+def with_emails(mail: Mail, arrivals: Iterable[tuple[Email, EmailState]]) -> Mail:
+    """Add or replace messages, keeping delivery order for ids already present."""
+    emails, states = dict(mail.emails), dict(mail.states)
+    for email, email_state in arrivals:
+        emails[email.id] = email
+        states[email.id] = email_state
+    return replace(mail, emails=MappingProxyType(emails), states=MappingProxyType(states))
+
+
+def with_state(mail: Mail, email_id: str, **changes: Any) -> Mail:
+    """Change a message's flags or folder; an id that is gone leaves the mailbox as it is."""
+    current = mail.states.get(email_id)
+    if current is None:
+        return mail
+    states = dict(mail.states)
+    states[email_id] = replace(current, **changes)
+    return replace(mail, states=MappingProxyType(states))
+
+
+def without_email(mail: Mail, email_id: str) -> Mail:
+    """Purge a message: gone from every folder and from the evaluation tables."""
+    if email_id not in mail.emails:
+        return mail
+    emails = {k: v for k, v in mail.emails.items() if k != email_id}
+    states = {k: v for k, v in mail.states.items() if k != email_id}
+    return replace(mail, emails=MappingProxyType(emails), states=MappingProxyType(states))
+
+
+# --- counts (baselines and badges) ---------------------------------------------------------------
+
+
+def _count(mail: Mail, predicate) -> int:
+    return sum(1 for i, s in mail.states.items() if predicate(mail.emails[i], s))
+
+
+def inbox_count(mail: Mail) -> int:
+    return _count(mail, lambda e, s: s.folder == "inbox")
+
+
+def unread_count(mail: Mail) -> int:
+    """Unread messages in the inbox (upstream's definition, also the Inbox badge)."""
+    return _count(mail, lambda e, s: s.folder == "inbox" and not s.is_read)
+
+
+def junk_count(mail: Mail) -> int:
+    return _count(mail, lambda e, s: s.folder == "junk")
+
+
+def attachment_count(mail: Mail) -> int:
+    return _count(mail, lambda e, s: e.has_attachment and s.folder != "deleted")
+
+
+def external_count(mail: Mail) -> int:
+    return _count(mail, lambda e, s: e.is_external and s.folder == "inbox")
+
+
+def urgent_count(mail: Mail) -> int:
+    return _count(mail, lambda e, s: e.importance == "high" and s.folder == "inbox")
+
+
+def mention_count(mail: Mail) -> int:
+    return _count(mail, lambda e, s: e.mentions_me and s.folder == "inbox")
+
+
+def cc_count(mail: Mail) -> int:
+    return _count(mail, lambda e, s: e.is_cc and s.folder == "inbox")
+
+
+def folder_badges(mail: Mail) -> dict[str, int]:
+    """Sidebar badges: Inbox shows its unread count, every other folder its total."""
+    totals = dict.fromkeys(FOLDERS, 0)
+    for email_state in mail.states.values():
+        if email_state.folder in totals:
+            totals[email_state.folder] += 1
+    totals["inbox"] = unread_count(mail)
+    return totals
+
+
+# --- listing: folder, quick filter, search, order --------------------------------------------
+
+
+def matches_filter(mail: Mail, email_id: str, quick_filter: str) -> bool:
+    email_state = mail.states[email_id]
+    if quick_filter == "unread":
+        return not email_state.is_read
+    if quick_filter == "flagged":
+        return email_state.is_flagged
+    if quick_filter == "mentions":
+        return mail.emails[email_id].mentions_me
+    return True
+
+
+def matches_search(email: Email, query: str) -> bool:
+    """Case-insensitive substring over subject, body, sender and every address."""
+    needle = query.strip().casefold()
+    if not needle:
+        return True
+    haystack = (
+        email.subject,
+        email.body,
+        email.sender_name,
+        email.sender_email,
+        *email.to,
+        *email.cc,
+        *email.bcc,
+    )
+    return any(needle in text.casefold() for text in haystack)
+
+
+def in_folder(mail: Mail, folder: str | None) -> list[str]:
+    """Ids in `folder` in delivery order; None means every folder."""
+    return [i for i, s in mail.states.items() if folder is None or s.folder == folder]
+
+
+def filter_counts(mail: Mail, ids: Iterable[str]) -> dict[str, int]:
+    ids = list(ids)
+    return {name: sum(1 for i in ids if matches_filter(mail, i, name)) for name in QUICK_FILTERS}
+
+
+def newest_first(mail: Mail, ids: Iterable[str]) -> list[str]:
+    """Pinned first, then newest arrival; equal times keep the later delivery on top."""
+    position = {email_id: n for n, email_id in enumerate(mail.emails)}
+    return sorted(
+        ids,
+        key=lambda i: (mail.states[i].is_pinned, mail.emails[i].arrived_at, position[i]),
+        reverse=True,
+    )
+
+
+def select(
+    mail: Mail,
+    *,
+    folder: str | None,
+    quick_filter: str = "all",
+    query: str = "",
+    keep: str | None = None,
+) -> list[str]:
+    """The message list: folder ∩ quick filter ∩ search, ordered for display.
+
+    `keep` (the open message) stays listed even when it stops matching the quick filter, so
+    opening a message under "Unread" does not make it vanish under the reader's cursor.
+    """
+    chosen = [
+        i
+        for i in in_folder(mail, folder)
+        if matches_search(mail.emails[i], query)
+        and (matches_filter(mail, i, quick_filter) or i == keep)
+    ]
+    return newest_first(mail, chosen)

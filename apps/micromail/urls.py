@@ -1,0 +1,22 @@
+"""MicroMail pages, mounted by the core under /r/<token>/micromail/ (`token` is a URL kwarg).
+
+GET  ./?folder=&filter=&q=&scope=&email=   the mail client (opening an email marks it read)
+GET  ./compose?mode=&email=                compose: new, reply, reply_all, forward, draft
+POST ./compose                             send or save_draft (field `intent`)
+POST ./emails/<id>/<action>                mark_read, mark_unread, flag, unflag, pin, unpin,
+                                           move (field `folder`), delete
+POST ./bulk                                the same actions for every checked `ids`
+"""
+
+from django.urls import path
+
+from apps.micromail import views
+
+app_name = "micromail"
+
+urlpatterns = [
+    path("", views.mailbox, name="mailbox"),
+    path("compose", views.compose, name="compose"),
+    path("bulk", views.bulk_action, name="bulk"),
+    path("emails/<str:email_id>/<str:action>", views.email_action, name="email-action"),
+]

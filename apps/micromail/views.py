@@ -1,0 +1,247 @@
+"""MicroMail pages: thin views over `page.state`, actions through `page.act`.
+
+Every view serves the full page, or just the live `#mailbox` region when htmx asks for a
+fragment (a non-boosted htmx request, e.g. the periodic refresh). Actions are POST forms that
+redirect back to the screen they came from (post/redirect/get), so the site works with plain
+links and forms; htmx only makes it smoother.
+"""
+
+from __future__ import annotations
+
+from django.contrib import messages
+from django.http import Http404, HttpRequest, HttpResponse, HttpResponseRedirect
+from django.shortcuts import render
+from django.views.decorators.http import require_GET, require_http_methods, require_POST
+
+from apps.agent_site.pages import Page, run_page
+from apps.micromail.actions import existing_email
+from apps.micromail.compose import (
+    COMPOSE_MODES,
+    Composition,
+    join_addresses,
+    prefill,
+    split_addresses,
+)
+from apps.micromail.listing import compose_url, folder_links, mailbox_screen
+from apps.micromail.query import InvalidQuery, MailboxQuery
+from apps.micromail.state import FOLDER_TITLES, FOLDERS
+from events.registry import ActionRejected
+
+EMAIL_ACTIONS = ("mark_read", "mark_unread", "flag", "unflag", "pin", "unpin", "move", "delete")
+# After these the message leaves the screen it was open on (marking unread closes it, or the
+# redirect would open it — and mark it read — again).
+CLOSES_THE_MESSAGE = ("mark_unread", "move", "delete")
+DONE = {
+    "mark_read": "marked as read",
+    "mark_unread": "marked as unread",
+    "flag": "flagged",
+    "unflag": "unflagged",
+    "pin": "pinned",
+    "unpin": "unpinned",
+    "delete": "deleted",
+}
+
+
+def is_fragment(request: HttpRequest) -> bool:
+    htmx = getattr(request, "htmx", None)
+    return bool(htmx) and not htmx.boosted
+
+
+def root_url(page: Page) -> str:
+    return page.root + "/"
+
+
+def base_context(page: Page, current_folder: str | None) -> dict:
+    mail = page.state
+    return {
+        "page": page,
+        "root": root_url(page),
+        "token": page.run.token,
+        "self_name": mail.self_name,
+        "self_first_name": mail.self_name.split()[0] if mail.self_name.split() else mail.self_name,
+        "self_email": mail.self_email,
+        "folders": folder_links(mail, current_folder, root_url(page)),
+        "current_folder": current_folder,
+        "compose_url": compose_url(root_url(page), "new"),
+        "all_folders": [(f, FOLDER_TITLES[f]) for f in FOLDERS],
+    }
+
+
+def render_mailbox(
+    request: HttpRequest, page: Page, query: MailboxQuery, status: int = 200
+) -> HttpResponse:
+    screen = mailbox_screen(page.state, query, root_url(page))
+    context = {
+        **base_context(page, query.folder),
+        "screen": screen,
+        "query": query,
+        "self_url": root_url(page) + query.querystring(),
+        "base_template": "micromail/fragment.html"
+        if is_fragment(request)
+        else "micromail/base.html",
+    }
+    return render(request, "micromail/mailbox.html", context, status=status)
+
+
+def back_to(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpResponse:
+    if query.email and not page.state.has(query.email):
+        query = query.but(email=None)  # the open message was purged meanwhile
+    if is_fragment(request):
+        return render_mailbox(request, page, query)
+    return HttpResponseRedirect(root_url(page) + query.querystring())
+
+
+def bad_query(exc: InvalidQuery) -> HttpResponse:
+    return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
+
+
+@require_GET
+@run_page
+def mailbox(request: HttpRequest, page: Page) -> HttpResponse:
+    """The mail client. Opening a message (`email=<id>`) marks it read, like a click does."""
+    try:
+        query = MailboxQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    if query.email is not None:
+        if not page.state.has(query.email):
+            raise Http404("no such email")  # unknown, purged, or not arrived yet: all alike
+        # Only a navigation opens; the periodic fragment refresh merely shows.
+        if not is_fragment(request) and not page.state.states[query.email].is_read:
+            page.act("open_email", {"email_id": query.email})
+    return render_mailbox(request, page, query)
+
+
+def _payload(action: str, email_id: str, request: HttpRequest) -> dict:
+    payload = {"email_id": email_id}
+    if action == "move":
+        payload["folder"] = request.POST.get("folder", "")
+    return payload
+
+
+def _check_action(action: str | None) -> str:
+    if action not in EMAIL_ACTIONS:
+        raise ActionRejected(
+            f"unknown email action {action!r}; allowed: {', '.join(EMAIL_ACTIONS)}", 404
+        )
+    return action
+
+
+def _confirmation(action: str, request: HttpRequest, count: int, permanent: bool = False) -> str:
+    what = "1 email" if count == 1 else f"{count} emails"
+    if action == "move":
+        return f"{what} moved to {FOLDER_TITLES.get(request.POST.get('folder', ''), 'a folder')}"
+    if action == "delete" and permanent:
+        return f"{what} deleted permanently"
+    return f"{what} {DONE[action]}"
+
+
+def _returning(request: HttpRequest, action: str, acted_on: list[str]) -> MailboxQuery:
+    back = MailboxQuery.from_querystring(request.POST.get("back", ""))
+    if action in CLOSES_THE_MESSAGE and back.email in acted_on:
+        back = back.but(email=None)
+    return back
+
+
+@require_POST
+@run_page
+def email_action(request: HttpRequest, page: Page, email_id: str, action: str) -> HttpResponse:
+    """`POST emails/<id>/<action>` (move also takes `folder`), then back to the same screen."""
+    action = _check_action(action)
+    event = page.act(action, _payload(action, email_id, request))
+    messages.success(
+        request, _confirmation(action, request, 1, event.payload.get("permanent", False))
+    )
+    return back_to(request, page, _returning(request, action, [email_id]))
+
+
+@require_POST
+@run_page
+def bulk_action(request: HttpRequest, page: Page) -> HttpResponse:
+    """The checked messages (`ids`), one action each; all ids are checked before any acts."""
+    action = _check_action(request.POST.get("action"))
+    ids = list(dict.fromkeys(request.POST.getlist("ids")))
+    if not ids:
+        messages.info(request, "Select at least one email first.")
+        return back_to(request, page, _returning(request, action, []))
+    for email_id in ids:
+        existing_email(page.state, email_id)
+    permanent = False
+    for email_id in ids:
+        permanent |= page.act(action, _payload(action, email_id, request)).payload.get(
+            "permanent", False
+        )
+    messages.success(request, _confirmation(action, request, len(ids), permanent))
+    return back_to(request, page, _returning(request, action, ids))
+
+
+def _typed(request: HttpRequest) -> dict:
+    payload = {
+        "to": split_addresses(request.POST.get("to", "")),
+        "cc": split_addresses(request.POST.get("cc", "")),
+        "bcc": split_addresses(request.POST.get("bcc", "")),
+        "subject": request.POST.get("subject", ""),
+        "body": request.POST.get("body", ""),
+    }
+    if request.POST.get("draft_id"):
+        payload["draft_id"] = request.POST["draft_id"]
+    return payload
+
+
+def render_compose(
+    request: HttpRequest,
+    page: Page,
+    composition: Composition,
+    *,
+    error: str = "",
+    status: int = 200,
+) -> HttpResponse:
+    context = {
+        **base_context(page, None),
+        "composition": composition,
+        "to": join_addresses(composition.to),
+        "cc": join_addresses(composition.cc),
+        "bcc": join_addresses(composition.bcc),
+        "error": error,
+        "base_template": "micromail/base.html",
+    }
+    return render(request, "micromail/compose.html", context, status=status)
+
+
+@require_http_methods(["GET", "POST"])
+@run_page
+def compose(request: HttpRequest, page: Page) -> HttpResponse:
+    """GET: the compose form (`mode` = new|reply|reply_all|forward|draft, `email` = about which).
+
+    POST: `intent` = send|save_draft with to/cc/bcc (comma or semicolon separated), subject,
+    body and optional draft_id. A rejected message comes back with the typed text kept.
+    """
+    if request.method == "GET":
+        mode = request.GET.get("mode") or "new"
+        if mode not in COMPOSE_MODES:
+            raise ActionRejected(f"mode={mode!r} is not valid; allowed: {', '.join(COMPOSE_MODES)}")
+        return render_compose(request, page, prefill(page.state, mode, request.GET.get("email")))
+    intent = request.POST.get("intent", "send")
+    if intent not in ("send", "save_draft"):
+        raise ActionRejected(f"intent={intent!r} is not valid; allowed: send, save_draft")
+    payload = _typed(request)
+    try:
+        event = page.act(intent, payload)
+    except ActionRejected as exc:
+        typed = Composition(
+            mode="draft" if payload.get("draft_id") else "new",
+            to=tuple(payload["to"]),
+            cc=tuple(payload["cc"]),
+            bcc=tuple(payload["bcc"]),
+            subject=payload["subject"],
+            body=payload["body"],
+            draft_id=payload.get("draft_id"),
+        )
+        return render_compose(request, page, typed, error=str(exc), status=exc.status)
+    if intent == "send":
+        messages.success(request, "Message sent")
+        return HttpResponseRedirect(
+            root_url(page) + MailboxQuery(folder="sent", email=event.payload["id"]).querystring()
+        )
+    messages.success(request, "Draft saved")
+    return HttpResponseRedirect(root_url(page) + MailboxQuery(folder="drafts").querystring())
