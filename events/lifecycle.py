@@ -61,7 +61,6 @@ def create_run(
             catalog_dir=str(catalog.directory),
             catalog_hash=catalog.content_hash,
             is_default_slot=default_slot,
-            next_due_at=spec["events"][0]["time"] if spec["events"] else None,
         )
     _log(run, "init", 0.0, {"speed_factor": speed_factor, "clock_mode": clock_mode})
     fire_due(run)  # the t ≤ 0 preload, which also captures the baselines

@@ -50,9 +50,6 @@ class Run(models.Model):
     sim_time = models.FloatField(
         default=0.0, help_text="virtual clock value; the frozen time once completed"
     )
-    # A hint for the ticker (authored time of the next unfired timeline entry). fire_due is
-    # idempotent, so a stale hint only costs an extra wake-up.
-    next_due_at = models.FloatField(null=True, blank=True)
     catalog_dir = models.CharField(max_length=500)
     catalog_hash = models.CharField(max_length=64)
     is_default_slot = models.BooleanField(default=False)

@@ -21,6 +21,7 @@ from events.store import TimelineEntryAlreadyFired, append_event
 class FireResult:
     fired: list[Event] = field(default_factory=list)
     completed: bool = False  # the run reached the end of its timeline during this call
+    next_index: int = 0  # the first timeline entry not fired yet
 
 
 def fired_through(run: Run) -> int:
@@ -31,21 +32,32 @@ def fired_through(run: Run) -> int:
     return -1 if last is None else last
 
 
-def fire_due(run: Run, *, wall: float | None = None, fresh: bool = False) -> FireResult:
+def next_wake(run: Run, next_index: int) -> float | None:
+    """Wall time at which a live run next needs firing: its next entry or its timeline end."""
+    if run.started_at is None:
+        return None
+    timeline = run.timeline
+    due_sim = run.event_timeline_end
+    if next_index < len(timeline):
+        due_sim = min(due_sim, timeline[next_index]["time"])
+    return run.started_at + due_sim / run.speed_factor
+
+
+def fire_due(run: Run, *, wall: float | None = None, next_index: int | None = None) -> FireResult:
     """Fire every timeline entry due at the run's current simulated time, in order.
 
-    Reloads the run first unless the caller just loaded it (`fresh`): the caller's copy may be
-    stale (another process may have started, advanced or completed it).
+    Reloads the run first: the caller's copy may be stale (another process may have started,
+    advanced, completed or closed it). `next_index` is a hint from a caller that tracks the
+    run (the ticker); a wrong hint is harmless, the unique index still fires each entry once.
     """
     result = FireResult()
-    if not fresh:
-        run.refresh_from_db(fields=["status", "started_at", "sim_time", "next_due_at", "closed_at"])
+    run.refresh_from_db(fields=["status", "started_at", "sim_time", "closed_at"])
     if run.closed_at is not None:
         return result
     wall = wall_now() if wall is None else wall
     now = sim_now(run, wall)
     timeline = run.timeline
-    index = fired_through(run) + 1
+    index = fired_through(run) + 1 if next_index is None else next_index
     while index < len(timeline) and timeline[index]["time"] <= now:
         entry = timeline[index]
         due = wall_due(run, entry["time"])
@@ -66,10 +78,7 @@ def fire_due(run: Run, *, wall: float | None = None, fresh: bool = False) -> Fir
         except TimelineEntryAlreadyFired:
             pass
         index += 1
-    next_due = timeline[index]["time"] if index < len(timeline) else None
-    if next_due != run.next_due_at:
-        Run.objects.filter(pk=run.pk).update(next_due_at=next_due)
-        run.next_due_at = next_due
+    result.next_index = index
     if run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:
         # The live clock ran out: the run completes at the end of its timeline. Conditional
         # write so only one caller performs (and reports) the transition.

@@ -8,16 +8,16 @@ from celery import shared_task
 
 from events.clock import wall_now
 from events.models import Run, RunStatus
-from events.scheduler import fire_due
-from events.ticker import live_runs, next_wake
+from events.scheduler import fire_due, fired_through, next_wake
+from events.ticker import live_runs
 
 HORIZON_S = 2.0  # schedule precise wake-ups for what falls due before the next heartbeat+
 
 
-def _schedule(run: Run) -> None:
-    if run.status != RunStatus.RUNNING_AUTO or run.started_at is None:
+def _schedule(run: Run, next_index: int) -> None:
+    if run.status != RunStatus.RUNNING_AUTO or run.started_at is None or run.closed_at is not None:
         return
-    at = next_wake(run)
+    at = next_wake(run, next_index)
     if at - wall_now() <= HORIZON_S:
         fire_run.apply_async((run.pk,), eta=datetime.fromtimestamp(max(at, wall_now()), tz=UTC))
 
@@ -27,8 +27,8 @@ def fire_run(run_id: int) -> None:
     run = Run.objects.filter(pk=run_id).first()
     if run is None:
         return
-    fire_due(run)
-    _schedule(run)  # chain to the next entry: precise timing without a fast heartbeat
+    result = fire_due(run)
+    _schedule(run, result.next_index)  # chain to the next entry: precise timing without a fast heartbeat
 
 
 @shared_task(name="events.heartbeat", ignore_result=True)
@@ -36,8 +36,7 @@ def heartbeat() -> None:
     """Beat calls this every second: fire what is due, schedule what falls due soon."""
     now = wall_now()
     for run in live_runs():
-        if run.started_at is None:
-            continue
-        if next_wake(run) <= now:
-            fire_due(run)
-        _schedule(run)
+        next_index = fired_through(run) + 1
+        if next_wake(run, next_index) <= now:
+            next_index = fire_due(run, next_index=next_index).next_index
+        _schedule(run, next_index)

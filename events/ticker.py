@@ -21,43 +21,73 @@ from django.db import close_old_connections
 
 from events.clock import wall_now
 from events.models import Run, RunStatus
-from events.scheduler import fire_due
+from events.scheduler import fire_due, fired_through, next_wake
 
 log = logging.getLogger(__name__)
 
 MAX_SLEEP_S = 1.0  # cap, so runs started by another process are noticed within a second
 
 
-def next_wake(run: Run) -> float:
-    """Wall time at which `run` next needs the ticker: its next entry or its timeline end."""
-    due_sim = run.event_timeline_end if run.next_due_at is None else min(run.next_due_at, run.event_timeline_end)
-    return run.started_at + due_sim / run.speed_factor
-
-
 def live_runs():
+    # The scenario column is deferred: Run.spec serves it from a per-process cache.
     return Run.objects.filter(status=RunStatus.RUNNING_AUTO, closed_at__isnull=True).defer("scenario")
 
 
+class Schedule:
+    """The ticker's in-memory view of live runs: when each next needs firing.
+
+    Rebuilt from the database at most every MAX_SLEEP_S (or when woken), so a tick costs no
+    query for runs that are not due. Positions are only hints: fire_due re-reads the run and the
+    unique index keeps firing exactly-once whoever else fires.
+    """
+
+    def __init__(self) -> None:
+        self.runs: dict[int, Run] = {}
+        self.next_index: dict[int, int] = {}
+        self.refreshed_at = -math.inf
+
+    def refresh(self, wall: float) -> None:
+        current = {run.pk: run for run in live_runs()}
+        for pk in list(self.runs):
+            if pk not in current:
+                del self.runs[pk]
+                self.next_index.pop(pk, None)
+        for pk, run in current.items():
+            if pk not in self.runs:
+                self.next_index[pk] = fired_through(run) + 1
+            self.runs[pk] = run
+        self.refreshed_at = wall
+
+    def tick(self, wall: float | None = None) -> float:
+        """Fire every due run; return how long the caller may sleep."""
+        wall = wall_now() if wall is None else wall
+        if wall - self.refreshed_at >= MAX_SLEEP_S:
+            self.refresh(wall)
+        wake = self.refreshed_at + MAX_SLEEP_S
+        for pk, run in list(self.runs.items()):
+            at = next_wake(run, self.next_index[pk])
+            if at is not None and at <= wall:
+                result = fire_due(run, next_index=self.next_index[pk])
+                self.next_index[pk] = result.next_index
+                if run.status != RunStatus.RUNNING_AUTO or run.closed_at is not None:
+                    del self.runs[pk]
+                    continue
+                at = next_wake(run, result.next_index)
+            if at is not None:
+                wake = min(wake, at)
+        return max(0.0, min(MAX_SLEEP_S, wake - wall_now()))
+
+
 def tick(wall: float | None = None) -> float:
-    """Fire every live run that is due; return how long the caller may sleep."""
-    wall = wall_now() if wall is None else wall
-    wake = math.inf
-    for run in live_runs():
-        if run.started_at is None:
-            continue
-        at = next_wake(run)
-        if at <= wall:
-            fire_due(run, fresh=True)
-            if run.status == RunStatus.RUNNING_AUTO:
-                at = next_wake(run)
-        wake = min(wake, at)
-    return max(0.0, min(MAX_SLEEP_S, wake - wall_now()))
+    """One stateless pass (rebuilds the schedule): for callers without a long-lived ticker."""
+    return Schedule().tick(wall)
 
 
 class InProcessTicker:
     """An asyncio loop calling `tick`; `wake()` cuts a sleep short when a clock starts."""
 
     def __init__(self) -> None:
+        self.schedule = Schedule()
         self._loop: asyncio.AbstractEventLoop | None = None
         self._wakeup: asyncio.Event | None = None
         self._task: asyncio.Task | None = None
@@ -75,6 +105,7 @@ class InProcessTicker:
         self._task = self._loop.create_task(self._run_forever(), name="sentinel-ticker")
 
     def wake(self) -> None:
+        self.schedule.refreshed_at = -math.inf  # a clock started: re-read the live runs
         if self._loop is not None and self._wakeup is not None and not self._loop.is_closed():
             self._loop.call_soon_threadsafe(self._wakeup.set)
 
@@ -89,6 +120,7 @@ class InProcessTicker:
 
     async def _run_forever(self) -> None:
         step = sync_to_async(self._tick_once, thread_sensitive=False)
+        self.schedule = Schedule()
         while True:
             try:
                 delay = await step()
@@ -103,10 +135,9 @@ class InProcessTicker:
             except TimeoutError:
                 pass
 
-    @staticmethod
-    def _tick_once() -> float:
+    def _tick_once(self) -> float:
         close_old_connections()
-        return tick()
+        return self.schedule.tick()
 
 
 ticker = InProcessTicker()

@@ -85,7 +85,7 @@ class Command(BaseCommand):
                     current_state(run)
                     perform_action(run, "poke", {"n": 1})
                     appended[0] += 1
-                    time.sleep(0.02)
+                    time.sleep(0.1)
             finally:
                 close_old_connections()
 
