@@ -69,3 +69,34 @@ def running_ticker(settings, django_db_blocker):
     finally:
         stop.set()
         thread.join(timeout=5)
+
+
+@pytest.fixture
+def live_site(transactional_db):
+    """Base URL of a real Daphne server (HTTP + websockets) serving the test database."""
+    from tests.live_site import daphne_server
+
+    with daphne_server() as base_url:
+        yield base_url
+
+
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync"]
+
+
+@pytest.fixture
+def browser():
+    """Debian's Chromium driven by Playwright (never `playwright install`)."""
+    import shutil
+
+    executable = shutil.which("chromium") or "/usr/bin/chromium"
+    if not Path(executable).exists():
+        pytest.fail("chromium is not installed: apt-get install -y chromium")
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        instance = playwright.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
+        try:
+            yield instance
+        finally:
+            instance.close()
