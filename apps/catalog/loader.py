@@ -71,9 +71,14 @@ def _read_jsonl(path: Path) -> dict[str, Mapping[str, Any]]:
                 record = json.loads(line)
             except json.JSONDecodeError as exc:
                 raise CatalogError(f"{path}:{number}: invalid JSON: {exc.msg}") from None
-            key = record.get("id", record.get("symbol")) if isinstance(record, dict) else None
-            if key is None:
-                raise CatalogError(f"{path}:{number}: record has no 'id' (or 'symbol') field")
+            if not isinstance(record, dict):
+                raise CatalogError(f"{path}:{number}: expected a JSON object, got {type(record).__name__}")
+            # Records are keyed by `id` (or `symbol` for stocks). A few tables (e.g. the original
+            # microgram suggestions) have neither: their 1-based line number keys them, as the
+            # original loader's "order" column did.
+            key = record.get("id", record.get("symbol", f"line-{number}"))
+            if str(key) in records:
+                raise CatalogError(f"{path}:{number}: duplicate id {key!r}")
             records[str(key)] = MappingProxyType(record)
     return records
 
