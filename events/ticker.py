@@ -98,9 +98,10 @@ class InProcessTicker:
 
     def ensure_started(self) -> None:
         """Start the loop on the running event loop (idempotent)."""
-        if self.running:
+        loop = asyncio.get_running_loop()
+        if self.running and self._loop is loop:
             return
-        self._loop = asyncio.get_running_loop()
+        self._loop = loop  # a new event loop (tests, a restarted server): start afresh on it
         self._wakeup = asyncio.Event()
         self._task = self._loop.create_task(self._run_forever(), name="sentinel-ticker")
 
