@@ -1,7 +1,7 @@
 """The SentinelBench scenario file format: what loads, and what a bad file is told.
 
 No database: the format module is plain Python. Registered-environment checks use a tiny
-`pingenv` (one event type `ping`, one action `poke`) registered for the test only.
+the shared test environment `tally` (one event type `ping`, one action `poke`).
 """
 
 from __future__ import annotations
@@ -24,7 +24,6 @@ from apps.scenarios.format import (
     parse_scenario,
 )
 from events import registry
-from events.registry import Action, Environment, EventType, Field
 
 UPSTREAM_SCENARIOS = (
     Path(__file__).resolve().parents[1].parent / "shared" / "upstream" / "scenarios"
@@ -32,37 +31,17 @@ UPSTREAM_SCENARIOS = (
 
 
 @pytest.fixture
-def pingenv():
-    environment = Environment(
-        name="pingenv",
-        title="Ping (test environment)",
-        initial_state=lambda catalog: (),
-        event_types={
-            "ping": EventType(schema={"n": Field(int)}, reduce=lambda state, event: state)
-        },
-        actions={
-            "poke": Action(
-                schema={"target": Field(str)},
-                decide=lambda state, payload: payload,
-                reduce=lambda state, event: state,
-            )
-        },
-        baselines=lambda state: {},
-        materialize=lambda state, conn: None,
-    )
-    registry.register(environment)
-    try:
-        yield environment
-    finally:
-        registry.unregister("pingenv")
+def pingenv(tally_environment):
+    """The shared test environment `tally` (event `ping {n}`, action `poke {n}`)."""
+    return tally_environment
 
 
 def third_ping_scenario() -> dict:
     """A valid scenario: tell the user when the third ping arrives."""
     return {
-        "id": "pingenv-third-ping-absolute-passive",
-        "environment": "pingenv",
-        "start_page": "HOST_ADDRESS/pingenv",
+        "id": "tally-third-ping-absolute-passive",
+        "environment": "tally",
+        "start_page": "HOST_ADDRESS/tally",
         "prompt": "Let me know when the third ping arrives.",
         "condition_at": 30.5,
         "event_timeline_end": 720.0,
@@ -80,7 +59,7 @@ def third_ping_scenario() -> dict:
             "difficulty": "easy",
         },
         "eval_sql": "SELECT COUNT(*) >= 3 FROM pings",
-        "solution": [{"action": "poke", "payload": {"target": "ping-3"}}],
+        "solution": [{"action": "poke", "payload": {"n": 3}}],
     }
 
 
@@ -97,10 +76,10 @@ def unregistered_sentinelbench_environment() -> str:
 def test_a_valid_scenario_loads_with_every_field(pingenv):
     scenario = parse_scenario(third_ping_scenario(), source="pingenv/third-ping.json")
 
-    assert scenario.id == "pingenv-third-ping-absolute-passive"
-    assert scenario.environment == "pingenv"
+    assert scenario.id == "tally-third-ping-absolute-passive"
+    assert scenario.environment == "tally"
     assert scenario.prompt == "Let me know when the third ping arrives."
-    assert scenario.start_page == "HOST_ADDRESS/pingenv"
+    assert scenario.start_page == "HOST_ADDRESS/tally"
     assert scenario.condition_at == 30.5
     assert (scenario.event_timeline_end, scenario.kill_at) == (720.0, 630.0)
     assert scenario.events == (
@@ -112,7 +91,7 @@ def test_a_valid_scenario_loads_with_every_field(pingenv):
     assert scenario.eval_sql == "SELECT COUNT(*) >= 3 FROM pings"
     assert scenario.taxonomy["monitoring_approach"] == "passive"
     assert scenario.annotator_notes == ""
-    assert scenario.solution == ({"action": "poke", "payload": {"target": "ping-3"}},)
+    assert scenario.solution == ({"action": "poke", "payload": {"n": 3}},)
     assert scenario.is_dev is False
     assert scenario.is_noop is False
     assert scenario.source == "pingenv/third-ping.json"
@@ -362,8 +341,8 @@ BROKEN_SCENARIOS = [
     ),
     (
         "solution-payload-bad",
-        _set("solution.0.payload", {"target": 3}),
-        ["solution[0] (poke)", "'target'", "string"],
+        _set("solution.0.payload", {"n": "three"}),
+        ["solution[0] (poke)", "'n'", "integer"],
     ),
 ]
 
@@ -397,7 +376,7 @@ def everything_preload(**timeline) -> dict:
     """A dev.json: preload every ping at once."""
     return {
         "id": "dev-pingenv",
-        "environment": "pingenv",
+        "environment": "tally",
         **timeline,
         "events": [
             {"time": 0, "type": "ping", "payload": {"n": 1}},
@@ -500,7 +479,7 @@ def test_a_folder_loads_every_scenario_but_dev_json(pingenv, tmp_path):
 
     scenarios = load_scenarios(tmp_path)
 
-    assert list(scenarios) == ["pingenv-a-first-by-path", "pingenv-third-ping-absolute-passive"]
+    assert list(scenarios) == ["pingenv-a-first-by-path", "tally-third-ping-absolute-passive"]
     assert scenarios["pingenv-a-first-by-path"].source == str(tmp_path / "pingenv" / "a-first.json")
 
 
@@ -513,7 +492,7 @@ def test_a_duplicate_id_names_both_files(pingenv, tmp_path):
 
     message = str(error.value)
     assert str(first) in message and str(second) in message
-    assert "'pingenv-third-ping-absolute-passive'" in message
+    assert "'tally-third-ping-absolute-passive'" in message
 
 
 def test_a_missing_scenario_folder_is_an_error(tmp_path):
