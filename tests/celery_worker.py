@@ -4,26 +4,17 @@ from __future__ import annotations
 
 import contextlib
 import os
-import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
-from django.db import connection
-
-REPO = Path(__file__).resolve().parents[1]
-
-
-def _database_url() -> str:
-    s = connection.settings_dict
-    auth = s["USER"] + (f":{s['PASSWORD']}" if s["PASSWORD"] else "")
-    return f"postgres://{auth}@{s['HOST'] or '127.0.0.1'}:{s['PORT'] or 5432}/{s['NAME']}"
+from tests.live_site import REPO, stop_process_group, test_database_url
 
 
 @contextlib.contextmanager
 def celery_worker():
-    env = dict(os.environ, DATABASE_URL=_database_url(), SENTINEL_TICKER="celery")
+    env = dict(os.environ, DATABASE_URL=test_database_url(), SENTINEL_TICKER="celery")
+    (REPO / "var").mkdir(exist_ok=True)
     log = open(REPO / "var" / "celery-test.log", "ab")
     process = subprocess.Popen(
         [sys.executable, "-m", "celery", "-A", "sentinel_site", "worker", "--beat", "--pool=threads",
@@ -35,9 +26,5 @@ def celery_worker():
         assert process.poll() is None, "the Celery worker exited at start; see var/celery-test.log"
         yield process
     finally:
-        os.killpg(process.pid, signal.SIGTERM)
-        try:
-            process.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
+        stop_process_group(process)
         log.close()
