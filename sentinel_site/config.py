@@ -94,7 +94,9 @@ def database_from_url(name: str, url: str, *, base: Path) -> dict:
                 "transaction_mode": "IMMEDIATE",
                 "timeout": 30,
             },
-            "TEST": {"NAME": str(path.with_name(f"test_{path.name}"))},
+            # A file (not :memory:) so WAL and threads work in tests; one per process so
+            # concurrent test sessions on one checkout never share it.
+            "TEST": {"NAME": str(path.with_name(f"test_{os.getpid()}_{path.name}"))},
         }
     if parts.scheme in ("postgres", "postgresql"):
         db_name = unquote(parts.path.lstrip("/"))
@@ -108,5 +110,6 @@ def database_from_url(name: str, url: str, *, base: Path) -> dict:
             "HOST": parts.hostname or "",
             "PORT": str(parts.port or ""),
             "CONN_MAX_AGE": 0,
+            "TEST": {"NAME": f"test_{db_name}_{os.getpid()}"},
         }
     raise ConfigError(f"{name}={url!r} has scheme {parts.scheme!r}; allowed: sqlite://, postgres://")

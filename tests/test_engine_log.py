@@ -95,3 +95,20 @@ def test_the_cached_fold_equals_a_fold_from_scratch_at_every_seq(tally_spec):
     for seq in range(0, last + 1):
         assert state_at(run, seq).entries == fold_from_scratch(run, seq)[0].entries
     assert state_at(run) == fold_from_scratch(run)[0]
+
+
+def test_append_is_callable_from_async_code(tally_spec):
+    import asyncio
+
+    from events.store import aappend_event
+
+    run = create_run(tally_spec(pings=[]), clock_mode=ClockMode.VIRTUAL)
+
+    async def agent() -> list[int]:
+        events = await asyncio.gather(*(aappend_event(run.pk, EventKind.ACTION, "poke", {"n": 1}, at=0.0)
+                                        for _ in range(10)))
+        return sorted(e.seq for e in events)
+
+    seqs = asyncio.run(agent())
+    assert len(set(seqs)) == 10
+    assert seqs[-1] == Event.objects.filter(run=run).count()

@@ -1,0 +1,185 @@
+"""The harness configuration file (upstream `eval_config.yaml`, plus our keys).
+
+Upstream keys: `server_url`, `frontend_url`, `speed_factor`, `agent_subprocess` (a list: raw
+substring substitution, no shell; a string: `shlex.quote`d substitution, run with a shell).
+Ours: `parallel`, `prices`, `reaction_window`, `grace`, `control_token`, `http_timeout`.
+Placeholders: __TASK_URL__, __TASK_PROMPT__, __BASE_DIR__, __CONTACT_URL__.
+"""
+
+from __future__ import annotations
+
+import math
+import shlex
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
+
+PLACEHOLDERS = ("__TASK_URL__", "__TASK_PROMPT__", "__BASE_DIR__", "__CONTACT_URL__")
+KNOWN_KEYS = (
+    "server_url", "frontend_url", "speed_factor", "agent_subprocess", "parallel", "prices",
+    "reaction_window", "grace", "control_token", "http_timeout", "api_url",
+)
+DEFAULT_GRACE = 90.0  # wall seconds an agent gets to exit once its run is completed (upstream)
+
+
+class ConfigError(ValueError):
+    """One line naming the file, the key and what is allowed."""
+
+
+@dataclass(frozen=True)
+class Price:
+    input: float  # USD per 1M input tokens
+    output: float  # USD per 1M output tokens
+
+
+@dataclass(frozen=True)
+class BenchConfig:
+    agent_subprocess: list[str] | str | None
+    server_url: str | None = None
+    frontend_url: str | None = None
+    speed_factor: float = 1.0
+    parallel: int = 1
+    prices: dict[str, Price] = field(default_factory=dict)
+    reaction_window: float = REACTION_WINDOW
+    grace: float = DEFAULT_GRACE
+    control_token: str = ""
+    http_timeout: float = 30.0
+    raw: dict[str, Any] = field(default_factory=dict)
+
+    def agent_command(self, values: dict[str, str]) -> tuple[list[str] | str, bool]:
+        """The agent command with placeholders filled in, and whether it needs a shell."""
+        if isinstance(self.agent_subprocess, str):
+            command = self.agent_subprocess
+            for key, value in values.items():
+                command = command.replace(key, shlex.quote(value))
+            return command, True
+        argv = []
+        for arg in self.agent_subprocess or []:
+            for key, value in values.items():
+                arg = arg.replace(key, value)
+            argv.append(arg)
+        return argv, False
+
+    def cost_usd(self, costs: dict[str, Any] | None) -> float | None:
+        """USD cost of a costs.json sidecar, when its model has a price."""
+        if not costs:
+            return None
+        price = self.prices.get(str(costs.get("model", "")))
+        tokens_in, tokens_out = input_tokens(costs), output_tokens(costs)
+        if price is None or tokens_in is None and tokens_out is None:
+            return None
+        return ((tokens_in or 0) * price.input + (tokens_out or 0) * price.output) / 1e6
+
+
+def input_tokens(costs: dict[str, Any]) -> int | None:
+    value = costs.get("input_tokens", costs.get("prompt_tokens"))
+    return value if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+
+
+def output_tokens(costs: dict[str, Any]) -> int | None:
+    value = costs.get("output_tokens", costs.get("completion_tokens"))
+    return value if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+
+
+def _positive(data: dict, key: str, default: float, source: str, *, integer: bool = False) -> Any:
+    value = data.get(key, default)
+    if value is None:
+        return default
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    if integer:
+        ok = ok and float(value).is_integer()
+    if not ok or value <= 0 and key != "grace" or value < 0:
+        kind = "a positive integer" if integer else "a positive number"
+        raise ConfigError(f"{source}: {key}: must be {kind}, got {value!r}")
+    return int(value) if integer else float(value)
+
+
+def _url(data: dict, key: str, source: str) -> str | None:
+    value = data.get(key)
+    if value in (None, ""):
+        return None
+    if not isinstance(value, str) or not value.startswith(("http://", "https://")):
+        raise ConfigError(f"{source}: {key}: must be an http:// or https:// URL, got {value!r}")
+    return value.rstrip("/")
+
+
+def _prices(data: dict, source: str) -> dict[str, Price]:
+    raw = data.get("prices") or {}
+    if not isinstance(raw, dict):
+        raise ConfigError(f"{source}: prices: must be a mapping model -> {{input, output}} (USD per 1M tokens)")
+    prices = {}
+    for model, entry in raw.items():
+        if not isinstance(entry, dict) or set(entry) - {"input", "output"}:
+            raise ConfigError(
+                f"{source}: prices.{model}: must be {{input: USD per 1M, output: USD per 1M}}, got {entry!r}"
+            )
+        values = {}
+        for side in ("input", "output"):
+            v = entry.get(side, 0)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or v < 0:
+                raise ConfigError(f"{source}: prices.{model}.{side}: must be a number >= 0, got {v!r}")
+            values[side] = float(v)
+        prices[str(model)] = Price(**values)
+    return prices
+
+
+def parse_config(data: Any, *, source: str = "config", require_agent: bool = True) -> BenchConfig:
+    if data is None:
+        data = {}  # upstream: an empty file is {}
+    if not isinstance(data, dict):
+        raise ConfigError(f"{source}: must be a YAML mapping of keys ({', '.join(KNOWN_KEYS)})")
+    unknown = sorted(set(data) - set(KNOWN_KEYS))
+    if unknown:
+        raise ConfigError(f"{source}: {unknown[0]}: unknown key; allowed: {', '.join(KNOWN_KEYS)}")
+    agent = data.get("agent_subprocess")
+    if agent is None:
+        if require_agent:
+            raise ConfigError(f"{source}: agent_subprocess: is required (a list of arguments or a shell string)")
+    elif isinstance(agent, list):
+        if not agent or not all(isinstance(a, (str, int, float)) for a in agent):
+            raise ConfigError(f"{source}: agent_subprocess: a list must hold at least one string argument")
+        agent = [str(a) for a in agent]
+    elif not isinstance(agent, str) or not agent.strip():
+        raise ConfigError(f"{source}: agent_subprocess: must be a list of arguments or a non-empty shell string")
+    try:
+        speed_factor = validate_speed_factor(data.get("speed_factor", 1.0))
+    except SpeedFactorError as exc:
+        raise ConfigError(f"{source}: speed_factor: {exc}") from None
+    token = data.get("control_token") or ""
+    if not isinstance(token, str):
+        raise ConfigError(f"{source}: control_token: must be a string")
+    return BenchConfig(
+        agent_subprocess=agent,
+        server_url=_url(data, "server_url", source) or _url(data, "api_url", source),
+        frontend_url=_url(data, "frontend_url", source),
+        speed_factor=speed_factor,
+        parallel=_positive(data, "parallel", 1, source, integer=True),
+        prices=_prices(data, source),
+        reaction_window=_positive(data, "reaction_window", REACTION_WINDOW, source),
+        grace=_positive(data, "grace", DEFAULT_GRACE, source),
+        control_token=token,
+        http_timeout=_positive(data, "http_timeout", 30.0, source),
+        raw=dict(data),
+    )
+
+
+def load_config(path: str | Path) -> BenchConfig:
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: config file not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: cannot read: {exc}") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+        raise ConfigError(f"{path}: invalid YAML{where}: {problem}") from None
+    return parse_config(data, source=str(path))
