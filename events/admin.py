@@ -1,8 +1,26 @@
-"""Runs and their logs in the admin. Events are read-only: the log is append-only."""
+"""Runs and their logs in the admin. Events are read-only: the log is append-only.
 
-from django.contrib import admin
+A run has a merged timeline page (scenario events, page views, actions, lifecycle, filterable by
+kind, with each fired event's lateness) and, per row, a link to the environment's own pages as
+they looked at that log position (time travel, apps.replay.timetravel). Everything here sits
+behind the admin site, so it is staff-only; nothing is reachable from a run's /r/<token>/ URLs.
+"""
 
-from events.models import Event, Run
+from __future__ import annotations
+
+import json
+
+from django.contrib import admin, messages
+from django.core.exceptions import PermissionDenied
+from django.shortcuts import get_object_or_404
+from django.template.response import TemplateResponse
+from django.urls import path, reverse
+from django.utils.html import format_html
+
+from apps.replay.models import RunVerdict
+from apps.replay.records import latest_verdict, record_verdict, replay
+from apps.replay.timetravel import environment_path, render_site_at, site_url
+from events.models import Event, EventKind, Run
 
 
 class EventInline(admin.TabularInline):
@@ -12,6 +30,27 @@ class EventInline(admin.TabularInline):
     extra = 0
     can_delete = False
     show_change_link = False
+    max_num = 0
+
+    def has_add_permission(self, request, obj=None):
+        return False
+
+
+class VerdictInline(admin.TabularInline):
+    model = RunVerdict
+    fields = (
+        "recorded_at",
+        "source",
+        "success",
+        "detail",
+        "graded_at_seq",
+        "event_count",
+        "state_digest",
+    )
+    readonly_fields = fields
+    extra = 0
+    can_delete = False
+    max_num = 0
 
     def has_add_permission(self, request, obj=None):
         return False
@@ -19,12 +58,122 @@ class EventInline(admin.TabularInline):
 
 @admin.register(Run)
 class RunAdmin(admin.ModelAdmin):
-    list_display = ("id", "scenario_id", "environment", "status", "clock_mode", "speed_factor", "created_at",
-                    "closed_at")
+    list_display = (
+        "id",
+        "scenario_id",
+        "environment",
+        "status",
+        "verdict",
+        "clock_mode",
+        "speed_factor",
+        "sim_time",
+        "created_at",
+        "closed_at",
+        "timeline_link",
+    )
     list_filter = ("status", "environment", "clock_mode")
     search_fields = ("scenario_id", "token")
-    readonly_fields = ("token", "catalog_dir", "catalog_hash", "created_at")
-    inlines = [EventInline]
+    readonly_fields = ("token", "catalog_dir", "catalog_hash", "created_at", "timeline_link")
+    inlines = [VerdictInline, EventInline]
+    actions = ["record_verdicts", "replay_runs"]
+
+    def get_queryset(self, request):
+        return super().get_queryset(request).defer("scenario")
+
+    @admin.display(description="verdict (last recorded)")
+    def verdict(self, run: Run) -> str:
+        recorded = latest_verdict(run)
+        if recorded is None:
+            return "—"
+        return "pass" if recorded.success else "fail"
+
+    @admin.display(description="timeline")
+    def timeline_link(self, run: Run) -> str:
+        if run.pk is None:
+            return "—"
+        return format_html(
+            '<a href="{}">timeline &amp; time travel</a>',
+            reverse("admin:events_run_timeline", args=[run.pk]),
+        )
+
+    @admin.action(description="Record the verdict (grade read-only, digest the state)")
+    def record_verdicts(self, request, queryset):
+        for run in queryset:
+            verdict = record_verdict(run, source="admin")
+            self.message_user(
+                request, f"run {run.pk}: {'pass' if verdict.success else 'fail'} — {verdict.detail}"
+            )
+
+    @admin.action(description="Replay: refold from scratch and compare with the record")
+    def replay_runs(self, request, queryset):
+        for run in queryset:
+            report = replay(run)
+            if report.matches:
+                self.message_user(request, f"run {run.pk}: match", messages.SUCCESS)
+            else:
+                self.message_user(
+                    request,
+                    f"run {run.pk}: mismatch — {'; '.join(report.differences)}",
+                    messages.ERROR,
+                )
+
+    def get_urls(self):
+        view = self.admin_site.admin_view
+        return [
+            path("<int:run_id>/timeline/", view(self.timeline_view), name="events_run_timeline"),
+            path(
+                "<int:run_id>/at/<int:seq>/site/",
+                view(self.site_at_view),
+                {"page_path": ""},
+                name="events_run_site_at_root",
+            ),
+            path(
+                "<int:run_id>/at/<int:seq>/site/<path:page_path>",
+                view(self.site_at_view),
+                name="events_run_site_at",
+            ),
+            *super().get_urls(),
+        ]
+
+    def timeline_view(self, request, run_id: int):
+        run = get_object_or_404(Run, pk=run_id)
+        if not self.has_view_permission(request, run):
+            raise PermissionDenied
+        kinds = [k for k in request.GET.getlist("kind") if k in EventKind.values] or list(
+            EventKind.values
+        )
+        rows = []
+        for event in Event.objects.filter(run_id=run.pk, kind__in=kinds).order_by("seq"):
+            page = (
+                environment_path(run, event.payload.get("path", ""))
+                if event.kind == EventKind.VIEW
+                else ""
+            )
+            rows.append(
+                {
+                    "event": event,
+                    "payload": json.dumps(event.payload, ensure_ascii=False)[:300],
+                    "site_url": site_url(run, event.seq, page),
+                }
+            )
+        context = {
+            **self.admin_site.each_context(request),
+            "title": f"Run {run.pk} · {run.scenario_id} — merged timeline",
+            "opts": self.model._meta,
+            "original": run,
+            "run": run,
+            "rows": rows,
+            "kinds": [(k, k in kinds) for k in EventKind.values],
+            "verdict": latest_verdict(run),
+            "condition_at": run.condition_at,
+        }
+        return TemplateResponse(request, "replay/run_timeline.html", context)
+
+    def site_at_view(self, request, run_id: int, seq: int, page_path: str):
+        run = get_object_or_404(Run, pk=run_id)
+        if not self.has_view_permission(request, run):
+            raise PermissionDenied
+        return render_site_at(request, run, seq, page_path)
 
 
 @admin.register(Event)

@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from events.clock import sim_now, wall_now
+from events.live import log_grew
 from events.models import Event, EventKind, Run
 from events.projection import state_at
 from events.registry import ActionRejected, PayloadError, get_environment, validate_payload
@@ -40,7 +41,9 @@ def perform_action(run: Run, name: str, payload: dict[str, Any]) -> Event:
         raise ActionRejected(str(exc)) from None
     state = current_state(run)
     recorded = action.decide(state, dict(payload))
-    return append_event(run, EventKind.ACTION, name, recorded, at=sim_now(run, wall_now()))
+    event = append_event(run, EventKind.ACTION, name, recorded, at=sim_now(run, wall_now()))
+    log_grew(run.pk, event.seq)  # other tabs of this run get pushed
+    return event
 
 
 def record_view(run: Run, path: str, **details: Any) -> Event:

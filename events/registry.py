@@ -130,6 +130,9 @@ class Environment:
     urlconf: str | None = None  # module with the environment's page urlpatterns
     # Name → catalog table used to expand ["*"] in preload payloads (for authoring checks).
     catalog_tables: tuple[str, ...] = ()
+    # state → every kind of page worth timing, as paths relative to the environment root
+    # (e.g. "?folder=inbox"); used by `manage.py bench_pages`.
+    sample_pages: Callable[[State], list[str]] | None = None
 
     def apply(self, state: State, event: LoggedEvent) -> State:
         """Apply one logged event. Views and lifecycle events never change environment state."""

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from django.db.models import Max
 
 from events.clock import sim_now, wall_due, wall_now
+from events.live import log_grew
 from events.models import Event, EventKind, Run, RunStatus
 from events.store import TimelineEntryAlreadyFired, append_event
 
@@ -79,6 +80,8 @@ def fire_due(run: Run, *, wall: float | None = None, next_index: int | None = No
             pass
         index += 1
     result.next_index = index
+    if result.fired:
+        log_grew(run.pk, result.fired[-1].seq)  # open pages of this run get pushed
     if run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:
         # The live clock ran out: the run completes at the end of its timeline. Conditional
         # write so only one caller performs (and reports) the transition.

@@ -1,4 +1,4 @@
-"""ASGI entry point: HTTP (Django) + websockets (Channels), and the in-process ticker."""
+"""ASGI entry point: HTTP (Django + static files), websockets (Channels), the in-process ticker."""
 
 import os
 import sys
@@ -15,12 +15,22 @@ except ConfigError as exc:  # one clear line, no traceback
     print(f"configuration error: {exc}", file=sys.stderr)
     raise SystemExit(2) from None
 
-from channels.routing import ProtocolTypeRouter  # noqa: E402
+from channels.routing import ProtocolTypeRouter, URLRouter  # noqa: E402
+from channels.security.websocket import AllowedHostsOriginValidator  # noqa: E402
 from django.conf import settings  # noqa: E402
+from django.contrib.staticfiles.handlers import ASGIStaticFilesHandler  # noqa: E402
 
+from events.routing import websocket_urlpatterns  # noqa: E402
 from events.ticker import ticker  # noqa: E402
 
-router = ProtocolTypeRouter({"http": django_asgi})
+router = ProtocolTypeRouter(
+    {
+        # htmx and the live client are our own static files: served here, so the one Daphne
+        # process of the embedded shape needs no separate file server and no CDN.
+        "http": ASGIStaticFilesHandler(django_asgi),
+        "websocket": AllowedHostsOriginValidator(URLRouter(websocket_urlpatterns)),
+    }
+)
 
 
 async def application(scope, receive, send):

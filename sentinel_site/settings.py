@@ -40,6 +40,8 @@ INSTALLED_APPS = [
     "apps.scenarios",
     "apps.control",
     "apps.agent_site",
+    "apps.bench",
+    "apps.replay",
     # Environments: one line each. The core never imports them; each app registers its
     # Environment with the core registry when Django starts (AppConfig.ready).
     "apps.micromail",

@@ -8,6 +8,7 @@ urlpatterns = [
     path("admin/", admin.site.urls),
     path("api/", include(api_urlpatterns)),
     path("r/<str:token>/", include(run_urlpatterns)),
+    path("r/<str:token>/", include("apps.agent_site.urls")),  # live pages: the polling fallback
     # Each environment's pages, under its run: /r/<token>/<environment>/…
     *[
         path(f"r/<str:token>/{environment.name}/", include(environment.urlconf))

@@ -3,6 +3,10 @@
 `@run_page` resolves `/r/<token>/…` to an open run (404 otherwise), fires what is due (zero
 staleness), folds the state, logs the page view, and hands the view a `Page`. Environment views
 stay thin: they read `page.state`, call `page.act(...)` for actions, and render.
+
+A *live* request (`request.sentinel_live`, made by events.live to re-render a page's live regions
+for a websocket push or a poll) is a pure read: no view event is logged and `page.act` refuses,
+so implicit effects (opening marks read) never happen behind the user's back.
 """
 
 from __future__ import annotations
@@ -12,12 +16,22 @@ from dataclasses import dataclass
 from functools import wraps
 from typing import Any
 
-from django.http import Http404, HttpRequest, HttpResponse
+from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllowed
 
 from events.clock import sim_now, wall_now
 from events.commands import current_state, perform_action, record_view
+from events.live import last_live_seq
 from events.models import Event, Run
+from events.projection import state_at
 from events.registry import ActionRejected
+from events.scheduler import fire_due
+
+
+class LiveRenderActed(ActionRejected):
+    """A view tried to act while being re-rendered for a live push: refused, nothing logged."""
+
+    def __init__(self) -> None:
+        super().__init__("a live re-render never acts", status=409)
 
 
 def run_for_token(token: str) -> Run:
@@ -33,14 +47,35 @@ class Page:
     run: Run
     state: Any
     now: float  # simulated seconds (authored scale), read once per request
+    live: bool = False  # a side-effect-free re-render for a live push (see module docstring)
+    # Log position of the last scenario/action event the state includes (at least): the live
+    # client starts from it, so an event fired between render and subscription is still pushed.
+    live_seq: int = 0
+    # Time travel (the staff-only replay viewer in apps.replay) renders a past log position:
+    # nothing is logged or performed, and links stay under the viewer's own URL prefix.
+    read_only: bool = False
+    base: str | None = None
+
+    @property
+    def live_socket(self) -> str:
+        """Websocket path pushing this page's live regions (see events.consumers)."""
+        return f"/r/{self.run.token}/live"
 
     @property
     def root(self) -> str:
         """URL prefix of this run's pages for the environment: /r/<token>/<env>."""
-        return f"/r/{self.run.token}/{self.run.environment}"
+        return self.base or f"/r/{self.run.token}/{self.run.environment}"
 
-    def act(self, action: str, payload: dict) -> Event:
-        """Perform an agent action; the state is refreshed so the response shows its effect."""
+    def act(self, action: str, payload: dict) -> Event | None:
+        """Perform an agent action; the state is refreshed so the response shows its effect.
+
+        A read-only (time travel) page performs nothing and returns None: implicit effects such
+        as "opening marks read" are not applied to the past.
+        """
+        if self.read_only:
+            return None
+        if self.live:
+            raise LiveRenderActed()
         event = perform_action(self.run, action, payload)
         self.state = current_state(self.run)
         return event
@@ -49,10 +84,22 @@ class Page:
 def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
     @wraps(view)
     def wrapper(request: HttpRequest, token: str, *args, **kwargs) -> HttpResponse:
+        past = getattr(request, "sentinel_time_travel", None)
+        if past is not None:
+            # Set only by the staff-only admin viewer (apps.replay), never by a /r/ URL.
+            if request.method != "GET":
+                return HttpResponseNotAllowed(["GET"])
+            page = Page(request=request, run=past.run, state=state_at(past.run, past.seq),
+                        now=past.at, read_only=True, base=past.root)
+            return view(request, page, *args, **kwargs)
         run = run_for_token(token)
-        state = current_state(run)
-        page = Page(request=request, run=run, state=state, now=sim_now(run, wall_now()))
-        if request.method == "GET":
+        fire_due(run)  # zero staleness
+        seq = last_live_seq(run.pk)  # read before folding: the state includes at least this
+        state = state_at(run)
+        live = bool(getattr(request, "sentinel_live", False))
+        page = Page(request=request, run=run, state=state, now=sim_now(run, wall_now()), live=live,
+                    live_seq=seq)
+        if request.method == "GET" and not live:
             record_view(run, request.get_full_path(), partial=bool(getattr(request, "htmx", False)))
         try:
             return view(request, page, *args, **kwargs)

@@ -15,6 +15,7 @@ from types import MappingProxyType
 
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
+from apps.micromail.bench import sample_pages
 from apps.micromail.catalog import catalog_email, catalog_state
 from apps.micromail.state import ENVIRONMENT, Mail, empty_mail, with_emails
 from events.registry import Environment, EventType, Field, LoggedEvent
@@ -145,4 +146,5 @@ MICROMAIL = Environment(
     materialize=materialize,
     urlconf="apps.micromail.urls",
     catalog_tables=("emails",),
+    sample_pages=sample_pages,
 )

@@ -73,12 +73,18 @@ class Scenario(models.Model):
     (microfy playlists-relative-passive and public-playlists-relative-passive).
     """
 
-    path = models.CharField(max_length=300, unique=True, help_text="relative to the scenario folder, e.g. micromail/x.json")
+    path = models.CharField(
+        max_length=300,
+        unique=True,
+        help_text="relative to the scenario folder, e.g. micromail/x.json",
+    )
     scenario_id = models.CharField("id", max_length=200, db_index=True)
     environment = models.CharField(max_length=64, db_index=True)
     prompt = models.TextField(blank=True)
     start_page = models.CharField(max_length=300, blank=True)
-    condition_at = models.FloatField(null=True, blank=True, help_text="authored seconds; empty = no-op")
+    condition_at = models.FloatField(
+        null=True, blank=True, help_text="authored seconds; empty = no-op"
+    )
     event_timeline_end = models.FloatField()
     kill_at = models.FloatField(null=True, blank=True)
     eval_sql = models.TextField(blank=True)
@@ -87,12 +93,18 @@ class Scenario(models.Model):
     solution = OrderedJSONField(default=list, blank=True)
     is_dev = models.BooleanField(default=False, help_text="a dev.json (populate-everything) file")
     # Denormalised from taxonomy for the admin filters.
-    monitoring_approach = models.CharField("action requirement", max_length=16, blank=True, db_index=True)
+    monitoring_approach = models.CharField(
+        "action requirement", max_length=16, blank=True, db_index=True
+    )
     milestone_type = models.CharField("criterion type", max_length=16, blank=True, db_index=True)
     # The file's shape, for byte-identical dumps.
     key_order = OrderedJSONField(default=list, blank=True, help_text="top-level keys in file order")
-    int_keys = OrderedJSONField(default=list, blank=True, help_text="numbers written without a decimal point")
-    extra = OrderedJSONField(default=dict, blank=True, help_text="unknown top-level keys, kept verbatim")
+    int_keys = OrderedJSONField(
+        default=list, blank=True, help_text="numbers written without a decimal point"
+    )
+    extra = OrderedJSONField(
+        default=dict, blank=True, help_text="unknown top-level keys, kept verbatim"
+    )
     # Only for a file whose text is not json.dump(indent=2) output: its original text, used while
     # the row still renders to `original_canonical_sha256` (i.e. nobody edited it).
     original_text = models.TextField(blank=True)
@@ -134,7 +146,9 @@ class TimelineEvent(models.Model):
 
     def as_json(self) -> dict[str, Any]:
         values: dict[str, Any] = {
-            "time": int(self.time) if self.time_is_int and self.time == int(self.time) else self.time,
+            "time": int(self.time)
+            if self.time_is_int and self.time == int(self.time)
+            else self.time,
             "type": self.type,
             "payload": self.payload,
             **(self.extra or {}),

@@ -62,8 +62,11 @@ def scenario() -> dict:
         "kill_at": 600.0,
         "taxonomy": {},
         "events": [
-            {"time": 0.0, "type": "preload_emails",
-             "payload": {"email_ids": [OLD_MAIL, "base-02", UNREAD_AT_START]}},
+            {
+                "time": 0.0,
+                "type": "preload_emails",
+                "payload": {"email_ids": [OLD_MAIL, "base-02", UNREAD_AT_START]},
+            },
             {"time": ARRIVES_AT, "type": "new_email", "payload": {"email_id": NEW_MAIL}},
         ],
         "eval_sql": EVAL_SQL,
@@ -103,9 +106,16 @@ def reload_until_visible(page: Page, locator, *, timeout_s: float = 15.0) -> Non
 
 
 def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_site, browser):  # noqa: F811
-    run = api(live_site, "POST", "/api/runs/", {
-        "scenario_json": scenario(), "clock_mode": "live", "speed_factor": SPEED_FACTOR,
-    })
+    run = api(
+        live_site,
+        "POST",
+        "/api/runs/",
+        {
+            "scenario_json": scenario(),
+            "clock_mode": "live",
+            "speed_factor": SPEED_FACTOR,
+        },
+    )
     page = browser.new_page()
     page.set_default_timeout(5000)
 
@@ -113,8 +123,11 @@ def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_si
     page.goto(run["task_url"])
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible()
     for folder in ("Inbox", "Sent Items", "Drafts", "Archive", "Junk Email", "Deleted Items"):
-        expect(page.get_by_role("navigation", name="Folders").get_by_role(
-            "link", name=re.compile(rf"^{folder}\b"))).to_be_visible()
+        expect(
+            page.get_by_role("navigation", name="Folders").get_by_role(
+                "link", name=re.compile(rf"^{folder}\b")
+            )
+        ).to_be_visible()
     expect(row(page, OLD_SUBJECT)).to_be_visible()
     expect(inbox_link(page)).to_have_accessible_name(re.compile(r"\b1 unread"))
 
@@ -130,7 +143,9 @@ def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_si
     expect(inbox_link(page)).to_have_accessible_name(re.compile(r"\b1 unread"))
 
     # Reply: the form comes prefilled; send it with a line of text on top.
-    page.get_by_role("navigation", name="Respond").get_by_role("link", name="Reply", exact=True).click()
+    page.get_by_role("navigation", name="Respond").get_by_role(
+        "link", name="Reply", exact=True
+    ).click()
     expect(page.get_by_role("heading", level=1, name="Reply")).to_be_visible()
     expect(page.get_by_label("Subject")).to_have_value(f"Re: {NEW_SUBJECT}")
     expect(page.get_by_label("To", exact=True)).not_to_have_value("")
@@ -145,10 +160,14 @@ def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_si
     row(page, OLD_SUBJECT).click()
     expect(page.get_by_role("heading", level=2, name=OLD_SUBJECT)).to_be_visible()
     page.get_by_role("group", name="Message actions").get_by_role(
-        "button", name="Move to Junk").click()
+        "button", name="Move to Junk"
+    ).click()
     expect(row(page, OLD_SUBJECT)).to_have_count(0)
-    expect(page.get_by_role("navigation", name="Folders").get_by_role(
-        "link", name=re.compile(r"^Junk Email\b"))).to_have_accessible_name(re.compile(r"\b1 items"))
+    expect(
+        page.get_by_role("navigation", name="Folders").get_by_role(
+            "link", name=re.compile(r"^Junk Email\b")
+        )
+    ).to_have_accessible_name(re.compile(r"\b1 items"))
 
     # Report back, then grade: the three actions, and only them.
     page.goto(run["contact_url"])

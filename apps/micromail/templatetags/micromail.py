@@ -1,23 +1,18 @@
-"""Template filters for MicroMail pages: simulated time and folder names."""
+"""Template filters for MicroMail pages: folder names, plus the shared simulated-time filters
+(apps/agent_site/templatetags/simtime.py) so `{% load micromail %}` is enough."""
 
 from __future__ import annotations
 
 from django import template
 
-from apps.micromail.simclock import ago, clock_time
+from apps.agent_site.templatetags.simtime import sim_ago, sim_clock
 from apps.micromail.state import FOLDER_TITLES
 
 register = template.Library()
 
 
-@register.filter
-def sim_ago(at: float, now: float) -> str:
-    return ago(at, now)
-
-
-@register.filter
-def sim_clock(at: float) -> str:
-    return clock_time(at)
+register.filter("sim_ago", sim_ago)
+register.filter("sim_clock", sim_clock)
 
 
 @register.filter

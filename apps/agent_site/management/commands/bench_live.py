@@ -1,0 +1,221 @@
+"""Measure live push latency: event fired on the server → update received by every subscriber.
+
+    python manage.py bench_live --clients 50 --seconds 30 [--rate 2] [--runs 1]
+
+Starts Daphne in a subprocess on a free port over the configured database and settings (so it
+measures whichever shape the environment selects: embedded, or Redis + Celery), creates
+virtual-clock MicroMail runs through the multi-run API, subscribes `--clients` websocket
+clients to their inbox pages (round-robin over `--runs` runs), then advances every run through
+`/api/runs/<id>/advance/` `--rate` times a second, each advance firing one `new_email`.
+Latency per (event, client) = wall time the client received the first update including the
+event − the event's `recorded_at`. Progress goes to stderr; stdout ends with exactly one line:
+
+    bench_live: push_p50_ms=<f> push_p99_ms=<f> messages=<n>
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from django.conf import settings
+from django.core.management import call_command
+from django.core.management.base import BaseCommand, CommandError
+
+from apps.catalog.loader import load_catalog
+
+PRELOADED = 12  # emails in the inbox before the bench starts
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+@contextlib.contextmanager
+def daphne(port: int, log_path: Path):
+    log = open(log_path, "ab")
+    process = subprocess.Popen(
+        [sys.executable, "-m", "daphne", "-b", "127.0.0.1", "-p", str(port),
+         "sentinel_site.asgi:application"],
+        cwd=settings.BASE_DIR, env=dict(os.environ), stdout=log, stderr=subprocess.STDOUT,
+        start_new_session=True,
+    )
+    try:
+        yield process
+    finally:
+        os.killpg(process.pid, signal.SIGTERM)
+        try:
+            process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+        log.close()
+
+
+def bench_scenario(email_ids: list[str], events: int) -> dict:
+    """Preload a few emails at t=0, then one new_email per simulated second (ids cycle)."""
+    arriving = email_ids[PRELOADED:] or email_ids
+    return {
+        "id": "bench-live",
+        "environment": "micromail",
+        "start_page": "HOST_ADDRESS/micromail",
+        "prompt": "bench_live",
+        "condition_at": None,
+        "event_timeline_end": float(events + 10),
+        "kill_at": float(events + 10),
+        "events": [{"time": 0.0, "type": "preload_emails",
+                    "payload": {"email_ids": email_ids[:PRELOADED]}}]
+        + [{"time": float(i), "type": "new_email",
+            "payload": {"email_id": arriving[(i - 1) % len(arriving)]}}
+           for i in range(1, events + 1)],
+        "eval_sql": "SELECT 1",
+        "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "passive"},
+    }
+
+
+def percentile(values: list[float], q: float) -> float:
+    ordered = sorted(values)
+    if not ordered:
+        return float("nan")
+    rank = q / 100 * (len(ordered) - 1)
+    low = int(rank)
+    high = min(low + 1, len(ordered) - 1)
+    return ordered[low] + (ordered[high] - ordered[low]) * (rank - low)
+
+
+class Command(BaseCommand):
+    help = "Measure websocket push latency of live pages (event fired → update received)."
+
+    def add_arguments(self, parser):
+        parser.add_argument("--clients", type=int, default=50, help="websocket subscribers")
+        parser.add_argument("--seconds", type=float, default=30.0, help="how long to fire events")
+        parser.add_argument("--rate", type=float, default=2.0, help="advances per second (per run)")
+        parser.add_argument("--runs", type=int, default=1, help="runs the clients are spread over")
+
+    def handle(self, *args, clients, seconds, rate, runs, **options):
+        for name, value in (("clients", clients), ("seconds", seconds), ("rate", rate), ("runs", runs)):
+            if not value > 0:
+                raise CommandError(f"--{name} must be > 0, got {value}")
+        if runs > clients:
+            raise CommandError(f"--runs ({runs}) cannot exceed --clients ({clients})")
+        try:
+            import websockets  # noqa: F401
+        except ImportError:
+            raise CommandError("bench_live needs the `websockets` package: pip install websockets") from None
+        call_command("migrate", verbosity=0, interactive=False)
+        catalog = load_catalog()
+        email_ids = list(catalog.table("micromail", "emails"))
+        events = int(seconds * rate) + 5
+        port = free_port()
+        (settings.BASE_DIR / "var").mkdir(exist_ok=True)
+        with daphne(port, settings.BASE_DIR / "var" / "bench-live.log") as process:
+            result = asyncio.run(
+                Bench(f"127.0.0.1:{port}", process, bench_scenario(email_ids, events),
+                      clients, seconds, rate, runs, self.stderr).main()
+            )
+        latencies, messages, missed = result
+        if missed:
+            self.stderr.write(f"bench_live: {missed} (event, client) updates never arrived")
+        self.stdout.write(
+            f"bench_live: push_p50_ms={percentile(latencies, 50):.2f} "
+            f"push_p99_ms={percentile(latencies, 99):.2f} messages={messages}"
+        )
+
+
+class Bench:
+    def __init__(self, host, process, scenario, clients, seconds, rate, runs, stderr):
+        self.host, self.process, self.scenario = host, process, scenario
+        self.clients, self.seconds, self.rate, self.runs = clients, seconds, rate, runs
+        self.stderr = stderr
+
+    def say(self, text: str) -> None:
+        self.stderr.write(f"bench_live: {text}")
+
+    async def wait_for_server(self, http) -> None:
+        deadline = time.monotonic() + 30
+        while True:
+            try:
+                await http.get("/scenarios")
+                return
+            except Exception:  # noqa: BLE001 — not listening yet
+                if self.process.poll() is not None or time.monotonic() > deadline:
+                    raise CommandError("the server did not start; see var/bench-live.log") from None
+                await asyncio.sleep(0.1)
+
+    async def api(self, http, path: str, body: dict) -> dict:
+        response = await http.post(path, json=body)
+        if response.status_code >= 400:
+            raise CommandError(f"POST {path} answered {response.status_code}: {response.text[:300]}")
+        return response.json()
+
+    async def client(self, run: dict, received: list, ready: asyncio.Event, stop: asyncio.Event):
+        import websockets
+
+        url = f"/r/{run['token']}/micromail/?folder=inbox"
+        async with websockets.connect(f"ws://{self.host}/r/{run['token']}/live",
+                                      max_size=None) as ws:
+            await ws.send(json.dumps({"url": url, "seq": 0}))
+            await ws.recv()  # seq 0 is behind the preload: the first push is the warm-up
+            ready.set()
+            while not stop.is_set():
+                try:
+                    frame = await asyncio.wait_for(ws.recv(), timeout=0.2)
+                except TimeoutError:
+                    continue
+                message = json.loads(frame)
+                if message.get("type") == "regions":
+                    received.append((message["seq"], time.time()))
+
+    async def main(self) -> tuple[list[float], int, int]:
+        import httpx
+
+        async with httpx.AsyncClient(base_url=f"http://{self.host}", timeout=60) as http:
+            await self.wait_for_server(http)
+            runs = [await self.api(http, "/api/runs/", {"scenario_json": self.scenario,
+                                                       "clock_mode": "virtual"})
+                    for _ in range(self.runs)]
+            stop = asyncio.Event()
+            inboxes = [(runs[i % self.runs], [], asyncio.Event()) for i in range(self.clients)]
+            tasks = [asyncio.create_task(self.client(run, received, ready, stop))
+                     for run, received, ready in inboxes]
+            try:
+                await asyncio.wait_for(asyncio.gather(*(r.wait() for _, _, r in inboxes)), 60)
+            except TimeoutError:
+                raise CommandError("the websocket clients did not all subscribe within 60 s") from None
+            self.say(f"{self.clients} clients subscribed to {self.runs} run(s); firing "
+                     f"{self.rate:g}/s for {self.seconds:g} s")
+            started = time.monotonic()
+            tick = 0
+            while time.monotonic() - started < self.seconds:
+                tick += 1
+                await asyncio.gather(*(self.api(http, f"/api/runs/{run['id']}/advance/",
+                                                {"time": float(tick)}) for run in runs))
+                await asyncio.sleep(max(0.0, started + tick / self.rate - time.monotonic()))
+            await asyncio.sleep(2.0)  # let the last pushes land
+            stop.set()
+            await asyncio.gather(*tasks, return_exceptions=True)
+            fired = {}
+            for run in runs:
+                log = (await http.get(f"/api/runs/{run['id']}/events/")).json()
+                fired[run["id"]] = [(e["seq"], e["recorded_at"]) for e in log
+                                    if e["kind"] == "scenario" and e["at"] > 0]
+                await self.api(http, f"/api/runs/{run['id']}/close/", {})
+        latencies, messages, missed = [], 0, 0
+        for run, received, _ in inboxes:
+            messages += len(received)
+            for seq, recorded_at in fired[run["id"]]:
+                arrival = next((at for got, at in received if got >= seq), None)
+                if arrival is None:
+                    missed += 1
+                else:
+                    latencies.append((arrival - recorded_at) * 1000.0)
+        return latencies, messages, missed

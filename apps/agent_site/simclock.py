@@ -1,0 +1,69 @@
+"""Simulated time as pages show it, from the run's clock — never the browser's.
+
+Every environment renders times with these helpers (template filters in
+`apps/agent_site/templatetags/simtime.py`), so acceleration and a virtual clock look the same to
+every client and to the replay viewer.
+
+The simulated workday starts at 09:00: simulated second 0 is 09:00 on the run's *day zero*, the
+UTC date the run was created (stored on the run, so a replay shows the same dates). A message
+preloaded "five minutes before start" reads 08:55. Apart from `day_zero`, these are pure
+functions of floats and dates.
+"""
+
+from __future__ import annotations
+
+from datetime import date, datetime, time, timedelta
+
+DAY_START_S = 9 * 3600  # sim second 0 is 09:00
+DAY_S = 24 * 3600
+
+
+def day_zero(run) -> date:
+    """The calendar date of simulated second 0 for `run` (its creation date, UTC)."""
+    created = getattr(run, "created_at", None)
+    return created.date() if created is not None else date(2025, 1, 6)
+
+
+def moment(at: float, zero: date) -> datetime:
+    """Simulated second `at` as a (naive) date and time on the simulated calendar."""
+    return datetime.combine(zero, time()) + timedelta(seconds=DAY_START_S + at)
+
+
+def clock_time(at: float) -> str:
+    """`at` (simulated seconds) as hh:mm on the simulated day."""
+    seconds = int((DAY_START_S + at) // 60 * 60) % DAY_S
+    return f"{seconds // 3600:02d}:{seconds % 3600 // 60:02d}"
+
+
+def ago(at: float, now: float) -> str:
+    """How long before `now` the moment `at` was: "just now", "5 min ago", else hh:mm."""
+    elapsed = max(0.0, now - at)
+    if elapsed < 60:
+        return "just now"
+    if elapsed < 3600:
+        return f"{int(elapsed // 60)} min ago"
+    return clock_time(at)
+
+
+def relative(at: float, now: float, zero: date) -> str:
+    """Like `ago`, and beyond the hour names the day: "14:05", "Yesterday 17:30", "Mon 3 Mar"."""
+    elapsed = max(0.0, now - at)
+    if elapsed < 3600:
+        return ago(at, now)
+    then, today = moment(at, zero), moment(now, zero).date()
+    if then.date() == today:
+        return clock_time(at)
+    if then.date() == today - timedelta(days=1):
+        return f"Yesterday {clock_time(at)}"
+    return f"{then:%a} {then.day} {then:%b}"
+
+
+def absolute(at: float, zero: date) -> str:
+    """The full simulated date and time: "Mon 6 Jan 2025, 09:12"."""
+    then = moment(at, zero)
+    return f"{then:%a} {then.day} {then:%b %Y}, {clock_time(at)}"
+
+
+def today(now: float, zero: date) -> date:
+    """The simulated calendar date at simulated second `now`."""
+    return moment(now, zero).date()

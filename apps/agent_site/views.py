@@ -1,0 +1,37 @@
+"""The polling fallback of live pages: `GET /r/<token>/live?url=<page URL>&seq=<N>`.
+
+Same answer as the websocket push (events.consumers), over plain HTTP, for browsers whose
+socket cannot connect: 204 when the run's log has no scenario/action event after `seq`, else
+`{"type": "regions", "seq": M, "html": <out-of-band swaps>}`. A pure read: nothing is logged.
+"""
+
+from __future__ import annotations
+
+from django.http import HttpRequest, HttpResponse, JsonResponse
+from django.views.decorators.http import require_GET
+
+from apps.agent_site.pages import run_for_token
+from events import live
+from events.scheduler import fire_due
+
+
+@require_GET
+def live_poll(request: HttpRequest, token: str) -> HttpResponse:
+    run = run_for_token(token)
+    url = request.GET.get("url", "")
+    try:
+        live.page_path_for(run, url)
+    except live.NotLive as exc:
+        return JsonResponse({"detail": f"url: {exc}"}, status=400)
+    try:
+        since = int(request.GET.get("seq", "0"))
+    except ValueError:
+        return JsonResponse({"detail": "seq must be an integer log position"}, status=400)
+    fire_due(run)  # zero staleness: polling alone (no ticker) still moves a live clock's page
+    if live.last_live_seq(run.pk) <= since:
+        return HttpResponse(status=204)
+    try:
+        update = live.render_update(run, url, request.get_host())
+    except live.NotLive as exc:
+        return JsonResponse({"detail": str(exc)}, status=404)
+    return JsonResponse(update.message())

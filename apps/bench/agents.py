@@ -1,0 +1,92 @@
+"""Built-in control agents, run as `python -m apps.bench.agents NAME --task-url … --contact-url …`.
+
+They prove every scenario is solvable and not trivially passable (`bench validate`):
+
+- oracle  — waits until the condition holds (the harness tells it `condition_at`), performs the
+  scenario's `solution` actions, then visits and submits the contact form; on a no-op it performs
+  the solution (usually nothing) and leaves without contacting;
+- early   — contacts at once;
+- never   — never contacts, leaves at once;
+- sleeper — games the benchmark: waits until just before the deadline, then contacts.
+
+Standard library only, so a subprocess starts fast and needs no Django.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+import urllib.parse
+import urllib.request
+
+AGENTS = ("oracle", "early", "never", "sleeper")
+HTTP_TIMEOUT_S = 20.0
+CONDITION_MARGIN_S = 0.5  # wall seconds after condition_at, so the contact is never early
+SLEEPER_MARGIN_S = 5.0  # wall seconds before the deadline
+
+
+def get(url: str) -> str:
+    with urllib.request.urlopen(url, timeout=HTTP_TIMEOUT_S) as response:
+        return response.read().decode("utf-8", "replace")
+
+
+def post(url: str, data: bytes, content_type: str) -> str:
+    request = urllib.request.Request(url, data=data, headers={"Content-Type": content_type}, method="POST")
+    with urllib.request.urlopen(request, timeout=HTTP_TIMEOUT_S) as response:
+        return response.read().decode("utf-8", "replace")
+
+
+def log(message: str) -> None:
+    print(f"[{time.strftime('%H:%M:%S')}] {message}", flush=True)
+
+
+def contact(contact_url: str, message: str) -> None:
+    get(contact_url)
+    post(contact_url, urllib.parse.urlencode({"message": message}).encode(), "application/x-www-form-urlencoded")
+    log("contacted the user")
+
+
+def perform(actions_url: str, solution: list[dict]) -> None:
+    for step in solution:
+        body = json.dumps({"action": step["action"], "payload": step.get("payload") or {}}).encode()
+        post(actions_url, body, "application/json")
+        log(f"performed {step['action']} {json.dumps(step.get('payload') or {})}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m apps.bench.agents")
+    parser.add_argument("agent", choices=AGENTS)
+    parser.add_argument("--task-url", required=True)
+    parser.add_argument("--contact-url", required=True)
+    parser.add_argument("--speed-factor", type=float, default=1.0)
+    parser.add_argument("--condition-at", default="none", help="authored seconds, or none (no-op)")
+    parser.add_argument("--solution", default="[]", help="JSON list of {action, payload}")
+    parser.add_argument("--deadline", type=float, default=0.0, help="wall seconds after the start")
+    args = parser.parse_args(argv)
+
+    get(args.task_url)  # starts the run's clock (it has started by the time this returns)
+    started = time.monotonic()
+    log(f"{args.agent}: opened the task")
+    actions_url = args.contact_url.rsplit("/", 1)[0] + "/actions"
+    condition = None if args.condition_at.lower() in ("none", "null", "") else float(args.condition_at)
+
+    if args.agent == "early":
+        contact(args.contact_url, "done")
+    elif args.agent == "sleeper":
+        time.sleep(max(0.0, started + args.deadline - SLEEPER_MARGIN_S - time.monotonic()))
+        contact(args.contact_url, "the condition was met")
+    elif args.agent == "oracle":
+        if condition is not None:
+            wake = started + condition / args.speed_factor + CONDITION_MARGIN_S
+            time.sleep(max(0.0, wake - time.monotonic()))
+        perform(actions_url, json.loads(args.solution))
+        if condition is not None:
+            contact(args.contact_url, "the condition was met")
+    log(f"{args.agent}: leaving")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

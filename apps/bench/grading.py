@@ -1,0 +1,294 @@
+"""`bench grade`: read a results tree and summarise it.
+
+First the upstream table, summary lines and CSV (upstream-protocol.md §6 "grade"), then the
+paper's breakdown: success by category, reaction time of successful non-no-op tasks, USD cost
+from costs.json × prices, tool-call statistics and server-measured agent activity.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import statistics
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from apps.bench.config import BenchConfig, input_tokens, output_tokens
+from apps.bench.runner import COSTS, ERROR, RESULTS, BenchError
+
+COLUMNS = ("name", "evaluation_time", "success", "stop_time", "condition_at", "reaction_time",
+           "prompt_tokens", "completion_tokens", "tool_calls")
+GROUPS = ("overall", "noop", "passive", "active", "absolute", "relative")
+
+
+@dataclass
+class Row:
+    name: str
+    environment: str
+    category: str
+    success: bool
+    evaluation_time: float | None
+    stop_time: float | None
+    condition_at: float | None
+    reaction_time: float | None
+    prompt_tokens: int | None
+    completion_tokens: int | None
+    tool_calls: int | None
+    cost_usd: float | None
+    views: int | None
+    actions: int | None
+    run: int | None
+    result: dict[str, Any] = field(default_factory=dict)
+    costs: dict[str, Any] | None = None
+
+    @property
+    def is_noop(self) -> bool:
+        return self.category == "noop"
+
+    def in_group(self, group: str) -> bool:
+        if group == "overall":
+            return True
+        if group == "noop":
+            return self.is_noop
+        return not self.is_noop and group in self.category.split("-")
+
+    @property
+    def completion_time(self) -> float | None:
+        """Wall seconds the run ran before the agent contacted or was stopped."""
+        return self.stop_time if self.stop_time is not None else self.evaluation_time
+
+    def per_minute(self, count: int | None) -> float | None:
+        if count is None or not self.evaluation_time or self.evaluation_time < 1.0:
+            return None  # a run shorter than a second says nothing about a rate
+        return count / (self.evaluation_time / 60)
+
+
+def _read_json(path: Path) -> Any:
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError):
+        return None
+
+
+def _int(value: Any) -> int | None:
+    return int(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+
+
+def load_rows(run_dir: Path, config: BenchConfig | None = None, *, task: str | None = None,
+              filter: str | None = None) -> list[Row]:
+    if not run_dir.is_dir():
+        raise BenchError(f"results folder not found: {run_dir}")
+    rows = []
+    for path in sorted(run_dir.glob(f"*/*/{RESULTS}")):
+        name = path.parent.name
+        if task is not None and name != task or filter and filter.lower() not in name.lower():
+            continue
+        result = _read_json(path)
+        if not isinstance(result, dict):
+            continue
+        costs = _read_json(path.parent / COSTS)
+        costs = costs if isinstance(costs, dict) else None
+        stop = result.get("contact_get_time")
+        condition = result.get("condition_at")
+        reaction = None
+        if result.get("success") and stop is not None and condition is not None:
+            reaction = stop - condition
+            if reaction < 0:
+                raise BenchError(f"{path}: negative reaction time {reaction:.2f} s on a successful task")
+        category = result.get("category") or ("noop" if condition is None else "unknown")
+        rows.append(Row(
+            name=name, environment=path.parent.parent.name, category=category,
+            success=bool(result.get("success")), evaluation_time=result.get("evaluation_time"),
+            stop_time=stop, condition_at=condition, reaction_time=reaction,
+            prompt_tokens=_int(input_tokens(costs)) if costs else None,
+            completion_tokens=_int(output_tokens(costs)) if costs else None,
+            tool_calls=_int(costs.get("tool_calls")) if costs else None,
+            cost_usd=config.cost_usd(costs) if config and costs else None,
+            views=_int(result.get("views")), actions=_int(result.get("actions")),
+            run=_int(result.get("run")), result=result, costs=costs,
+        ))
+    if not rows and (task or filter):
+        raise BenchError(f"no results match {'--task ' + task if task else '--filter ' + filter!r}")
+    return rows
+
+
+def error_tasks(run_dir: Path) -> list[str]:
+    return sorted(p.parent.name for p in run_dir.glob(f"*/*/{ERROR}") if not (p.parent / RESULTS).exists())
+
+
+# --- statistics ------------------------------------------------------------------------------
+
+
+def _values(rows: list[Row], attribute: str) -> list[float]:
+    return [v for v in (getattr(r, attribute) for r in rows) if v is not None]
+
+
+def mean(values: list[float]) -> float | None:
+    return statistics.fmean(values) if values else None
+
+
+def median(values: list[float]) -> float | None:
+    return statistics.median(values) if values else None
+
+
+def quartiles(values: list[float]) -> tuple[float, float] | None:
+    if len(values) < 2:
+        return (values[0], values[0]) if values else None
+    q = statistics.quantiles(values, n=4, method="inclusive")
+    return q[0], q[2]
+
+
+@dataclass(frozen=True)
+class Rate:
+    passed: int
+    total: int
+
+    @property
+    def fraction(self) -> float | None:
+        return self.passed / self.total if self.total else None
+
+    def __str__(self) -> str:
+        return f"{100 * self.fraction:.1f}% ({self.passed}/{self.total})" if self.total else "N/A (0/0)"
+
+
+def success_by_group(rows: list[Row]) -> dict[str, Rate]:
+    rates = {}
+    for group in GROUPS:
+        members = [r for r in rows if r.in_group(group)]
+        rates[group] = Rate(sum(r.success for r in members), len(members))
+    return rates
+
+
+@dataclass(frozen=True)
+class Summary:
+    total: int
+    successes: int
+    rates: dict[str, Rate]
+    reaction: list[float]
+    prompt_tokens: list[float]
+    completion_tokens: list[float]
+    tool_calls: list[float]
+    costs: list[float]
+    views_per_min: list[float]
+    actions_per_min: list[float]
+
+
+def summarise(rows: list[Row]) -> Summary:
+    successful = [r for r in rows if r.success]
+    return Summary(
+        total=len(rows),
+        successes=len(successful),
+        rates=success_by_group(rows),
+        # Reaction time: successful non-no-op tasks (a no-op has no condition to react to).
+        reaction=_values([r for r in successful if not r.is_noop], "reaction_time"),
+        prompt_tokens=_values(rows, "prompt_tokens"),
+        completion_tokens=_values(rows, "completion_tokens"),
+        tool_calls=_values(rows, "tool_calls"),
+        costs=_values(rows, "cost_usd"),
+        views_per_min=[v for v in (r.per_minute(r.views) for r in rows) if v is not None],
+        actions_per_min=[v for v in (r.per_minute(r.actions) for r in rows) if v is not None],
+    )
+
+
+# --- rendering -------------------------------------------------------------------------------
+
+
+def _cell(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return f"{value:.2f}"
+    return str(value)
+
+
+def row_values(row: Row) -> list[Any]:
+    return [row.name, row.evaluation_time, row.success, row.stop_time, row.condition_at,
+            row.reaction_time, row.prompt_tokens, row.completion_tokens, row.tool_calls]
+
+
+def _avg_median(values: list[float], unit: str = "", digits: int = 1) -> str:
+    if not values:
+        return "N/A"
+    return f"avg {mean(values):.{digits}f}{unit}, median {median(values):.{digits}f}{unit}"
+
+
+def render_table(rows: list[Row], errors: list[str] | None = None) -> str:
+    cells = [list(COLUMNS)] + [[_cell(v) for v in row_values(r)] for r in rows]
+    widths = [max(len(line[i]) for line in cells) for i in range(len(COLUMNS))]
+    out = [" | ".join(c.ljust(w) for c, w in zip(cells[0], widths)).rstrip(),
+           "-+-".join("-" * w for w in widths)]
+    out += [" | ".join(c.ljust(w) for c, w in zip(line, widths)).rstrip() for line in cells[1:]]
+    s = summarise(rows)
+    out += [
+        "",
+        f"Total Tasks: {s.total}",
+        f"Task Success Rate: {s.rates['overall']}",
+        f"Reaction Time: {_avg_median(s.reaction, 's')}",
+        f"Prompt Tokens: {_avg_median(s.prompt_tokens)}",
+        f"Completion Tokens: {_avg_median(s.completion_tokens)}",
+        f"Tool Calls: {_avg_median(s.tool_calls)}",
+        "",
+        "Success by category: " + " | ".join(f"{g} {s.rates[g]}" for g in GROUPS),
+        "Reaction Time (successful, non-no-op): "
+        + (f"mean {mean(s.reaction):.1f}s, median {median(s.reaction):.1f}s (n={len(s.reaction)})"
+           if s.reaction else "N/A"),
+        "Cost (USD): "
+        + (f"median ${median(s.costs):.4f}, mean ${mean(s.costs):.4f} (n={len(s.costs)})" if s.costs else "N/A"),
+        "Tool Calls: " + _tool_stats(s.tool_calls),
+        "Agent activity (server-measured, per minute of run): "
+        + (f"views {mean(s.views_per_min):.1f}/min, actions {mean(s.actions_per_min):.1f}/min"
+           if s.views_per_min else "N/A"),
+    ]
+    if errors:
+        out.append(f"Harness errors (not graded): {len(errors)} — {', '.join(errors)}")
+    return "\n".join(out) + "\n"
+
+
+def _tool_stats(values: list[float]) -> str:
+    if not values:
+        return "N/A"
+    q1, q3 = quartiles(values)
+    return (f"mean {mean(values):.1f}, median {median(values):.1f}, q1 {q1:.1f}, q3 {q3:.1f}, "
+            f"min {min(values):g}, max {max(values):g}")
+
+
+def _fmt1(value: float | None) -> str:
+    return "" if value is None else f"{value:.1f}"
+
+
+def render_csv(rows: list[Row]) -> str:
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(COLUMNS)
+    for row in rows:
+        writer.writerow(["" if v is None else v for v in row_values(row)])
+    writer.writerow([])
+    s = summarise(rows)
+    rate = s.rates["overall"].fraction
+    pairs = [
+        ("Total Tasks", s.total),
+        ("Successes", s.successes),
+        ("Task Success Rate", "" if rate is None else f"{rate:.4f}"),
+        ("Average Reaction Time", _fmt1(mean(s.reaction))),
+        ("Median Reaction Time", _fmt1(median(s.reaction))),
+        ("Average Prompt Tokens", _fmt1(mean(s.prompt_tokens))),
+        ("Median Prompt Tokens", _fmt1(median(s.prompt_tokens))),
+        ("Average Completion Tokens", _fmt1(mean(s.completion_tokens))),
+        ("Median Completion Tokens", _fmt1(median(s.completion_tokens))),
+        ("Average Tool Calls", _fmt1(mean(s.tool_calls))),
+        ("Median Tool Calls", _fmt1(median(s.tool_calls))),
+    ]
+    # Ours, after the upstream rows so upstream readers still find theirs first.
+    for group in GROUPS[1:]:
+        fraction = s.rates[group].fraction
+        pairs.append((f"Success Rate {group}", "" if fraction is None else f"{fraction:.4f}"))
+    pairs += [
+        ("Median Cost USD", "" if not s.costs else f"{median(s.costs):.4f}"),
+        ("Average Cost USD", "" if not s.costs else f"{mean(s.costs):.4f}"),
+        ("Average Views Per Minute", _fmt1(mean(s.views_per_min))),
+        ("Average Actions Per Minute", _fmt1(mean(s.actions_per_min))),
+    ]
+    writer.writerows(pairs)
+    return buffer.getvalue()

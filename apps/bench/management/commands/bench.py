@@ -1,0 +1,246 @@
+"""`manage.py bench run | grade | validate` — the benchmark harness (docs: apps/bench/README.md)."""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import signal
+import threading
+import tempfile
+import time
+from pathlib import Path
+
+from django.conf import settings
+from django.core.management import call_command
+from django.core.management.base import BaseCommand, CommandError
+from django.db import connection
+from django.db.migrations.executor import MigrationExecutor
+from django.utils import timezone
+
+from apps.bench.client import ControlClient, HarnessError
+from apps.bench.config import BenchConfig, ConfigError, load_config
+from apps.bench.runner import CONTROL_AGENTS, BenchError, Harness, Progress, run_pool, discover
+from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
+
+DEFAULT_CONFIG = "eval_config.yaml"
+
+
+@contextlib.contextmanager
+def terminate_as_interrupt():
+    """SIGTERM unwinds like Ctrl-C, so agents (in their own sessions) and the server are killed."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt(f"signal {signum}")
+
+    previous = signal.signal(signal.SIGTERM, interrupt)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _usage(message: str) -> CommandError:
+    return CommandError(message, returncode=2)
+
+
+class Command(BaseCommand):
+    help = "Benchmark harness: run an agent over the scenarios, grade the results, validate scenarios."
+
+    def add_arguments(self, parser):
+        sub = parser.add_subparsers(dest="subcommand", required=True, metavar="{run,grade,validate}")
+
+        run = sub.add_parser("run", help="run an agent on every selected scenario")
+        run.add_argument("name", help="results go to <results-dir>/<name>/<env>/<scenario id>/")
+        run.add_argument("--config", default=DEFAULT_CONFIG)
+        run.add_argument("--parallel", type=int, help="tasks at once (config: parallel; default 1)")
+        run.add_argument("--task", help="exact scenario id")
+        run.add_argument("--filter", help="case-insensitive substring of the scenario id")
+        run.add_argument("--speed-factor", type=float)
+        run.add_argument("--server-url", help="use this server instead of starting an embedded one")
+        run.add_argument("--agent", choices=CONTROL_AGENTS, help="a built-in control agent instead of agent_subprocess")
+        run.add_argument("--retry-errors", action="store_true", help="rerun tasks that have error.txt")
+        run.add_argument("--results-dir", default="results")
+
+        grade = sub.add_parser("grade", help="summarise a results tree")
+        grade.add_argument("name")
+        grade.add_argument("--csv", action="store_true")
+        grade.add_argument("--html", metavar="PATH", help="also write a self-contained HTML report")
+        grade.add_argument("--task")
+        grade.add_argument("--filter")
+        grade.add_argument("--config", help=f"for prices (default: {DEFAULT_CONFIG} when present)")
+        grade.add_argument("--results-dir", default="results")
+
+        validate = sub.add_parser("validate", help="run the control agents on every scenario")
+        validate.add_argument("--speed-factor", type=float, default=4.0)
+        validate.add_argument("--parallel", type=int, default=10, help="runs at once per control agent")
+        validate.add_argument("--filter")
+        validate.add_argument("--server-url")
+        validate.add_argument("--reaction-window", type=float, default=REACTION_WINDOW,
+                              help="wall seconds after the last possible condition (default 30)")
+        validate.add_argument("--keep", action="store_true", help="keep the temporary results folder")
+
+    def handle(self, *args, subcommand: str, **options):
+        try:
+            with terminate_as_interrupt():
+                return getattr(self, f"handle_{subcommand}")(**options)
+        except (ConfigError, BenchError, SpeedFactorError) as exc:
+            raise _usage(str(exc)) from None
+        except HarnessError as exc:
+            raise CommandError(f"harness error: {exc}") from None
+        except KeyboardInterrupt:
+            raise CommandError("interrupted: every agent was killed; unfinished tasks run again next time",
+                               returncode=130) from None
+
+    # --- shared ----------------------------------------------------------------------------
+
+    @contextlib.contextmanager
+    def server(self, server_url: str | None):
+        if server_url:
+            yield server_url
+            return
+        from apps.bench.server import embedded_server
+
+        executor = MigrationExecutor(connection)
+        if executor.migration_plan(executor.loader.graph.leaf_nodes()):
+            call_command("migrate", interactive=False, verbosity=0)
+        with embedded_server() as url:
+            self.stdout.write(f"Embedded server on {url}")
+            yield url
+
+    def progress(self, label: str = "") -> Progress:
+        return Progress(self.stdout._out, label=label)
+
+    # --- run -------------------------------------------------------------------------------
+
+    def handle_run(self, *, name, config, parallel, task, filter, speed_factor, server_url, agent,
+                   retry_errors, results_dir, **_):
+        cfg = load_config(config) if agent is None or Path(config).exists() else BenchConfig(None)
+        if agent is None and cfg.agent_subprocess is None:
+            raise _usage(f"{config}: agent_subprocess: is required (or pass --agent)")
+        changes = {}
+        if speed_factor is not None:
+            changes["speed_factor"] = validate_speed_factor(speed_factor)
+        if parallel is not None:
+            if parallel < 1:
+                raise _usage(f"--parallel must be >= 1, got {parallel}")
+            changes["parallel"] = parallel
+        if server_url:
+            changes["server_url"] = server_url.rstrip("/")
+        cfg = dataclasses.replace(cfg, **changes)
+        run_dir = Path(results_dir) / name
+        started_at = timezone.now()
+        began = time.monotonic()
+        with self.server(cfg.server_url) as url:
+            client = ControlClient(url, token=cfg.control_token or settings.SENTINEL_CONTROL_TOKEN,
+                                   timeout=cfg.http_timeout)
+            try:
+                listing = discover(client, task=task, filter=filter)
+                harness = Harness(cfg, client, run_dir, Path(settings.BASE_DIR), agent=agent,
+                                  retry_errors=retry_errors)
+                tasks = harness.tasks(listing)
+                self.stdout.write(f"Found {len(tasks)} tasks. Results -> {run_dir}")
+                if task:
+                    self.stdout.write(f"Selecting task: {task}")
+                if filter:
+                    self.stdout.write(f"Filtering to tasks containing: {filter!r}")
+                progress = self.progress()
+                todo = harness.pending(tasks, progress)
+                outcomes = run_pool([(harness, t) for t in todo], cfg.parallel, progress)
+            finally:
+                client.close()
+        from apps.bench.records import record_benchmark
+
+        record_benchmark(name, run_dir, cfg, agent=agent, started_at=started_at, raw_config=cfg.raw)
+        counts = {s: sum(o.status == s for o in outcomes) for s in ("passed", "failed", "error")}
+        self.stdout.write(
+            f"Done. ran={len(outcomes)} passed={counts['passed']} failed={counts['failed']} "
+            f"errors={counts['error']} skipped={len(tasks) - len(todo)} wall_s={time.monotonic() - began:.1f}"
+        )
+        if counts["error"]:
+            raise CommandError(f"{counts['error']} task(s) hit a harness error; see their error.txt", returncode=1)
+
+    # --- grade -----------------------------------------------------------------------------
+
+    def handle_grade(self, *, name, csv, html, task, filter, config, results_dir, **_):
+        from apps.bench.grading import error_tasks, load_rows, render_csv, render_table
+
+        if config is None and Path(DEFAULT_CONFIG).exists():
+            config = DEFAULT_CONFIG
+        cfg = load_config(config) if config else BenchConfig(None)
+        run_dir = Path(results_dir) / name
+        rows = load_rows(run_dir, cfg, task=task, filter=filter)
+        errors = [] if task or filter else error_tasks(run_dir)
+        self.stdout.write(render_csv(rows) if csv else render_table(rows, errors), ending="")
+        if html:
+            from apps.bench.report import write_report
+
+            write_report(Path(html), name, rows)
+            if not csv:
+                self.stdout.write(f"HTML report -> {html}")
+
+    # --- validate --------------------------------------------------------------------------
+
+    def handle_validate(self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, **_):
+        from apps.bench.grading import load_rows
+
+        sf = validate_speed_factor(speed_factor)
+        if parallel < 1:
+            raise _usage(f"--parallel must be >= 1, got {parallel}")
+        if not reaction_window > 0:
+            raise _usage(f"--reaction-window must be > 0, got {reaction_window}")
+        cfg = BenchConfig(None, speed_factor=sf, parallel=parallel, reaction_window=reaction_window)
+        root = Path(tempfile.mkdtemp(prefix="bench-validate-"))
+        began = time.monotonic()
+        with self.server(server_url) as url:
+            client = ControlClient(url, token=settings.SENTINEL_CONTROL_TOKEN, timeout=cfg.http_timeout)
+            try:
+                listing = discover(client, filter=filter)
+                harnesses = {a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a)
+                             for a in CONTROL_AGENTS}
+                tasks = {a: h.tasks(listing) for a, h in harnesses.items()}
+                self.stdout.write(f"Validating {len(listing)} scenarios with {', '.join(CONTROL_AGENTS)} "
+                                  f"at speed factor {sf:g} (results -> {root})")
+                jobs = [(harnesses[a], t) for a in CONTROL_AGENTS for t in tasks[a]]
+                outcomes = run_pool(jobs, parallel * len(CONTROL_AGENTS), self.progress())
+            finally:
+                client.close()
+        wall = time.monotonic() - began
+        errors = [o for o in outcomes if o.status == "error"]
+        for o in errors:
+            self.stdout.write(f"harness error: {o.task.folder}: {o.detail}")
+        rows = {a: {r.name: r for r in load_rows(root / a)} if (root / a).is_dir() else {} for a in CONTROL_AGENTS}
+        ids = [s["id"] for s in listing]
+        noop = {s["id"] for s in listing if s["noop"]}
+        active = [i for i in ids if i not in noop]
+
+        def passed(agent: str, scenario: str) -> bool | None:
+            row = rows[agent].get(scenario)
+            return None if row is None else row.success
+
+        problems = []
+        oracle = [i for i in ids if passed("oracle", i)]
+        problems += [f"oracle failed {i}" for i in ids if i not in oracle]
+        early = [i for i in active if passed("early", i) is False]
+        problems += [f"early passed {i} (trivially passable)" for i in active if i not in early]
+        never = [i for i in ids if passed("never", i) is (i in noop)]
+        problems += [f"never {'failed' if i in noop else 'passed'} {i}" for i in ids if i not in never]
+        sleeper = [i for i in ids if passed("sleeper", i)]
+        for problem in problems:
+            self.stdout.write(f"PROBLEM: {problem}")
+        if sleeper:
+            self.stdout.write(f"sleeper (contacts just before the deadline) passes: {', '.join(sleeper)}")
+        if not keep:
+            import shutil
+
+            shutil.rmtree(root, ignore_errors=True)
+        self.stdout.write(
+            f"bench_validate: scenarios={len(ids)} oracle={len(oracle)}/{len(ids)} "
+            f"early_fail={len(early)}/{len(active)} never_ok={len(never)}/{len(ids)} "
+            f"sleeper={len(sleeper)}/{len(ids)} wall_s={wall:.1f}"
+        )
+        if problems or errors:
+            raise CommandError(f"validation failed: {len(problems)} problem(s), {len(errors)} harness error(s)",
+                               returncode=1)

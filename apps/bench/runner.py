@@ -1,0 +1,395 @@
+"""`bench run`: every task is its own live run via the multi-run API, many at once.
+
+Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
+
+1. create a live run of the scenario (POST /api/runs/);
+2. launch the agent in its own process group, cwd = the task's result folder, stdout+stderr to
+   output.txt;
+3. the deadline counts from the run's *start* (the agent's first visit to the task URL; before
+   that, from launch): `min(MAX_CONDITION_AT, kill_at) / sf + reaction_window`, which is
+   `kill_at_wall(sf)` for every benchmark scenario (their kill_at is 630) and lets short test
+   scenarios end early. At the deadline a completed run gets `grace` more seconds;
+4. the whole process group is SIGKILLed at the end, even when the agent exited by itself, so
+   no background child survives into the next task;
+5. evaluate, save the log (events.jsonl), close the run, write results.json last — its
+   presence means "done". A harness failure writes error.txt instead, never a failed result.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+import traceback
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, TextIO
+
+from apps.bench.client import ControlClient, HarnessError
+from apps.bench.config import BenchConfig
+from events.timing import MAX_CONDITION_AT
+
+RESULTS, ERROR, OUTPUT, EVENTS, COSTS = "results.json", "error.txt", "output.txt", "events.jsonl", "costs.json"
+START_POLL_S = 0.5
+CONTROL_AGENTS = ("oracle", "early", "never", "sleeper")
+
+CONTACT_INSTRUCTIONS = (
+    "Once the conditions above are met and/or the actions are taken, let me know by visiting and "
+    "submitting the form at {contact_url} . Visit and submit it ONLY ONCE, AT THE END OF THE TASK: "
+    "if you visit it too early you cannot come back, and the task fails."
+)
+
+
+class Interrupted(Exception):
+    """The harness is stopping: the task is left undone (no results.json, no error.txt)."""
+
+
+class BenchError(Exception):
+    """A problem the user can fix (bad selection, missing results): one line, exit 2."""
+
+
+def augment_prompt(prompt: str, contact_url: str) -> str:
+    return f"{prompt}\n\n{CONTACT_INSTRUCTIONS.format(contact_url=contact_url)}"
+
+
+def category_of(spec: dict[str, Any]) -> str:
+    """noop, or <passive|active>-<absolute|relative> from the taxonomy."""
+    if spec.get("condition_at") is None:
+        return "noop"
+    taxonomy = spec.get("taxonomy") or {}
+    approach = taxonomy.get("monitoring_approach") or "unknown"
+    milestone = taxonomy.get("milestone_type") or "unknown"
+    return f"{approach}-{milestone}"
+
+
+def deadline_s(spec: dict[str, Any], speed_factor: float, reaction_window: float) -> float:
+    """Wall seconds after the run's start at which the agent is stopped (see module doc)."""
+    kill_at = min(MAX_CONDITION_AT, float(spec.get("kill_at") or MAX_CONDITION_AT))
+    return kill_at / speed_factor + reaction_window
+
+
+@dataclass(frozen=True)
+class Task:
+    scenario_id: str
+    environment: str
+    spec: dict[str, Any]
+    folder: Path
+
+    @property
+    def category(self) -> str:
+        return category_of(self.spec)
+
+
+@dataclass
+class Outcome:
+    task: Task
+    status: str  # passed, failed, error, skipped
+    detail: str = ""
+    wall_s: float = 0.0
+    label: str = ""  # the control agent, when bench validate runs several
+
+
+def discover(client: ControlClient, *, task: str | None = None, filter: str | None = None) -> list[dict]:
+    """The server's scenario library in path order, narrowed by --task and --filter."""
+    listing = client.scenarios()
+    selected = [s for s in listing if (task is None or s["id"] == task)]
+    if task is not None and not selected:
+        raise BenchError(f"No scenario found with id {task!r}")
+    if filter:
+        selected = [s for s in selected if filter.lower() in s["id"].lower()]
+        if not selected:
+            raise BenchError(f"No scenario id contains {filter!r}")
+    return selected
+
+
+@dataclass
+class Harness:
+    """Everything tasks share: config, client, where results go, which agent to launch."""
+
+    config: BenchConfig
+    client: ControlClient
+    results_root: Path  # results/<NAME>
+    base_dir: Path
+    agent: str | None = None  # a control agent instead of the config's agent_subprocess
+    retry_errors: bool = False
+    stopping: threading.Event = field(default_factory=threading.Event)
+    _live: set = field(default_factory=set)
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+
+    @property
+    def speed_factor(self) -> float:
+        return self.config.speed_factor
+
+    def tasks(self, listing: list[dict]) -> list[Task]:
+        tasks = []
+        for entry in listing:
+            spec = self.client.scenario(entry["id"])
+            folder = self.results_root / spec["environment"] / spec["id"]
+            tasks.append(Task(spec["id"], spec["environment"], spec, folder))
+        return tasks
+
+    def should_skip(self, task: Task) -> str | None:
+        if (task.folder / RESULTS).exists():
+            return "already done"
+        if (task.folder / ERROR).exists():
+            if not self.retry_errors:
+                return "previous error"
+            (task.folder / ERROR).unlink()
+        return None
+
+    def command_for(self, task: Task, run: dict[str, Any], prompt: str) -> tuple[list[str] | str, bool, dict]:
+        env = dict(os.environ)
+        if self.agent:
+            env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(self.base_dir), env.get("PYTHONPATH")]))
+            condition = task.spec.get("condition_at")
+            argv = [
+                sys.executable, "-m", "apps.bench.agents", self.agent,
+                "--task-url", run["task_url"], "--contact-url", run["contact_url"],
+                "--speed-factor", repr(self.speed_factor),
+                "--condition-at", "none" if condition is None else repr(float(condition)),
+                "--solution", json.dumps(task.spec.get("solution") or []),
+                "--deadline", repr(deadline_s(task.spec, self.speed_factor, self.config.reaction_window)),
+            ]
+            return argv, False, env
+        values = {
+            "__TASK_URL__": run["task_url"],
+            "__CONTACT_URL__": run["contact_url"],
+            "__TASK_PROMPT__": prompt,
+            "__BASE_DIR__": str(self.base_dir),
+        }
+        command, shell = self.config.agent_command(values)
+        return command, shell, env
+
+    # --- one task --------------------------------------------------------------------------
+
+    def run_task(self, task: Task) -> Outcome:
+        began = time.monotonic()
+        task.folder.mkdir(parents=True, exist_ok=True)
+        try:
+            result = self._run_task(task)
+        except Interrupted:
+            return Outcome(task, "error", "interrupted", time.monotonic() - began)
+        except Exception as exc:  # noqa: BLE001 — any failure here is the harness's, reported as such
+            kind = "harness error" if isinstance(exc, HarnessError) else f"harness error ({type(exc).__name__})"
+            (task.folder / ERROR).write_text(f"{kind}: {exc}\n\n{traceback.format_exc()}", encoding="utf-8")
+            return Outcome(task, "error", str(exc), time.monotonic() - began)
+        status = "passed" if result["success"] else "failed"
+        return Outcome(task, status, result.get("detail", ""), time.monotonic() - began)
+
+    def _run_task(self, task: Task) -> dict[str, Any]:
+        sf = self.speed_factor
+        run = self.client.create_run(task.scenario_id, sf)
+        prompt = augment_prompt(run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"])
+        (task.folder / "prompt.txt").write_text(prompt, encoding="utf-8")
+        command, shell, env = self.command_for(task, run, prompt)
+        limit = deadline_s(task.spec, sf, self.config.reaction_window)
+        launched = time.monotonic()
+        with open(task.folder / OUTPUT, "wb") as output:
+            try:
+                process = subprocess.Popen(
+                    command, shell=shell, cwd=task.folder, env=env, stdin=subprocess.DEVNULL,
+                    stdout=output, stderr=subprocess.STDOUT, start_new_session=True,
+                )
+            except OSError as exc:
+                raise HarnessError(f"could not launch the agent {command!r}: {exc}") from exc
+            with self._lock:
+                self._live.add(process.pid)
+            try:
+                killed = self._supervise(process, run["id"], limit, launched)
+            finally:
+                kill_group(process)
+                with self._lock:
+                    self._live.discard(process.pid)
+        if self.stopping.is_set():
+            with contextlib.suppress(HarnessError):
+                self.client.close_run(run["id"])
+            raise Interrupted(task.scenario_id)
+        verdict = self.client.evaluate(run["id"])
+        events = self.client.events(run["id"])
+        with open(task.folder / EVENTS, "w", encoding="utf-8") as log:
+            for event in events:
+                log.write(json.dumps(event, default=str) + "\n")
+        with contextlib.suppress(HarnessError):
+            self.client.close_run(run["id"])
+        result = {
+            **verdict,
+            "scenario_id": task.scenario_id,
+            "environment": task.environment,
+            "category": task.category,
+            "speed_factor": sf,
+            "deadline_s": limit,
+            "agent_exit_code": process.returncode,
+            "agent_killed": killed,
+            "agent_wall_s": round(time.monotonic() - launched, 3),
+        }
+        write_json_atomically(task.folder / RESULTS, result)
+        return result
+
+    def _supervise(self, process: subprocess.Popen, run_id: int, limit: float, launched: float) -> bool:
+        """Wait for the agent or its deadline; True when it had to be killed."""
+        deadline = launched + limit
+        started = False
+        next_poll = launched
+        while process.poll() is None:
+            now = time.monotonic()
+            if self.stopping.is_set():
+                return True
+            if not started and now >= next_poll:
+                next_poll = now + START_POLL_S
+                with contextlib.suppress(HarnessError, KeyError, TypeError):
+                    info = self.client.run(run_id, retries=1)
+                    if info["status"] != "ready":
+                        started = True
+                        deadline = time.monotonic() - float(info["sim_time"]) / self.speed_factor + limit
+            if now >= deadline:
+                status = None
+                with contextlib.suppress(HarnessError, KeyError, TypeError):
+                    status = self.client.run(run_id, retries=1)["status"]
+                if status == "completed" and self.config.grace > 0:
+                    with contextlib.suppress(subprocess.TimeoutExpired):
+                        process.wait(timeout=self.config.grace)
+                return process.poll() is None
+            time.sleep(0.1)
+        return False
+
+    def kill_all(self) -> None:
+        self.stopping.set()
+        with self._lock:
+            pids = list(self._live)
+        for pid in pids:
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.killpg(pid, signal.SIGKILL)
+
+    # --- many tasks --------------------------------------------------------------------------
+
+    def pending(self, tasks: list[Task], progress: Progress) -> list[Task]:
+        """The tasks still to run; the others are reported as skipped (resumability)."""
+        todo = []
+        for task in tasks:
+            reason = self.should_skip(task)
+            if reason:
+                progress.line(f"Skipping {task.scenario_id} ({reason})")
+            else:
+                todo.append(task)
+        return todo
+
+    def tracked(self, task: Task, progress: Progress) -> Outcome:
+        if self.stopping.is_set():
+            return Outcome(task, "error", "interrupted")
+        label = f"[{self.agent}] " if self.agent else ""
+        progress.started(task, label)
+        outcome = self.run_task(task)
+        outcome.label = label
+        return outcome
+
+
+def run_pool(jobs: list[tuple[Harness, Task]], parallel: int, progress: Progress) -> list[Outcome]:
+    """Run (harness, task) jobs on a thread pool; on any interruption kill every agent."""
+    outcomes: list[Outcome] = []
+    progress.begin(len(jobs))
+    pool = ThreadPoolExecutor(max_workers=max(1, parallel))
+    try:
+        futures = [pool.submit(harness.tracked, task, progress) for harness, task in jobs]
+        for future in as_completed(futures):
+            outcome = future.result()
+            outcomes.append(outcome)
+            progress.finished(outcome)
+    except BaseException:
+        # Ctrl-C (or a bug): stop supervising, kill every agent group, and leave the
+        # interrupted tasks without results so that the next run does them again.
+        for harness in {id(h): h for h, _ in jobs}.values():
+            harness.kill_all()
+        raise
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+        progress.end()
+    return outcomes
+
+
+def kill_group(process: subprocess.Popen) -> None:
+    """SIGKILL the agent's whole process group (its children too), then reap the agent."""
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(process.pid, signal.SIGKILL)
+    with contextlib.suppress(subprocess.TimeoutExpired):
+        process.wait(timeout=10)
+
+
+def write_json_atomically(path: Path, data: Any) -> None:
+    tmp = path.with_suffix(path.suffix + ".tmp")
+    tmp.write_text(json.dumps(data, indent=2, default=str) + "\n", encoding="utf-8")
+    tmp.replace(path)
+
+
+class Progress:
+    """A one-line bar (done, running, passed) on a TTY; plain lines otherwise."""
+
+    def __init__(self, stream: TextIO, *, tty: bool | None = None, label: str = ""):
+        self.stream = stream
+        self.tty = stream.isatty() if tty is None else tty
+        self.label = label
+        self.total = self.done = self.running = self.passed = self.errors = 0
+        self._lock = threading.Lock()
+        self._began = time.monotonic()
+
+    def _write(self, text: str) -> None:
+        self.stream.write(text)
+        self.stream.flush()
+
+    def line(self, text: str) -> None:
+        with self._lock:
+            if self.tty:
+                self._write("\r\033[K" + text + "\n")
+                self._bar()
+            else:
+                self._write(text + "\n")
+
+    def _bar(self) -> None:
+        if not self.tty or not self.total:
+            return
+        width = 30
+        filled = int(width * self.done / self.total)
+        elapsed = time.monotonic() - self._began
+        self._write(
+            f"\r\033[K{self.label}[{'#' * filled}{'.' * (width - filled)}] done {self.done}/{self.total} "
+            f"running {self.running} passed {self.passed} errors {self.errors}  {elapsed:5.0f}s"
+        )
+
+    def begin(self, total: int) -> None:
+        with self._lock:
+            self.total, self._began = total, time.monotonic()
+            self._bar()
+
+    def started(self, task: Task, label: str = "") -> None:
+        with self._lock:
+            self.running += 1
+            if self.tty:
+                self._bar()
+            else:
+                self._write(f"  Running {label}{task.scenario_id} ...\n")
+
+    def finished(self, outcome: Outcome) -> None:
+        with self._lock:
+            self.running -= 1
+            self.done += 1
+            self.passed += outcome.status == "passed"
+            self.errors += outcome.status == "error"
+            if self.tty:
+                self._bar()
+            else:
+                extra = f": {outcome.detail}" if outcome.status == "error" else ""
+                self._write(
+                    f"  {outcome.status.upper()} {outcome.label}{outcome.task.scenario_id} ({outcome.wall_s:.1f}s){extra} "
+                    f"[done {self.done}/{self.total}, running {self.running}, passed {self.passed}]\n"
+                )
+
+    def end(self) -> None:
+        with self._lock:
+            if self.tty and self.total:
+                self._write("\n")
+

@@ -1,0 +1,81 @@
+"""A small scripted HTTP agent for the harness tests: `scripted_agent.py TASK_URL CONTACT_URL PROMPT`.
+
+It follows the script embedded in its prompt as `[[script: step; step; ...]]`:
+  poll TEXT            reload the start page until TEXT appears in it
+  action NAME EMAIL    POST /r/<token>/actions {"action": NAME, "payload": {"email_id": EMAIL}}
+  sleep SECONDS
+  contact              GET then POST the contact URL
+  costs IN OUT CALLS [upstream]   write costs.json (upstream: prompt_/completion_tokens keys)
+  spawn                start a child that sleeps forever; its pid goes to child.pid
+  hang                 sleep forever
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+import urllib.parse
+import urllib.request
+
+
+def fetch(url: str, data: bytes | None = None, content_type: str = "") -> tuple[str, str]:
+    headers = {"Content-Type": content_type} if content_type else {}
+    request = urllib.request.Request(url, data=data, headers=headers, method="POST" if data else "GET")
+    with urllib.request.urlopen(request, timeout=10) as response:
+        return response.geturl(), response.read().decode("utf-8", "replace")
+
+
+def main() -> int:
+    task_url, contact_url, prompt = sys.argv[1:4]
+    script = re.search(r"\[\[script:(.*?)\]\]", prompt, re.S)
+    steps = [s.strip().split() for s in (script.group(1) if script else "").split(";") if s.strip()]
+    page_url, _ = fetch(task_url)
+    print(f"opened {page_url}", flush=True)
+    actions_url = contact_url.rsplit("/", 1)[0] + "/actions"
+    with open("agent.pid", "w") as f:
+        f.write(str(os.getpid()))
+    for step in steps:
+        verb, args = step[0], step[1:]
+        if verb == "poll":
+            text = " ".join(args)
+            deadline = time.monotonic() + 120
+            while text not in fetch(page_url)[1]:
+                if time.monotonic() > deadline:
+                    print(f"gave up waiting for {text!r}", flush=True)
+                    return 1
+                time.sleep(0.5)
+            print(f"saw {text!r}", flush=True)
+        elif verb == "action":
+            body = json.dumps({"action": args[0], "payload": {"email_id": args[1]}}).encode()
+            fetch(actions_url, body, "application/json")
+            print(f"did {args[0]} {args[1]}", flush=True)
+        elif verb == "sleep":
+            time.sleep(float(args[0]))
+        elif verb == "contact":
+            fetch(contact_url)
+            fetch(contact_url, urllib.parse.urlencode({"message": "done"}).encode(),
+                  "application/x-www-form-urlencoded")
+            print("contacted", flush=True)
+        elif verb == "costs":
+            keys = ("prompt_tokens", "completion_tokens") if args[3:] == ["upstream"] else ("input_tokens", "output_tokens")
+            costs = {keys[0]: int(args[0]), keys[1]: int(args[1]), "tool_calls": int(args[2]), "model": "test-model"}
+            with open("costs.json", "w") as f:
+                json.dump(costs, f)
+        elif verb == "spawn":
+            child = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(3600)"])
+            with open("child.pid", "w") as f:
+                f.write(str(child.pid))
+            print(f"spawned {child.pid}", flush=True)
+        elif verb == "hang":
+            print("hanging", flush=True)
+            while True:
+                time.sleep(60)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

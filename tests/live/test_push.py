@@ -1,0 +1,231 @@
+"""Live pages over Channels: a page subscribed to its run is pushed re-rendered live regions.
+
+The cast: two runs of the MicroMail test scenario (virtual clocks at 0), *ours* and *theirs*;
+Omar's "Quarterly engineering report" arrives at t=120. Sockets talk to the ASGI router in this
+process (in-memory channel layer), so events are fired from this process too.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import re
+
+import pytest
+from asgiref.sync import async_to_sync
+from channels.db import database_sync_to_async
+from channels.layers import get_channel_layer
+from channels.testing import WebsocketCommunicator
+from django.test import Client
+
+from events import lifecycle
+from events.live import extract_regions, last_live_seq
+from events.models import ClockMode, Event, EventKind
+from events.projection import state_at
+from tests.micromail.cast import CATALOG_DIR, LATE_AT, mailbox_scenario
+
+pytestmark = pytest.mark.django_db(transaction=True)
+
+REPORT = "Quarterly engineering report"
+WAIT_S = 10  # generous: two cores shared with other test runs
+
+
+@pytest.fixture(autouse=True)
+def in_memory_layer(settings):
+    # Sockets and senders share this process: the in-memory layer whatever REDIS_URL says.
+    settings.CHANNEL_LAYERS = {"default": {"BACKEND": "channels.layers.InMemoryChannelLayer"}}
+    from channels.layers import channel_layers
+
+    channel_layers.backends.clear()
+    yield
+    channel_layers.backends.clear()
+
+
+def new_run():
+    return lifecycle.create_run(mailbox_scenario(), clock_mode=ClockMode.VIRTUAL,
+                                catalog_dir=CATALOG_DIR)
+
+
+def inbox(run, rest: str = "?folder=inbox") -> str:
+    return f"/r/{run.token}/micromail/{rest}"
+
+
+async def subscribe(run, url: str) -> WebsocketCommunicator:
+    from sentinel_site.asgi import router
+
+    socket = WebsocketCommunicator(router, f"/r/{run.token}/live")
+    connected, _ = await socket.connect(timeout=WAIT_S)
+    assert connected
+    seq = await database_sync_to_async(last_live_seq)(run.pk)
+    await socket.send_json_to({"url": url, "seq": seq})
+    return socket
+
+
+def regions(message: dict) -> dict[str, str]:
+    return dict(extract_regions(message["html"]))
+
+
+def run_async(coroutine_function):
+    return async_to_sync(coroutine_function)()
+
+
+def test_a_fired_event_is_pushed_to_its_own_run_only():
+    ours, theirs = new_run(), new_run()
+
+    async def story():
+        our_page = await subscribe(ours, inbox(ours))
+        their_page = await subscribe(theirs, inbox(theirs))
+        assert await our_page.receive_nothing(timeout=0.3)  # nothing new yet
+        await database_sync_to_async(lifecycle.advance)(ours, LATE_AT)
+        message = await our_page.receive_json_from(timeout=WAIT_S)
+        assert await their_page.receive_nothing(timeout=1)
+        await our_page.disconnect()
+        await their_page.disconnect()
+        return message
+
+    message = run_async(story)
+    assert message["type"] == "regions" and message["url"] == inbox(ours)
+    live = regions(message)
+    assert set(live) == {"folders", "message-list", "reading-pane"}
+    assert REPORT in live["message-list"] and 'hx-swap-oob="true"' in live["message-list"]
+    assert message["seq"] == last_live_seq(ours.pk)
+
+
+def test_an_action_in_one_tab_updates_another_tab_of_the_same_run():
+    run = new_run()
+    tab_a = Client()
+
+    async def story():
+        tab_b = await subscribe(run, inbox(run))
+        response = await database_sync_to_async(tab_a.post)(
+            inbox(run, "emails/budget-review/flag"), {"back": "?folder=inbox"})
+        assert response.status_code == 302
+        message = await tab_b.receive_json_from(timeout=WAIT_S)
+        await tab_b.disconnect()
+        return message
+
+    message = run_async(story)
+    assert 'aria-label="Unflag “Q3 budget review”"' in regions(message)["message-list"]
+
+
+def test_a_live_render_logs_no_view_and_opens_nothing():
+    run = new_run()
+    views_before = Event.objects.filter(run=run, kind=EventKind.VIEW).count()
+
+    async def story():
+        page = await subscribe(run, inbox(run, "?folder=inbox&email=budget-review"))
+        await database_sync_to_async(lifecycle.advance)(run, LATE_AT)
+        message = await page.receive_json_from(timeout=WAIT_S)
+        await page.disconnect()
+        return message
+
+    message = run_async(story)
+    assert "Q3 budget review" in regions(message)["reading-pane"]  # the open email stays open
+    assert Event.objects.filter(run=run, kind=EventKind.VIEW).count() == views_before
+    assert not Event.objects.filter(run=run, kind=EventKind.ACTION).exists()
+    assert state_at(run).states["budget-review"].is_read is False
+
+
+def test_an_event_fired_before_subscribing_is_pushed_on_subscribe():
+    run = new_run()
+    seq_shown = last_live_seq(run.pk)
+    lifecycle.advance(run, LATE_AT)
+
+    async def story():
+        from sentinel_site.asgi import router
+
+        page = WebsocketCommunicator(router, f"/r/{run.token}/live")
+        assert (await page.connect(timeout=WAIT_S))[0]
+        await page.send_json_to({"url": inbox(run), "seq": seq_shown})
+        message = await page.receive_json_from(timeout=WAIT_S)
+        await page.disconnect()
+        return message
+
+    assert REPORT in regions(run_async(story))["message-list"]
+
+
+def test_a_socket_cannot_watch_another_runs_page():
+    ours, theirs = new_run(), new_run()
+
+    async def story():
+        page = await subscribe(ours, inbox(theirs))
+        message = await page.receive_json_from(timeout=WAIT_S)
+        await page.disconnect()
+        return message
+
+    assert run_async(story)["type"] == "error"
+
+
+def test_a_socket_for_an_unknown_run_is_refused():
+    async def story():
+        from sentinel_site.asgi import router
+
+        page = WebsocketCommunicator(router, "/r/no-such-token/live")
+        connected, _ = await page.connect(timeout=WAIT_S)
+        await page.disconnect()
+        return connected
+
+    assert run_async(story) is False
+
+
+def test_pushed_forms_leave_the_csrf_token_to_the_browser():
+    # One frame serves every subscriber: the client fills in its own page's token.
+    run = new_run()
+
+    async def story():
+        page = await subscribe(run, inbox(run))
+        await database_sync_to_async(lifecycle.advance)(run, LATE_AT)
+        message = await page.receive_json_from(timeout=WAIT_S)
+        await page.disconnect()
+        return message
+
+    html = run_async(story)["html"]
+    assert 'name="csrfmiddlewaretoken" value=""' in html
+    assert not re.search(r'name="csrfmiddlewaretoken" value="[^"]', html)
+
+
+def test_regions_are_the_outermost_marked_elements_with_ids():
+    html = (
+        '<main><nav id="a" data-live class="x"><div><div data-live id="inner">1</div></div></nav>'
+        '<p>the words data-live in text</p><section data-live>no id</section>'
+        '<ul id=b data-live><li>2</li></ul></main>'
+    )
+    assert extract_regions(html) == [
+        ("a", '<nav id="a" data-live class="x"><div><div data-live id="inner">1</div></div></nav>'),
+        ("b", "<ul id=b data-live><li>2</li></ul>"),
+    ]
+
+
+def test_polling_answers_204_until_the_log_grows_then_the_regions():
+    run = new_run()
+    browser = Client()
+    seq = last_live_seq(run.pk)
+    poll = f"/r/{run.token}/live"
+    assert browser.get(poll, {"url": inbox(run), "seq": seq}).status_code == 204
+    lifecycle.advance(run, LATE_AT)
+    response = browser.get(poll, {"url": inbox(run), "seq": seq})
+    assert response.status_code == 200
+    body = json.loads(response.content)
+    assert REPORT in regions(body)["message-list"] and body["seq"] > seq
+    assert browser.get(poll, {"url": inbox(run), "seq": body["seq"]}).status_code == 204
+
+
+def test_polling_refuses_another_runs_url():
+    ours, theirs = new_run(), new_run()
+    response = Client().get(f"/r/{ours.token}/live", {"url": inbox(theirs), "seq": 0})
+    assert response.status_code == 400 and "not a page of this run" in response.content.decode()
+
+
+def test_group_messages_use_the_configured_layer():
+    # The broadcast path itself: a plain sync caller reaches a group member.
+    run = new_run()
+
+    async def story():
+        layer = get_channel_layer()
+        channel = await layer.new_channel()
+        await layer.group_add(f"run.{run.pk}", channel)
+        await database_sync_to_async(lifecycle.advance)(run, LATE_AT)
+        return await asyncio.wait_for(layer.receive(channel), WAIT_S)
+
+    message = run_async(story)
+    assert message["type"] == "run.log_grew" and message["run"] == run.pk
