@@ -70,6 +70,10 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
             log.info("no live update for %s: %s", url, exc)
             self.seen = max(self.seen, seq)
             return
+        except Exception:  # a page that fails to render must not close every push after it
+            log.exception("live render of %s failed", url)
+            self.seen = max(self.seen, seq)
+            return
         if url != self.url:
             return  # the page navigated meanwhile; its new URL brought its own push
         self.seen = max(self.seen, update.seq, seq)

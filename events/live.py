@@ -34,7 +34,7 @@ from urllib.parse import urlsplit
 from asgiref.sync import async_to_sync
 from django.db import close_old_connections, transaction
 from django.db.models import Max
-from django.http import HttpRequest, QueryDict
+from django.http import Http404, HttpRequest, QueryDict
 from django.middleware.csrf import CSRF_ALLOWED_CHARS
 from django.urls import Resolver404, resolve
 from django.utils.crypto import get_random_string
@@ -149,7 +149,10 @@ def render_page(run: Run, url: str, host: str = "testserver") -> str:
         raise NotLive("no page at this URL") from None
     if match.kwargs.get("token") != run.token:
         raise NotLive("the URL is not a page of this run")
-    response = match.func(live_request(path, query, host), *match.args, **match.kwargs)
+    try:
+        response = match.func(live_request(path, query, host), *match.args, **match.kwargs)
+    except Http404 as exc:  # the run closed, or the open item was purged meanwhile
+        raise NotLive(f"the page is gone: {exc}") from None
     if hasattr(response, "render"):
         response.render()
     if response.status_code != 200:

@@ -74,3 +74,39 @@ def test_resuming_skips_done_tasks_and_previous_errors_unless_retried(tmp_path):
     assert [harness.should_skip(t) for t in (done, failed, fresh)] == ["already done", "previous error", None]
     harness.retry_errors = True
     assert harness.should_skip(failed) is None and not (failed.folder / "error.txt").exists()
+
+
+class BrokenServer:
+    """A control API that fails the way a crashed server does."""
+
+    def create_run(self, scenario_id, speed_factor):
+        from apps.bench.client import HarnessError
+
+        raise HarnessError("POST /api/runs/: HTTP 500: boom (after 3 attempts)")
+
+
+def test_a_server_failure_is_a_harness_error_not_an_agent_failure(tmp_path):
+    task = Task("t", "micromail", {"id": "t"}, tmp_path / "micromail" / "t")
+    harness = Harness(parse_config({"agent_subprocess": ["a"]}), client=BrokenServer(), results_root=tmp_path,
+                      base_dir=tmp_path)
+    outcome = harness.run_task(task)
+    assert outcome.status == "error"
+    assert (task.folder / "error.txt").read_text().startswith("harness error: POST /api/runs/: HTTP 500")
+    assert not (task.folder / "results.json").exists()
+
+
+def test_the_progress_bar_redraws_one_line_on_a_tty():
+    import io
+
+    from apps.bench.runner import Outcome, Progress
+
+    stream = io.StringIO()
+    progress = Progress(stream, tty=True)
+    task = Task("t", "micromail", {}, None)
+    progress.begin(2)
+    progress.started(task)
+    progress.finished(Outcome(task, "passed"))
+    progress.end()
+    text = stream.getvalue()
+    assert "\r\033[K[###############...............] done 1/2 running 0 passed 1" in text
+    assert "Running" not in text  # plain lines are for logs, not terminals

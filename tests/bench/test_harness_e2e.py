@@ -1,4 +1,4 @@
-"""The story of a benchmark: a scripted agent runs five short MicroMail tasks at speed 4, in
+"""The story of a benchmark: a scripted agent runs six short MicroMail tasks at speed 4, in
 parallel, through the real embedded server; the results tree, the grade table and the CSV say
 what happened; a hung agent and its child are killed at the deadline; a second run resumes."""
 
@@ -45,15 +45,15 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     wall = time.monotonic() - began
     print(log)
     print(f"e2e run wall {wall:.1f}s")
-    assert "Found 5 tasks" in log
-    assert "ran=5 passed=3 failed=2 errors=0" in log
+    assert "Found 6 tasks" in log
+    assert "ran=6 passed=4 failed=2 errors=0" in log
     assert wall < 60
 
     tree = results / "story" / "micromail"
     outcome = {d.name: json.loads((d / "results.json").read_text()) for d in tree.iterdir()}
     assert {k: v["success"] for k, v in outcome.items()} == {
         "bench-passive": True, "bench-active": True, "bench-noop": True,
-        "bench-early": False, "bench-hung": False,
+        "bench-early": False, "bench-hung": False, "bench-linger": True,
     }
     passive = outcome["bench-passive"]
     for field in ("success", "detail", "evaluation_time", "condition_at", "contact_get_time",
@@ -85,6 +85,13 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     assert "the agent never visited /contact" in hung["detail"]
     for pidfile in ("agent.pid", "child.pid"):
         assert not alive(int((tree / "bench-hung" / pidfile).read_text()))
+    # An agent that exits by itself still has its process group killed: no child survives.
+    assert outcome["bench-noop"]["agent_killed"] is False
+    assert not alive(int((tree / "bench-noop" / "child.pid").read_text()))
+    # An agent that contacted but lingers gets the grace period (5 s), then is killed.
+    linger = outcome["bench-linger"]
+    assert linger["agent_killed"] is True
+    assert 13.0 <= linger["agent_wall_s"] < 20
 
     # The database mirrors the tree, with links to the graded runs.
     benchmark = BenchmarkRun.objects.get(name="story")
@@ -96,7 +103,7 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
 
     # A second run skips every finished task.
     again = bench("run", "story", "--config", str(config), "--results-dir", str(results))
-    assert again.count("(already done)") == 5
+    assert again.count("(already done)") == 6
     assert "ran=0" in again
 
     # Grade: the upstream table and summary, then the paper's breakdown.
@@ -109,10 +116,10 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     active_line = next(line for line in table.splitlines() if line.startswith("bench-active "))
     cells = [c.strip() for c in active_line.split("|")]
     assert cells[2] == "True" and cells[4] == "10.00" and cells[6:] == ["20000", "1000", "6"]
-    assert "Total Tasks: 5" in table
-    assert "Task Success Rate: 60.0% (3/5)" in table
-    assert "noop 100.0% (1/1) | passive 33.3% (1/3) | active 100.0% (1/1)" in table
-    assert "absolute 100.0% (2/2) | relative 0.0% (0/2)" in table
+    assert "Total Tasks: 6" in table
+    assert "Task Success Rate: 66.7% (4/6)" in table
+    assert "noop 100.0% (1/1) | passive 50.0% (2/4) | active 100.0% (1/1)" in table
+    assert "absolute 100.0% (3/3) | relative 0.0% (0/2)" in table
     assert "Cost (USD): median $0.0180, mean $0.0221 (n=4)" in table
     assert "Tool Calls: mean 3.2, median 3.0" in table
 
@@ -120,12 +127,12 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     lines = text.splitlines()
     blank = lines.index("")
     data = list(csv.DictReader(lines[:blank]))
-    assert len(data) == 5
+    assert len(data) == 6
     passive_row = next(r for r in data if r["name"] == "bench-passive")
     assert passive_row["success"] == "True" and passive_row["prompt_tokens"] == "10000"
     summary = dict(csv.reader(lines[blank + 1:]))
-    assert summary["Total Tasks"] == "5" and summary["Successes"] == "3"
-    assert summary["Task Success Rate"] == "0.6000"
+    assert summary["Total Tasks"] == "6" and summary["Successes"] == "4"
+    assert summary["Task Success Rate"] == "0.6667"
     assert summary["Average Tool Calls"] == "3.2"
     assert summary["Success Rate noop"] == "1.0000"
 

@@ -18,6 +18,6 @@ def test_validate_proves_the_short_scenarios_solvable_and_not_trivially_passable
     lines = out.getvalue().splitlines()
     print(out.getvalue())
     assert re.fullmatch(
-        r"bench_validate: scenarios=5 oracle=5/5 early_fail=4/4 never_ok=5/5 sleeper=\d/5 wall_s=[\d.]+", lines[-1]
+        r"bench_validate: scenarios=6 oracle=6/6 early_fail=5/5 never_ok=6/6 sleeper=\d/6 wall_s=[\d.]+", lines[-1]
     )
     assert float(lines[-1].rsplit("=", 1)[1]) < 40

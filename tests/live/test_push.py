@@ -229,3 +229,30 @@ def test_group_messages_use_the_configured_layer():
 
     message = run_async(story)
     assert message["type"] == "run.log_grew" and message["run"] == run.pk
+
+
+def delete(run, email_id: str) -> None:
+    from events.commands import perform_action
+
+    perform_action(run, "delete", {"email_id": email_id})
+
+
+def test_a_purged_open_item_stops_pushes_quietly():
+    run = new_run()
+
+    async def story():
+        page = await subscribe(run, inbox(run, "?folder=junk&email=prize-scam"))
+        await database_sync_to_async(delete)(run, "prize-scam")  # to Deleted Items: still shown
+        moved = await page.receive_json_from(timeout=WAIT_S)
+        await database_sync_to_async(delete)(run, "prize-scam")  # purged: the page is a 404 now
+        await database_sync_to_async(lifecycle.advance)(run, LATE_AT)
+        nothing = await page.receive_nothing(timeout=1)
+        await page.send_json_to({"url": inbox(run), "seq": 0})  # the socket still works
+        inbox_update = await page.receive_json_from(timeout=WAIT_S)
+        await page.disconnect()
+        return moved, nothing, inbox_update
+
+    moved, nothing, inbox_update = run_async(story)
+    assert "In Deleted Items" in regions(moved)["reading-pane"]
+    assert nothing
+    assert REPORT in regions(inbox_update)["message-list"]

@@ -133,7 +133,7 @@ class Command(BaseCommand):
                         response = client.get(page)
                     except httpx.HTTPError as exc:
                         tally.failures.append(f"GET {page}: {exc!r}")
-                        continue
+                        break  # the server is gone or stuck: retrying would only spin
                     elapsed_ms = (time.perf_counter() - started) * 1000
                     if response.status_code != 200:
                         tally.failures.append(f"GET {page} answered {response.status_code}")
