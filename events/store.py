@@ -2,7 +2,9 @@
 
 `(run, seq)` is unique: a writer reads the last seq, inserts seq+1 and retries when another
 writer took that number first. No table lock is held, so appends to different runs never wait
-for each other (on PostgreSQL; SQLite serialises writers anyway).
+for each other (on PostgreSQL; SQLite serialises writers anyway). A writer that has lost a race
+queues on its run's row instead of racing again: otherwise a fast writer can win every round
+and starve a slower one.
 """
 
 from __future__ import annotations
@@ -10,7 +12,7 @@ from __future__ import annotations
 from typing import Any
 
 from asgiref.sync import sync_to_async
-from django.db import IntegrityError, transaction
+from django.db import IntegrityError, connection, transaction
 from django.db.models import Max
 
 from events.clock import wall_now
@@ -45,10 +47,14 @@ def append_event(
     """Append one event to the run's log and return it (with its seq)."""
     run_id = run if isinstance(run, int) else run.pk
     payload = payload or {}
+    queue = False
     for _ in range(MAX_ATTEMPTS):
-        seq = _last_seq(run_id) + 1
         try:
             with transaction.atomic():
+                if queue:  # held until commit: the writers of this run take turns (no_key: the
+                    # FK check of a racing insert takes KEY SHARE, which FOR UPDATE would deadlock)
+                    list(Run.objects.select_for_update(no_key=True).filter(pk=run_id).values_list("pk"))
+                seq = _last_seq(run_id) + 1
                 return Event.objects.create(
                     run_id=run_id,
                     seq=seq,
@@ -65,6 +71,7 @@ def append_event(
                 run_id=run_id, timeline_index=timeline_index
             ).exists():
                 raise TimelineEntryAlreadyFired(f"timeline entry {timeline_index} already fired") from None
+            queue = connection.features.has_select_for_update
             continue  # someone else took this seq: read again and retry
     raise AppendConflict(f"could not append to run {run_id} after {MAX_ATTEMPTS} attempts")
 
