@@ -8,12 +8,16 @@ import subprocess
 import sys
 import time
 
-from tests.live_site import REPO, stop_process_group, test_database_url
+from django.conf import settings
+
+from sentinel_site.site_server import current_database_url, stop_process_group
+
+REPO = settings.BASE_DIR
 
 
 @contextlib.contextmanager
 def celery_worker():
-    env = dict(os.environ, DATABASE_URL=test_database_url(), SENTINEL_TICKER="celery")
+    env = dict(os.environ, DATABASE_URL=current_database_url(), SENTINEL_TICKER="celery")
     (REPO / "var").mkdir(exist_ok=True)
     log = open(REPO / "var" / "celery-test.log", "ab")
     process = subprocess.Popen(

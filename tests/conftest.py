@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from django.conf import settings
 
 from apps.scenarios.format import parse_scenario
 from events import registry
@@ -72,11 +73,27 @@ def running_ticker(settings, django_db_blocker):
 
 
 @pytest.fixture
+def site_ticker(settings):
+    """The ticker behind a `live_site`: Daphne's own in-process loop, or a real Celery worker.
+
+    Not `running_ticker`: a second in-process ticker here would race Daphne's, and whatever it
+    fired would be broadcast on this process's in-memory layer, which Daphne never hears.
+    """
+    if settings.SENTINEL_TICKER == "celery":
+        from tests.celery_worker import celery_worker
+
+        with celery_worker():
+            yield "celery"
+    else:
+        yield "inprocess"
+
+
+@pytest.fixture
 def live_site(transactional_db):
     """Base URL of a real Daphne server (HTTP + websockets) serving the test database."""
-    from tests.live_site import daphne_server
+    from sentinel_site.site_server import site_server
 
-    with daphne_server() as base_url:
+    with site_server(log_path=settings.BASE_DIR / "var" / "live-site.log") as base_url:
         yield base_url
 
 

@@ -39,7 +39,7 @@ def api(base_url: str, path: str, body: dict | None = None) -> dict:
 
 
 @pytest.mark.django_db(transaction=True)
-def test_the_ticker_pushes_new_mail_to_an_open_inbox(live_site, running_ticker):
+def test_the_ticker_pushes_new_mail_to_an_open_inbox(live_site, site_ticker):
     run = api(live_site, "/api/runs/", {"scenario_json": early_scenario(), "speed_factor": 4})
     host = live_site.removeprefix("http://")
     url = f"/r/{run['token']}/micromail/?folder=inbox"

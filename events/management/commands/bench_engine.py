@@ -24,14 +24,7 @@ from events.projection import fold_from_scratch
 from events.store import append_event
 from events.ticker import run_ticker_in_thread
 from events.timing import SpeedFactorError, validate_speed_factor
-
-
-def percentile(values: list[float], q: float) -> float:
-    if not values:
-        return float("nan")
-    ordered = sorted(values)
-    index = min(len(ordered) - 1, max(0, round(q * (len(ordered) - 1))))
-    return ordered[index]
+from sentinel_site.figures import percentile
 
 
 class Command(BaseCommand):
@@ -113,8 +106,8 @@ class Command(BaseCommand):
             lifecycle.close(run)
         self.stdout.write(
             "bench_engine: "
-            f"lateness_p50_ms={percentile(lateness, 0.5):.2f} "
-            f"lateness_p99_ms={percentile(lateness, 0.99):.2f} "
+            f"lateness_p50_ms={percentile(lateness, 50):.2f} "
+            f"lateness_p99_ms={percentile(lateness, 99):.2f} "
             f"lateness_max_ms={max(lateness) if lateness else float('nan'):.2f} "
             f"append_events_per_s={append_rate:.0f} "
             f"fold_events_per_s={fold_rate:.0f} "

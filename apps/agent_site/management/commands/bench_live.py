@@ -2,7 +2,7 @@
 
     python manage.py bench_live --clients 50 --seconds 30 [--rate 2] [--runs 1]
 
-Starts Daphne in a subprocess on a free port over the configured database and settings (so it
+Starts the site (sentinel_site.site_server) over the configured database and settings (so it
 measures whichever shape the environment selects: embedded, or Redis + Celery), creates
 virtual-clock MicroMail runs through the multi-run API, subscribes `--clients` websocket
 clients to their inbox pages (round-robin over `--runs` runs), then advances every run through
@@ -16,51 +16,20 @@ event − the event's `recorded_at`. Progress goes to stderr; stdout ends with e
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import json
-import os
 import re
-import signal
-import socket
-import subprocess
-import sys
 import time
-from pathlib import Path
 
 from django.conf import settings
 from django.core.management import call_command
 from django.core.management.base import BaseCommand, CommandError
 
 from apps.catalog.loader import load_catalog
+from sentinel_site.figures import percentile
+from sentinel_site.site_server import ServerDidNotStart, site_server
 
 PRELOADED = 12  # emails in the inbox before the bench starts
 SEQ = re.compile(r'"seq": (\d+)')
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
-
-
-@contextlib.contextmanager
-def daphne(port: int, log_path: Path):
-    log = open(log_path, "ab")
-    process = subprocess.Popen(
-        [sys.executable, "-m", "daphne", "-b", "127.0.0.1", "-p", str(port),
-         "sentinel_site.asgi:application"],
-        cwd=settings.BASE_DIR, env=dict(os.environ), stdout=log, stderr=subprocess.STDOUT,
-        start_new_session=True,
-    )
-    try:
-        yield process
-    finally:
-        os.killpg(process.pid, signal.SIGTERM)
-        try:
-            process.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-        log.close()
 
 
 def bench_scenario(email_ids: list[str], events: int) -> dict:
@@ -82,16 +51,6 @@ def bench_scenario(email_ids: list[str], events: int) -> dict:
         "eval_sql": "SELECT 1",
         "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "passive"},
     }
-
-
-def percentile(values: list[float], q: float) -> float:
-    ordered = sorted(values)
-    if not ordered:
-        return float("nan")
-    rank = q / 100 * (len(ordered) - 1)
-    low = int(rank)
-    high = min(low + 1, len(ordered) - 1)
-    return ordered[low] + (ordered[high] - ordered[low]) * (rank - low)
 
 
 class Command(BaseCommand):
@@ -117,13 +76,14 @@ class Command(BaseCommand):
         catalog = load_catalog()
         email_ids = list(catalog.table("micromail", "emails"))
         events = int(seconds * rate) + 5
-        port = free_port()
-        (settings.BASE_DIR / "var").mkdir(exist_ok=True)
-        with daphne(port, settings.BASE_DIR / "var" / "bench-live.log") as process:
-            result = asyncio.run(
-                Bench(f"127.0.0.1:{port}", process, bench_scenario(email_ids, events),
-                      clients, seconds, rate, runs, self.stderr).main()
-            )
+        try:
+            with site_server(log_path=settings.BASE_DIR / "var" / "bench-live.log") as base_url:
+                result = asyncio.run(
+                    Bench(base_url.removeprefix("http://"), bench_scenario(email_ids, events),
+                          clients, seconds, rate, runs, self.stderr).main()
+                )
+        except ServerDidNotStart as exc:
+            raise CommandError(str(exc)) from None
         latencies, messages, missed = result
         if missed:
             self.stderr.write(f"bench_live: {missed} (event, client) updates never arrived")
@@ -139,24 +99,13 @@ class Command(BaseCommand):
 
 
 class Bench:
-    def __init__(self, host, process, scenario, clients, seconds, rate, runs, stderr):
-        self.host, self.process, self.scenario = host, process, scenario
+    def __init__(self, host, scenario, clients, seconds, rate, runs, stderr):
+        self.host, self.scenario = host, scenario
         self.clients, self.seconds, self.rate, self.runs = clients, seconds, rate, runs
         self.stderr = stderr
 
     def say(self, text: str) -> None:
         self.stderr.write(f"bench_live: {text}")
-
-    async def wait_for_server(self, http) -> None:
-        deadline = time.monotonic() + 30
-        while True:
-            try:
-                await http.get("/scenarios")
-                return
-            except Exception:  # noqa: BLE001 — not listening yet
-                if self.process.poll() is not None or time.monotonic() > deadline:
-                    raise CommandError("the server did not start; see var/bench-live.log") from None
-                await asyncio.sleep(0.1)
 
     async def api(self, http, path: str, body: dict) -> dict:
         response = await http.post(path, json=body)
@@ -192,7 +141,6 @@ class Bench:
         import httpx
 
         async with httpx.AsyncClient(base_url=f"http://{self.host}", timeout=60) as http:
-            await self.wait_for_server(http)
             runs = [await self.api(http, "/api/runs/", {"scenario_json": self.scenario,
                                                        "clock_mode": "virtual"})
                     for _ in range(self.runs)]

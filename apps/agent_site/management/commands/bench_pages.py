@@ -21,21 +21,14 @@ import httpx
 from django.core.management.base import BaseCommand, CommandError
 from django.db import DatabaseError
 
-from apps.agent_site.devserver import ServerDidNotStart, site_server
 from apps.scenarios.format import ScenarioError
 from apps.scenarios.library import get_dev_scenario
 from events import lifecycle
 from events.commands import current_state
 from events.models import ClockMode, Run
 from events.registry import all_environments, environment_names, get_environment
-
-
-def percentile(values: list[float], q: float) -> float:
-    """Nearest-rank percentile (q in 0..1); NaN for no values."""
-    if not values:
-        return float("nan")
-    ordered = sorted(values)
-    return ordered[min(len(ordered) - 1, max(0, round(q * (len(ordered) - 1))))]
+from sentinel_site.figures import percentile
+from sentinel_site.site_server import ServerDidNotStart, site_server
 
 
 @dataclass
@@ -88,8 +81,8 @@ class Command(BaseCommand):
         failures = [f for tally in tallies for f in tally.failures]
         self._report_pages(root, tallies)
         self.stdout.write(
-            f"bench_pages: env={env} p50_ms={percentile(timings, 0.50):.2f} "
-            f"p95_ms={percentile(timings, 0.95):.2f} requests={len(timings)}"
+            f"bench_pages: env={env} p50_ms={percentile(timings, 50):.2f} "
+            f"p95_ms={percentile(timings, 95):.2f} requests={len(timings)}"
         )
         if failures:
             raise CommandError(f"{len(failures)} requests failed; first: {failures[0]}")
@@ -159,5 +152,5 @@ class Command(BaseCommand):
         for page, timings in sorted(merged.items(), key=lambda item: -statistics.median(item[1])):
             self.stderr.write(
                 f"  {page.removeprefix(root) or './':<48} n={len(timings):<6} "
-                f"p50_ms={percentile(timings, 0.5):7.2f} p95_ms={percentile(timings, 0.95):7.2f}"
+                f"p50_ms={percentile(timings, 50):7.2f} p95_ms={percentile(timings, 95):7.2f}"
             )

@@ -20,6 +20,7 @@ from django.utils import timezone
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig, ConfigError, load_config
 from apps.bench.runner import CONTROL_AGENTS, BenchError, Harness, Progress, run_pool, discover
+from sentinel_site.site_server import ServerDidNotStart, site_server
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
 
 DEFAULT_CONFIG = "eval_config.yaml"
@@ -101,14 +102,15 @@ class Command(BaseCommand):
         if server_url:
             yield server_url
             return
-        from apps.bench.server import embedded_server
-
         executor = MigrationExecutor(connection)
         if executor.migration_plan(executor.loader.graph.leaf_nodes()):
             call_command("migrate", interactive=False, verbosity=0)
-        with embedded_server() as url:
-            self.stdout.write(f"Embedded server on {url}")
-            yield url
+        try:
+            with site_server(log_path=Path(settings.BASE_DIR) / "var" / "bench-server.log") as url:
+                self.stdout.write(f"Embedded server on {url}")
+                yield url
+        except ServerDidNotStart as exc:
+            raise HarnessError(str(exc)) from None
 
     def progress(self, label: str = "") -> Progress:
         return Progress(self.stdout._out, label=label)

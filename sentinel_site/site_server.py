@@ -1,8 +1,10 @@
-"""A real site server for benchmarks and harnesses: Daphne in a subprocess, on a free port.
+"""A real site server in a subprocess: Daphne on a free port, stopped with its process group.
 
-The subprocess serves the database this process is configured with (or the one given), so
-runs created here are visible there once committed. It inherits this process's scenario and
-catalog folders, so both sides agree on the library.
+One implementation for everything that needs the whole site running beside it: the harness's
+embedded server, `bench_pages`, `bench_live` and the live-site test fixtures. The subprocess
+serves the database this process is configured with (or the one given), so runs created here
+are visible there once committed; it inherits this process's scenario and catalog folders, so
+both sides agree on the library.
 """
 
 from __future__ import annotations
@@ -58,8 +60,8 @@ def _wait_until_serving(
             time.sleep(0.1)
 
 
-def _stop(process: subprocess.Popen) -> None:
-    # The whole process group: Daphne's own children go too.
+def stop_process_group(process: subprocess.Popen) -> None:
+    """SIGTERM the whole group (a server's own children go too), SIGKILL after 10 s."""
     with contextlib.suppress(ProcessLookupError):
         os.killpg(process.pid, signal.SIGTERM)
     try:
@@ -113,4 +115,4 @@ def site_server(
             _wait_until_serving(process, base_url, log_path, startup_s)
             yield base_url
         finally:
-            _stop(process)
+            stop_process_group(process)
