@@ -7,6 +7,10 @@ from django.db import models
 from events.models import Run
 
 
+# What a verdict says, recorded or refolded: a replay compares exactly these.
+VERDICT_FIELDS = ("success", "detail", "graded_at_seq", "event_count", "state_digest", "log_digest")
+
+
 class RunVerdict(models.Model):
     """A verdict and state digest recorded for a run (on export, on import, from the admin).
 
@@ -32,11 +36,4 @@ class RunVerdict(models.Model):
         return f"run {self.run_id}: {'pass' if self.success else 'fail'} ({self.source})"
 
     def as_dict(self) -> dict:
-        return {
-            "success": self.success,
-            "detail": self.detail,
-            "graded_at_seq": self.graded_at_seq,
-            "event_count": self.event_count,
-            "state_digest": self.state_digest,
-            "log_digest": self.log_digest,
-        }
+        return {name: getattr(self, name) for name in VERDICT_FIELDS}

@@ -13,7 +13,7 @@ import sqlite3
 from dataclasses import dataclass, field
 from typing import Any
 
-from apps.replay.models import RunVerdict
+from apps.replay.models import VERDICT_FIELDS, RunVerdict
 from events.evaluation import grade
 from events.models import Event, Run
 from events.projection import fold_from_scratch
@@ -84,14 +84,7 @@ class Refold:
     log_digest: str
 
     def as_dict(self) -> dict[str, Any]:
-        return {
-            "success": self.success,
-            "detail": self.detail,
-            "graded_at_seq": self.graded_at_seq,
-            "event_count": self.event_count,
-            "state_digest": self.state_digest,
-            "log_digest": self.log_digest,
-        }
+        return {name: getattr(self, name) for name in VERDICT_FIELDS}
 
 
 def refold(run: Run) -> Refold:

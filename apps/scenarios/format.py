@@ -149,20 +149,11 @@ def _events(data: dict, environment: str, source: str) -> tuple[dict[str, Any], 
         time = _number(time, f"{where}.time", source)
         if time < 0:
             _fail(source, f"{where}.time", f"must be >= 0, got {time}")
-        kind = _require(item, "type", source, "a string", where=f"{where}.type")
-        kind = _text(kind, f"{where}.type", source, non_empty=True)
-        payload = _object(item.get("payload", {}), f"{where}.payload", source)
         # Unregistered SentinelBench environments are accepted as data; their types are
         # checked once the environment app exists.
-        if env is not None:
-            if kind not in env.event_types:
-                allowed = ", ".join(sorted(env.event_types)) or "none"
-                _fail(
-                    source,
-                    f"{where}.type",
-                    f"unknown event type {kind!r} for {environment}; allowed: {allowed}",
-                )
-            _payload(payload, env.event_types[kind].schema, f"{where} ({kind})", source)
+        kind, payload = _named_step(
+            item, where, "type", env and env.event_types, "event type", environment, source
+        )
         # Other event keys are dropped, as upstream's pydantic model does.
         events.append({"time": time, "type": kind, "payload": copy.deepcopy(payload)})
     for i in range(1, len(events)):
@@ -176,6 +167,23 @@ def _events(data: dict, environment: str, source: str) -> tuple[dict[str, Any], 
     return tuple(events)
 
 
+def _named_step(
+    item: dict, where: str, key: str, known: dict | None, what: str, environment: str, source: str
+) -> tuple[str, dict]:
+    """`{<key>: name, payload: {...}}` — a timeline event or a solution step. With `known` (the
+    environment's registered event types or actions), the name must be one of them and the
+    payload must fit its schema."""
+    name = _require(item, key, source, "a string", where=f"{where}.{key}")
+    name = _text(name, f"{where}.{key}", source, non_empty=True)
+    payload = _object(item.get("payload", {}), f"{where}.payload", source)
+    if known is not None:
+        if name not in known:
+            allowed = ", ".join(sorted(known)) or "none"
+            _fail(source, f"{where}.{key}", f"unknown {what} {name!r} for {environment}; allowed: {allowed}")
+        _payload(payload, known[name].schema, f"{where} ({name})", source)
+    return name, payload
+
+
 def _solution(data: dict, environment: str, source: str) -> tuple[dict[str, Any], ...]:
     raw = data.get("solution", [])
     if not isinstance(raw, list):
@@ -187,19 +195,10 @@ def _solution(data: dict, environment: str, source: str) -> tuple[dict[str, Any]
     for i, item in enumerate(raw):
         where = f"solution[{i}]"
         item = _object(item, where, source)
-        action = _require(item, "action", source, "a string", where=f"{where}.action")
-        action = _text(action, f"{where}.action", source, non_empty=True)
-        payload = _object(item.get("payload", {}), f"{where}.payload", source)
         # Structural check only: whether the action succeeds depends on the state at run time.
-        if env is not None:
-            if action not in env.actions:
-                allowed = ", ".join(sorted(env.actions)) or "none"
-                _fail(
-                    source,
-                    f"{where}.action",
-                    f"unknown action {action!r} for {environment}; allowed: {allowed}",
-                )
-            _payload(payload, env.actions[action].schema, f"{where} ({action})", source)
+        action, payload = _named_step(
+            item, where, "action", env and env.actions, "action", environment, source
+        )
         steps.append({"action": action, "payload": copy.deepcopy(payload)})
     return tuple(steps)
 
@@ -331,20 +330,24 @@ def parse_dev_scenario(data: object, *, source: str = INLINE) -> Scenario:
     )
 
 
+def read_json_file(path: Path) -> tuple[str, Any]:
+    """A scenario file's text and JSON; a ScenarioError naming the file and the position if not."""
+    try:
+        text = path.read_text(encoding="utf-8")
+        return text, json.loads(text)
+    except json.JSONDecodeError as error:
+        raise ScenarioError(
+            f"{path}: invalid JSON at line {error.lineno}, column {error.colno}: {error.msg}"
+        ) from None
+    except UnicodeDecodeError as error:
+        raise ScenarioError(f"{path}: not UTF-8 text ({error.reason} at byte {error.start})") from None
+
+
 def load_scenario_file(path: str | Path) -> Scenario:
     """Read one file: dev.json as a dev scenario, anything else as a benchmark scenario."""
     path = Path(path)
     source = str(path)
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as error:
-        raise ScenarioError(
-            f"{source}: invalid JSON at line {error.lineno}, column {error.colno}: {error.msg}"
-        ) from None
-    except UnicodeDecodeError as error:
-        raise ScenarioError(
-            f"{source}: not UTF-8 text ({error.reason} at byte {error.start})"
-        ) from None
+    _, data = read_json_file(path)
     if path.name == DEV_FILENAME:
         return parse_dev_scenario(data, source=source)
     return parse_scenario(data, source=source)

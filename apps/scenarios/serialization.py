@@ -19,9 +19,9 @@ from django.db import transaction
 
 from apps.scenarios.format import (
     DEV_FILENAME,
-    ScenarioError,
     parse_dev_scenario,
     parse_scenario,
+    read_json_file,
 )
 from apps.scenarios.format import (
     Scenario as ParsedScenario,
@@ -62,17 +62,7 @@ def _is_int(value: Any) -> bool:
 def read_scenario_file(path: Path, root: Path) -> ScenarioFile:
     """Validate `path` (raises ScenarioError, one line naming file and field) and capture it."""
     source = str(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-        data = json.loads(text)
-    except json.JSONDecodeError as error:
-        raise ScenarioError(
-            f"{source}: invalid JSON at line {error.lineno}, column {error.colno}: {error.msg}"
-        ) from None
-    except UnicodeDecodeError as error:
-        raise ScenarioError(
-            f"{source}: not UTF-8 text ({error.reason} at byte {error.start})"
-        ) from None
+    text, data = read_json_file(path)
     is_dev = path.name == DEV_FILENAME
     parsed = (parse_dev_scenario if is_dev else parse_scenario)(data, source=source)
     row = Scenario(
