@@ -4,17 +4,23 @@ The cache keeps, per run, the last state folded and its seq, and fast-forwards f
 applying only the newer events. States are immutable, so a cached state can be handed out
 without copying. The cache is an optimisation behind `state_at`, never a second source of truth:
 a fold from scratch gives the same state (tested).
+
+`folded_state(run)` also says where the state stands in the log, including its last scenario or
+action event (what live pages track). The fold sees every event anyway; asking the log instead
+would scan every page view the run has logged.
 """
 
 from __future__ import annotations
 
 import threading
 from collections import OrderedDict
+from dataclasses import dataclass
 from typing import Any
 
 from apps.catalog.loader import load_catalog
+from events.live import LIVE_KINDS
 from events.models import Event, Run
-from events.registry import LoggedEvent, get_environment
+from events.registry import Environment, LoggedEvent, get_environment
 
 CACHE_SIZE = 512
 
@@ -33,32 +39,51 @@ def initial_state(run: Run) -> Any:
     return environment.initial_state(load_catalog(run.catalog_dir))
 
 
-def fold_from_scratch(run: Run, seq: int | None = None) -> tuple[Any, int]:
+@dataclass(frozen=True)
+class Folded:
+    """A state and the log position it was folded to."""
+
+    state: Any
+    seq: int  # the last event folded (0: none)
+    live_seq: int  # the last scenario or action event folded (0: none)
+
+
+def _fold(environment: Environment, start: Folded, events: list[LoggedEvent]) -> Folded:
+    if not events:
+        return start
+    live_seq = next((e.seq for e in reversed(events) if e.kind in LIVE_KINDS), start.live_seq)
+    return Folded(environment.fold(start.state, events), events[-1].seq, live_seq)
+
+
+def _fold_from_scratch(run: Run, seq: int | None) -> Folded:
     environment = get_environment(run.environment)
-    events = logged_events(run.pk, 0, seq)
-    state = environment.fold(initial_state(run), events)
-    return state, (events[-1].seq if events else 0)
+    return _fold(environment, Folded(initial_state(run), 0, 0), logged_events(run.pk, 0, seq))
+
+
+def fold_from_scratch(run: Run, seq: int | None = None) -> tuple[Any, int]:
+    folded = _fold_from_scratch(run, seq)
+    return folded.state, folded.seq
 
 
 class _Cache:
     def __init__(self, size: int):
         self.size = size
-        self.entries: OrderedDict[tuple[int, str], tuple[int, Any]] = OrderedDict()
+        self.entries: OrderedDict[tuple[int, str], Folded] = OrderedDict()
         self.lock = threading.Lock()
 
-    def get(self, key):
+    def get(self, key) -> Folded | None:
         with self.lock:
             entry = self.entries.get(key)
             if entry is not None:
                 self.entries.move_to_end(key)
             return entry
 
-    def put(self, key, seq: int, state: Any) -> None:
+    def put(self, key, entry: Folded) -> None:
         with self.lock:
             current = self.entries.get(key)
-            if current is not None and current[0] > seq:
+            if current is not None and current.seq > entry.seq:
                 return  # a concurrent caller already folded further
-            self.entries[key] = (seq, state)
+            self.entries[key] = entry
             self.entries.move_to_end(key)
             while len(self.entries) > self.size:
                 self.entries.popitem(last=False)
@@ -75,20 +100,20 @@ def clear_cache() -> None:
     _cache.clear()
 
 
-def state_at(run: Run, seq: int | None = None) -> Any:
-    """The environment state of `run` as of log position `seq` (default: the whole log)."""
-    environment = get_environment(run.environment)
+def folded_state(run: Run, seq: int | None = None) -> Folded:
+    """The state of `run` as of log position `seq` (default: the whole log), with its position."""
     key = (run.pk, run.catalog_hash)
     cached = _cache.get(key)
-    if cached is not None and (seq is None or cached[0] <= seq):
-        last_seq, state = cached
-        newer = logged_events(run.pk, last_seq, seq)
-        if not newer:
-            return state
-        state = environment.fold(state, newer)
-        last_seq = newer[-1].seq
+    if cached is not None and (seq is None or cached.seq <= seq):
+        newer = logged_events(run.pk, cached.seq, seq)
+        result = _fold(get_environment(run.environment), cached, newer)
     else:
-        state, last_seq = fold_from_scratch(run, seq)
-    if seq is None or cached is None or last_seq >= cached[0]:
-        _cache.put(key, last_seq, state)
-    return state
+        result = _fold_from_scratch(run, seq)
+    if seq is None or cached is None or result.seq >= cached.seq:
+        _cache.put(key, result)
+    return result
+
+
+def state_at(run: Run, seq: int | None = None) -> Any:
+    """The environment state of `run` as of log position `seq` (default: the whole log)."""
+    return folded_state(run, seq).state

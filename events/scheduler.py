@@ -4,6 +4,10 @@
 or write of a run's state (zero staleness) and by the ticker (so open pages get pushes). Both
 may run at once in many processes: `(run, timeline_index)` is unique, so each entry is logged
 exactly once whoever gets there first.
+
+Each process remembers, per run, the first entry it knows is not fired yet, so the usual call on
+a page view — nothing due — costs no query. Entries are never unfired, so that hint can only lag
+(another process fired more), and a lagging hint is harmless: the entry is found already fired.
 """
 
 from __future__ import annotations
@@ -25,6 +29,24 @@ class FireResult:
     next_index: int = 0  # the first timeline entry not fired yet
 
 
+# (run pk, run token) → first timeline entry not known to be fired. The token makes the key
+# unique across databases and rolled-back test runs that reuse a pk.
+_next_unfired: dict[tuple[int, str], int] = {}
+HINTS_KEPT = 4096
+
+
+def _remember_next_unfired(run: Run, index: int) -> None:
+    if len(_next_unfired) >= HINTS_KEPT:  # forget the oldest run: a lost hint costs one query
+        _next_unfired.pop(next(iter(_next_unfired)), None)
+    key = (run.pk, run.token)
+    _next_unfired[key] = max(index, _next_unfired.get(key, 0))
+
+
+def _first_unfired(run: Run) -> int:
+    known = _next_unfired.get((run.pk, run.token))
+    return fired_through(run) + 1 if known is None else known
+
+
 def fired_through(run: Run) -> int:
     """Index of the last fired timeline entry, −1 when none."""
     last = Event.objects.filter(run_id=run.pk, timeline_index__isnull=False).aggregate(
@@ -44,21 +66,29 @@ def next_wake(run: Run, next_index: int) -> float | None:
     return run.started_at + due_sim / run.speed_factor
 
 
-def fire_due(run: Run, *, wall: float | None = None, next_index: int | None = None) -> FireResult:
+def fire_due(
+    run: Run,
+    *,
+    wall: float | None = None,
+    next_index: int | None = None,
+    reload: bool = True,
+) -> FireResult:
     """Fire every timeline entry due at the run's current simulated time, in order.
 
     Reloads the run first: the caller's copy may be stale (another process may have started,
-    advanced, completed or closed it). `next_index` is a hint from a caller that tracks the
-    run (the ticker); a wrong hint is harmless, the unique index still fires each entry once.
+    advanced, completed or closed it); `reload=False` is for a caller that has just read it.
+    `next_index` is a hint from a caller that tracks the run (the ticker); a wrong hint is
+    harmless, the unique index still fires each entry once.
     """
     result = FireResult()
-    run.refresh_from_db(fields=["status", "started_at", "sim_time", "closed_at"])
+    if reload:
+        run.refresh_from_db(fields=["status", "started_at", "sim_time", "closed_at"])
     if run.closed_at is not None:
         return result
     wall = wall_now() if wall is None else wall
     now = sim_now(run, wall)
     timeline = run.timeline
-    index = fired_through(run) + 1 if next_index is None else next_index
+    index = _first_unfired(run) if next_index is None else next_index
     while index < len(timeline) and timeline[index]["time"] <= now:
         entry = timeline[index]
         due = wall_due(run, entry["time"])
@@ -80,6 +110,7 @@ def fire_due(run: Run, *, wall: float | None = None, next_index: int | None = No
             pass
         index += 1
     result.next_index = index
+    _remember_next_unfired(run, index)
     if result.fired:
         log_grew(run.pk, result.fired[-1].seq)  # open pages of this run get pushed
     if run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:

@@ -20,9 +20,8 @@ from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllow
 
 from events.clock import sim_now, wall_now
 from events.commands import current_state, perform_action, record_view
-from events.live import last_live_seq
 from events.models import Event, Run
-from events.projection import state_at
+from events.projection import folded_state, state_at
 from events.registry import ActionRejected
 from events.scheduler import fire_due
 
@@ -93,12 +92,11 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
                         now=past.at, read_only=True, base=past.root)
             return view(request, page, *args, **kwargs)
         run = run_for_token(token)
-        fire_due(run)  # zero staleness
-        seq = last_live_seq(run.pk)  # read before folding: the state includes at least this
-        state = state_at(run)
+        fire_due(run, reload=False)  # zero staleness (the run was read just now)
+        folded = folded_state(run)
         live = bool(getattr(request, "sentinel_live", False))
-        page = Page(request=request, run=run, state=state, now=sim_now(run, wall_now()), live=live,
-                    live_seq=seq)
+        page = Page(request=request, run=run, state=folded.state, now=sim_now(run, wall_now()),
+                    live=live, live_seq=folded.live_seq)
         if request.method == "GET" and not live:
             record_view(run, request.get_full_path(), partial=bool(getattr(request, "htmx", False)))
         try:

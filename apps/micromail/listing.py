@@ -71,7 +71,7 @@ def row_url(root: str, query: MailboxQuery, email_id: str, state: EmailState) ->
     # A draft opens in the compose form, as in the original client.
     if state.folder == "drafts":
         return compose_url(root, "draft", email_id)
-    return root + query.but(email=email_id).querystring()
+    return root + query.opening(email_id)
 
 
 def heading(query: MailboxQuery) -> str:

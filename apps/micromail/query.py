@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from urllib.parse import parse_qsl, urlencode
+from functools import cached_property
+from urllib.parse import parse_qsl, quote_plus, urlencode
 
 from apps.micromail.state import FOLDERS, QUICK_FILTERS
 
@@ -69,6 +70,16 @@ class MailboxQuery:
 
     def querystring(self) -> str:
         """The canonical query string, starting with '?'."""
+        return self.opening(self.email) if self.email else self._list_querystring
+
+    def opening(self, email_id: str) -> str:
+        """The query string of this screen with `email_id` open, as `but(email=…)` would give:
+        `email` is the last parameter, so a list of rows encodes the rest only once."""
+        return f"{self._list_querystring}&email={quote_plus(email_id)}"  # as urlencode does
+
+    @cached_property
+    def _list_querystring(self) -> str:
+        """This screen without an open message (frozen: computed once per query)."""
         params = {"folder": self.folder}
         if self.filter != "all":
             params["filter"] = self.filter
@@ -76,6 +87,4 @@ class MailboxQuery:
             params["q"] = self.q
             if self.scope != "folder":
                 params["scope"] = self.scope
-        if self.email:
-            params["email"] = self.email
         return "?" + urlencode(params)
