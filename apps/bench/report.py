@@ -14,7 +14,7 @@ from pathlib import Path
 from apps.bench.grading import GROUPS, Row, mean, median, render_table, summarise
 
 W, H = 560, 340
-M_LEFT, M_RIGHT, M_TOP, M_BOTTOM = 64, 20, 30, 56
+M_LEFT, M_RIGHT, M_TOP, M_BOTTOM = 64, 20, 44, 56  # top: room for the title and bar labels
 BLUE, RED, GREY = "#1f6fb4", "#c8322d", "#888"
 GROUP_LABELS = {"overall": "overall", "noop": "no-op", "passive": "passive", "active": "active",
                 "absolute": "absolute", "relative": "relative"}
@@ -26,11 +26,9 @@ def nice_ticks(low: float, high: float, count: int = 5) -> list[float]:
     raw = (high - low) / count
     magnitude = 10 ** math.floor(math.log10(raw))
     step = min((m * magnitude for m in (1, 2, 2.5, 5, 10) if m * magnitude >= raw), default=raw)
-    start = math.floor(low / step) * step
-    ticks, value = [], start
-    while value <= high + step * 1e-9:
-        ticks.append(round(value, 10))
-        value += step
+    ticks = [math.floor(low / step) * step]
+    while ticks[-1] < high - step * 1e-9:  # the last tick is at or above `high`: every mark fits
+        ticks.append(round(ticks[-1] + step, 10))
     return ticks
 
 

@@ -60,6 +60,14 @@ def test_grade_filters_like_upstream(results_tree):
     assert "Total Tasks: 1" in filtered and "mail-passive" in filtered
 
 
+@pytest.mark.parametrize("high", [0.0123, 1.0, 7.3, 99.9, 100.0, 362.41, 1234.5])
+def test_axis_ticks_reach_the_largest_value(high):
+    from apps.bench.report import nice_ticks
+
+    ticks = nice_ticks(0, high)
+    assert ticks[0] == 0 and ticks[-1] >= high and 2 <= len(ticks) <= 7
+
+
 @pytest.mark.browser
 def test_the_html_report_draws_four_plots_in_chromium(results_tree, browser):
     report = results_tree / "report.html"
@@ -78,4 +86,8 @@ def test_the_html_report_draws_four_plots_in_chromium(results_tree, browser):
     # Successes are dots, failures crosses, on the completion-vs-target figure (no-ops excluded).
     assert page.locator("svg#plot-time circle.mark").count() == 2
     assert page.locator("svg#plot-time path.mark").count() == 1
+    plot_box = page.locator("svg#plot-time").bounding_box()
+    for mark in page.locator("svg#plot-time .mark").all():  # drawn inside the figure
+        box = mark.bounding_box()
+        assert plot_box["y"] <= box["y"] and box["y"] + box["height"] <= plot_box["y"] + plot_box["height"]
     assert page.locator("svg#plot-success rect.mark").count() == 6
