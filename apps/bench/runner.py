@@ -136,12 +136,22 @@ class Harness:
 
     def should_skip(self, task: Task) -> str | None:
         if (task.folder / RESULTS).exists():
-            return "already done"
+            return "already done" + self._speed_note(task)
         if (task.folder / ERROR).exists():
             if not self.retry_errors:
                 return "previous error"
             (task.folder / ERROR).unlink()
         return None
+
+    def _speed_note(self, task: Task) -> str:
+        """A resumed benchmark mixes speeds if the factor changed: say so rather than hide it."""
+        try:
+            recorded = json.loads((task.folder / RESULTS).read_text()).get("speed_factor")
+        except (OSError, ValueError):
+            return ""
+        if recorded is None or float(recorded) == float(self.speed_factor):
+            return ""
+        return f" at speed {recorded:g}, not {self.speed_factor:g}: use a new NAME to compare speeds"
 
     def command_for(self, task: Task, run: dict[str, Any], prompt: str) -> tuple[list[str] | str, bool, dict]:
         env = dict(os.environ)

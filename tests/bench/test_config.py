@@ -76,6 +76,16 @@ def test_resuming_skips_done_tasks_and_previous_errors_unless_retried(tmp_path):
     assert harness.should_skip(failed) is None and not (failed.folder / "error.txt").exists()
 
 
+def test_resuming_at_another_speed_says_so(tmp_path):
+    task = Task("t", "micromail", {}, tmp_path / "t")
+    task.folder.mkdir()
+    (task.folder / "results.json").write_text('{"speed_factor": 1.0}')
+    harness = Harness(parse_config({"agent_subprocess": ["a"], "speed_factor": 4}), client=None,
+                      results_root=tmp_path, base_dir=tmp_path)
+    assert harness.should_skip(task) == (
+        "already done at speed 1, not 4: use a new NAME to compare speeds")
+
+
 class BrokenServer:
     """A control API that fails the way a crashed server does."""
 
