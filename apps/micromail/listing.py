@@ -1,7 +1,8 @@
 """What the mailbox screen shows for a URL: folder links, filter chips, rows, the open message.
 
 A pure function of (mail, query, root), so templates only lay things out and tests can check
-the screen without HTML.
+the screen without HTML. The folder links are the sidebar every page shares (views.base_context),
+so they are not part of the screen.
 """
 
 from __future__ import annotations
@@ -54,7 +55,6 @@ class OpenEmail:
 class Screen:
     query: MailboxQuery
     heading: str
-    folders: tuple[FolderLink, ...]
     chips: tuple[FilterChip, ...]
     rows: tuple[Row, ...]
     opened: OpenEmail | None
@@ -140,7 +140,6 @@ def mailbox_screen(mail: Mail, query: MailboxQuery, root: str) -> Screen:
     return Screen(
         query=query,
         heading=heading(query),
-        folders=folder_links(mail, query.folder, root),
         chips=chips,
         rows=rows,
         opened=opened,
