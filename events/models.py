@@ -143,6 +143,9 @@ class Event(models.Model):
                 name="event_timeline_entry_fires_once",
             ),
         ]
+        # Live pages ask for the last scenario/action event of a run; without this, that walks
+        # every page view the run has logged.
+        indexes = [models.Index(fields=["run", "kind", "seq"], name="event_run_kind_seq")]
 
     def __str__(self) -> str:
         return f"#{self.seq} @{self.at:.2f} {self.kind}:{self.type}"
