@@ -13,7 +13,8 @@ def new_run_token() -> str:
 
 
 _SPEC_CACHE_SIZE = 4096
-_spec_cache: dict[int, dict] = {}
+# Keyed by (pk, token): a rolled-back transaction (tests) can hand a pk to another run.
+_spec_cache: dict[tuple[int, str], dict] = {}
 
 
 class RunStatus(models.TextChoices):
@@ -76,12 +77,13 @@ class Run(models.Model):
         column and read it from a per-process cache instead of decoding JSON every tick."""
         if "scenario" not in self.get_deferred_fields():
             return self.scenario
-        spec = _spec_cache.get(self.pk)
+        key = (self.pk, self.token)
+        spec = _spec_cache.get(key)
         if spec is None:
             spec = Run.objects.filter(pk=self.pk).values_list("scenario", flat=True).get()
             if len(_spec_cache) >= _SPEC_CACHE_SIZE:
                 _spec_cache.pop(next(iter(_spec_cache)))
-            _spec_cache[self.pk] = spec
+            _spec_cache[key] = spec
         return spec
 
     @property

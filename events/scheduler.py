@@ -77,8 +77,10 @@ def fire_due(
 
     Reloads the run first: the caller's copy may be stale (another process may have started,
     advanced, completed or closed it); `reload=False` is for a caller that has just read it.
-    `next_index` is a hint from a caller that tracks the run (the ticker); a wrong hint is
-    harmless, the unique index still fires each entry once.
+    `next_index` is a hint from a caller that tracks the run (the ticker). A hint that lags is
+    harmless (the unique index still fires each entry once); one ahead of the log would skip
+    entries, which is why callers only ever take it from `fired_through() + 1` or a previous
+    `FireResult.next_index`.
     """
     result = FireResult()
     if reload:
