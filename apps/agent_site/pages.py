@@ -18,6 +18,7 @@ from typing import Any
 
 from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllowed
 
+from apps.control import links
 from events.clock import sim_now, wall_now
 from events.commands import current_state, perform_action, record_view
 from events.models import Event, Run
@@ -58,12 +59,12 @@ class Page:
     @property
     def live_socket(self) -> str:
         """Websocket path pushing this page's live regions (see events.consumers)."""
-        return f"/r/{self.run.token}/live"
+        return links.live_path(self.run)
 
     @property
     def root(self) -> str:
         """URL prefix of this run's pages for the environment: /r/<token>/<env>."""
-        return self.base or f"/r/{self.run.token}/{self.run.environment}"
+        return self.base or links.environment_root(self.run)
 
     def act(self, action: str, payload: dict) -> Event | None:
         """Perform an agent action; the state is refreshed so the response shows its effect.

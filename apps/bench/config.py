@@ -18,7 +18,6 @@ import yaml
 
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
 
-PLACEHOLDERS = ("__TASK_URL__", "__TASK_PROMPT__", "__BASE_DIR__", "__CONTACT_URL__")
 KNOWN_KEYS = (
     "server_url", "frontend_url", "speed_factor", "agent_subprocess", "parallel", "prices",
     "reaction_window", "grace", "control_token", "http_timeout", "api_url",

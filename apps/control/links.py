@@ -11,13 +11,23 @@ def site_root(run: Run) -> str:
     return f"/r/{run.token}"
 
 
+def environment_root(run: Run) -> str:
+    """Where the run's environment pages live: /r/<token>/<env>."""
+    return f"{site_root(run)}/{run.environment}"
+
+
+def live_path(run: Run) -> str:
+    """The websocket (and polling) endpoint of the run's live pages (events.consumers)."""
+    return f"{site_root(run)}/live"
+
+
 def start_page_path(run: Run) -> str:
     """The scenario's start page on our site (`HOST_ADDRESS/<env>` → `/r/<token>/<env>`)."""
     start_page = run.scenario.get("start_page") or f"{HOST_PLACEHOLDER}/{run.environment}"
     path = start_page.replace(HOST_PLACEHOLDER, site_root(run))
     if not path.startswith(site_root(run)):
         # Never redirect off-site: a start page must be one of the run's own pages.
-        path = f"{site_root(run)}/{run.environment}"
+        path = environment_root(run)
     return path
 
 

@@ -6,6 +6,7 @@ import math
 
 from rest_framework import serializers
 
+from apps.control import links
 from apps.scenarios.format import ScenarioError, parse_scenario
 from apps.scenarios.library import get_scenario
 from events.models import ClockMode, Run
@@ -128,16 +129,15 @@ class RunSerializer(serializers.ModelSerializer):
             "sim_time", "prompt", "task_url", "contact_url", "catalog_hash", "created_at", "closed_at",
         ]
 
-    def _url(self, run: Run, suffix: str) -> str:
+    def _absolute(self, path: str) -> str:
         request = self.context.get("request")
-        path = f"/r/{run.token}/{suffix}"
         return request.build_absolute_uri(path) if request else path
 
     def get_task_url(self, run: Run) -> str:
-        return self._url(run, "start")
+        return self._absolute(links.task_path(run))
 
     def get_contact_url(self, run: Run) -> str:
-        return self._url(run, "contact")
+        return self._absolute(links.contact_path(run))
 
     def get_prompt(self, run: Run) -> str:
         return run.scenario.get("prompt", "")

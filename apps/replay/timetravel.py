@@ -16,6 +16,7 @@ from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllow
 from django.urls import Resolver404, resolve, reverse
 from django.utils.html import format_html
 
+from apps.control.links import environment_root
 from events.models import Event, Run
 from events.registry import UnknownEnvironment, get_environment
 
@@ -40,7 +41,7 @@ def site_url(run: Run, seq: int, path: str = "") -> str:
 
 def environment_path(run: Run, full_path: str) -> str:
     """A logged view path (/r/<token>/<env>/x?y) relative to the environment root (x?y)."""
-    prefix = f"/r/{run.token}/{run.environment}/"
+    prefix = environment_root(run) + "/"
     return full_path[len(prefix) :] if full_path.startswith(prefix) else ""
 
 
@@ -114,7 +115,7 @@ def render_site_at(request: HttpRequest, run: Run, seq: int, path: str) -> HttpR
     # Location headers (if a view redirects) point into the viewer, never at the live run.
     if response.has_header("Location"):
         location = response["Location"]
-        live_root = f"/r/{run.token}/{run.environment}/"
+        live_root = environment_root(run) + "/"
         if location.startswith(live_root):
             response["Location"] = travel.root + "/" + location[len(live_root) :]
     response["X-Robots-Tag"] = "noindex"

@@ -12,6 +12,7 @@ from django.shortcuts import get_object_or_404
 from django.template.response import TemplateResponse
 from django.urls import path, reverse
 
+from apps.control.links import task_path
 from apps.scenarios.chart import timeline_svg
 from apps.scenarios.dry_run import dry_run, validate_timeline_entry
 from apps.scenarios.format import ScenarioError
@@ -247,7 +248,7 @@ class ScenarioAdmin(admin.ModelAdmin):
             return HttpResponseRedirect(
                 reverse("admin:scenarios_scenario_change", args=[scenario.pk])
             )
-        return HttpResponseRedirect(f"/r/{run.token}/start")
+        return HttpResponseRedirect(task_path(run))
 
     # --- actions -------------------------------------------------------------------------------
 

@@ -29,11 +29,6 @@ def scenario_library(root: Path | None = None) -> dict[str, Scenario]:
     return library
 
 
-def reload_library() -> None:
-    with _lock:
-        _libraries.clear()
-
-
 def get_scenario(scenario_id: str) -> Scenario:
     try:
         return scenario_library()[scenario_id]

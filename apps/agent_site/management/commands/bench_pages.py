@@ -21,6 +21,7 @@ import httpx
 from django.core.management.base import BaseCommand, CommandError
 from django.db import DatabaseError
 
+from apps.control.links import environment_root
 from apps.scenarios.format import ScenarioError
 from apps.scenarios.library import get_dev_scenario
 from events import lifecycle
@@ -64,7 +65,7 @@ class Command(BaseCommand):
 
         run = self._create_run(env)
         try:
-            root = f"/r/{run.token}/{run.environment}/"
+            root = environment_root(run) + "/"
             pages = [root + page for page in get_environment(env).sample_pages(current_state(run))]
             if not pages:
                 raise CommandError(f"{env}.sample_pages returned no pages for its dev scenario")
