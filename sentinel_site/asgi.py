@@ -9,9 +9,12 @@ os.environ.setdefault("DJANGO_SETTINGS_MODULE", "sentinel_site.settings")
 from sentinel_site.config import ConfigError  # noqa: E402
 
 try:
-    from django.core.asgi import get_asgi_application
+    import django
 
-    django_asgi = get_asgi_application()
+    django.setup(set_prefix=False)  # as get_asgi_application(): ASGI sets it per request
+    from sentinel_site.http_handler import django_http_application
+
+    django_http = django_http_application()
 except ConfigError as exc:  # one clear line, no traceback
     print(f"configuration error: {exc}", file=sys.stderr)
     raise SystemExit(2) from None
@@ -32,7 +35,7 @@ router = ProtocolTypeRouter(
     {
         # htmx and the live client are our own static files: served here, so the one Daphne
         # process of the embedded shape needs no separate file server and no CDN.
-        "http": ASGIStaticFilesHandler(django_asgi),
+        "http": ASGIStaticFilesHandler(django_http),
         "websocket": AllowedHostsOriginValidator(URLRouter(websocket_urlpatterns)),
     }
 )

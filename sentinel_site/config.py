@@ -96,6 +96,7 @@ def database_from_url(name: str, url: str, *, base: Path) -> dict:
             },
             # A file (not :memory:) so WAL and threads work in tests; one per process so
             # concurrent test sessions on one checkout never share it.
+            "CONN_MAX_AGE": None,
             "TEST": {"NAME": str(path.with_name(f"test_{os.getpid()}_{path.name}"))},
         }
     if parts.scheme in ("postgres", "postgresql"):

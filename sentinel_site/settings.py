@@ -49,14 +49,14 @@ INSTALLED_APPS = [
 
 # Django's stock middleware, run as one synchronous chain (see sentinel_site/middleware.py).
 MIDDLEWARE = [
-    "sentinel_site.middleware.Security",
-    "sentinel_site.middleware.Session",
-    "sentinel_site.middleware.Common",
-    "sentinel_site.middleware.Csrf",
-    "sentinel_site.middleware.Authentication",
-    "sentinel_site.middleware.Messages",
-    "sentinel_site.middleware.XFrameOptions",
-    "sentinel_site.middleware.Htmx",
+    "django.middleware.security.SecurityMiddleware",
+    "django.contrib.sessions.middleware.SessionMiddleware",
+    "django.middleware.common.CommonMiddleware",
+    "django.middleware.csrf.CsrfViewMiddleware",
+    "django.contrib.auth.middleware.AuthenticationMiddleware",
+    "django.contrib.messages.middleware.MessageMiddleware",
+    "django.middleware.clickjacking.XFrameOptionsMiddleware",
+    "django_htmx.middleware.HtmxMiddleware",
 ]
 
 ROOT_URLCONF = "sentinel_site.urls"

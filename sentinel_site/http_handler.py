@@ -1,0 +1,85 @@
+"""How Django's HTTP side runs under Daphne: one synchronous chain on one of a few kept threads.
+
+Django's stock `ASGIHandler` is built for a mix of sync and async code, and on our pages —
+every middleware and view synchronous — that generality was most of the cost of a request:
+
+- It adapts the middleware chain for async, so a request bounced between the event loop and
+  its worker thread several times (each bounce a cross-thread hand-off under the GIL).
+  `SyncChainHandler` loads the chain synchronously instead and hands the whole of it —
+  middleware, view, response — to the worker thread in one hop.
+- It enters a fresh `ThreadSensitiveContext` per request, for which asgiref starts a new
+  thread and joins it when the request ends; database connections belong to threads, so each
+  request also opened (and set up) a new connection. `RequestThreads` lends each request one
+  of a fixed set of single-thread executors instead (asgiref's documented
+  `ThreadSensitiveContext(executor=…)`), so threads, and with `CONN_MAX_AGE` their
+  connections, outlive the request.
+
+Django's guarantees are kept: a request's synchronous work all runs on one thread, no two
+requests share a thread at once, request signals fire as before. When every thread is busy,
+further requests wait their turn on the event loop (no thread held) rather than spawning more.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from concurrent.futures import ThreadPoolExecutor
+
+from asgiref.sync import ThreadSensitiveContext, sync_to_async
+from django.core.handlers import base
+from django.core.handlers.asgi import ASGIHandler
+from django.http import FileResponse
+
+# Enough that a request waiting on the database (SQLite's busy timeout, a PostgreSQL row
+# lock) does not stall the pages behind it; few enough that the GIL is not shared thinly.
+REQUEST_THREADS = 2
+
+
+class SyncChainHandler(ASGIHandler):
+    """Django's ASGI handler with the middleware chain loaded (and run) synchronously."""
+
+    def __init__(self):
+        base.BaseHandler.__init__(self)  # not ASGIHandler.__init__: that loads it for async
+        self.load_middleware(is_async=False)
+
+    async def run_get_response(self, request):
+        response = await sync_to_async(self.get_response, thread_sensitive=True)(request)
+        response._handler_class = self.__class__
+        if isinstance(response, FileResponse):
+            response.block_size = self.chunk_size  # as ASGIHandler: Daphne chunks for us
+        return response
+
+
+class RequestThreads:
+    """ASGI wrapper: each request borrows one of `size` long-lived worker threads."""
+
+    def __init__(self, app, *, size: int = REQUEST_THREADS):
+        if size < 1:
+            raise ValueError(f"RequestThreads needs at least one thread, got {size}")
+        self.app = app
+        self.size = size
+        # Created on first use: the queue must belong to the serving event loop.
+        self._idle: asyncio.Queue[ThreadPoolExecutor] | None = None
+
+    def _executors(self) -> asyncio.Queue[ThreadPoolExecutor]:
+        if self._idle is None:
+            idle: asyncio.Queue[ThreadPoolExecutor] = asyncio.Queue()
+            for index in range(self.size):
+                idle.put_nowait(
+                    ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"request-{index}")
+                )
+            self._idle = idle
+        return self._idle
+
+    async def __call__(self, scope, receive, send):
+        idle = self._executors()
+        executor = await idle.get()
+        try:
+            async with ThreadSensitiveContext(executor=executor):
+                await self.app(scope, receive, send)
+        finally:
+            idle.put_nowait(executor)
+
+
+def django_http_application():
+    """The HTTP application Daphne serves (Django must already be set up)."""
+    return RequestThreads(SyncChainHandler())
