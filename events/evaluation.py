@@ -83,7 +83,7 @@ def grade(run: Run) -> tuple[bool, str, Contacts, int | None]:
     contacted = contacts.first_seq is not None
     condition_at = run.condition_at
     noop = condition_at is None
-    sql = (run.scenario.get("eval_sql") or "").strip()
+    sql = (run.spec.get("eval_sql") or "").strip()
     if not sql:
         if noop:
             return not contacted, NOOP_DETAIL, contacts, graded_at

@@ -278,4 +278,4 @@ async def shared_update(run: Run, url: str, seq: int, host: str = "testserver") 
 
 def open_run(token: str) -> Run | None:
     close_old_connections()
-    return Run.objects.filter(token=token, closed_at__isnull=True).defer("scenario").first()
+    return Run.objects.open_by_token(token)

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import functools
 import secrets
 
-from django.db import models
+from django.db import connections, models
 from django.db.models import Q
 
 
@@ -29,6 +30,31 @@ class RunStatus(models.TextChoices):
 class ClockMode(models.TextChoices):
     LIVE = "live"  # sim = (wall − started_at) × speed_factor once started
     VIRTUAL = "virtual"  # moved only by advance
+
+
+class RunQuerySet(models.QuerySet):
+    def open_by_token(self, token: str) -> Run | None:
+        """The open run with this token, or None: what every /r/<token>/ request starts from.
+
+        Every agent page and live push makes this read, so it skips the ORM's per-call query
+        building (about 300 µs, against 20 µs for the read itself) for SQL written once per
+        database. The scenario column stays deferred (read it through `Run.spec`, cached per
+        process): it holds the whole timeline, and decoding it on every request was wasted.
+        """
+        found = list(self.raw(_open_by_token_sql(self.db), [token]))
+        return found[0] if found else None
+
+
+@functools.cache
+def _open_by_token_sql(alias: str) -> str:
+    quote = connections[alias].ops.quote_name
+    columns = ", ".join(
+        quote(field.column) for field in Run._meta.concrete_fields if field.name != "scenario"
+    )
+    return (
+        f"SELECT {columns} FROM {quote(Run._meta.db_table)} "
+        f"WHERE {quote('token')} = %s AND {quote('closed_at')} IS NULL"
+    )
 
 
 class Run(models.Model):
@@ -56,6 +82,8 @@ class Run(models.Model):
     is_default_slot = models.BooleanField(default=False)
     created_at = models.DateTimeField(auto_now_add=True)
     closed_at = models.DateTimeField(null=True, blank=True)
+
+    objects = RunQuerySet.as_manager()
 
     class Meta:
         ordering = ["-id"]

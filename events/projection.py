@@ -12,10 +12,13 @@ would scan every page view the run has logged.
 
 from __future__ import annotations
 
+import functools
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
+
+from django.db import connection, connections
 
 from apps.catalog.loader import load_catalog
 from events.live import LIVE_KINDS
@@ -28,10 +31,32 @@ _FIELDS = ("seq", "at", "kind", "type", "payload")
 
 
 def logged_events(run_id: int, after: int = 0, upto: int | None = None) -> list[LoggedEvent]:
-    rows = Event.objects.filter(run_id=run_id, seq__gt=after)
-    if upto is not None:
-        rows = rows.filter(seq__lte=upto)
-    return [LoggedEvent(*row) for row in rows.order_by("seq").values_list(*_FIELDS)]
+    """The run's events with `after` < seq ≤ `upto`, in order.
+
+    Every page request reads the log's tail, usually one or two events: SQL written once per
+    database instead of a queryset built per call (the ORM's building was ten times the read).
+    """
+    params = [run_id, after] if upto is None else [run_id, after, upto]
+    with connection.cursor() as cursor:
+        cursor.execute(_logged_events_sql(connection.alias, bounded=upto is not None), params)
+        rows = cursor.fetchall()
+    payload = Event._meta.get_field("payload")
+    return [
+        LoggedEvent(seq, at, kind, type_, payload.from_db_value(raw, None, connection))
+        for seq, at, kind, type_, raw in rows
+    ]
+
+
+@functools.cache
+def _logged_events_sql(alias: str, *, bounded: bool) -> str:
+    quote = connections[alias].ops.quote_name
+    columns = ", ".join(quote(Event._meta.get_field(name).column) for name in _FIELDS)
+    seq = quote("seq")
+    return (
+        f"SELECT {columns} FROM {quote(Event._meta.db_table)} "
+        f"WHERE {quote('run_id')} = %s AND {seq} > %s {f'AND {seq} <= %s ' if bounded else ''}"
+        f"ORDER BY {seq}"
+    )
 
 
 def initial_state(run: Run) -> Any:

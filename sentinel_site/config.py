@@ -72,6 +72,12 @@ def env_url(name: str, default: str, *, schemes: tuple[str, ...]) -> str:
     return value
 
 
+# Connections are kept for the life of their thread (CONN_MAX_AGE=None). Page requests run on a
+# few long-lived threads (sentinel_site/http_handler.py), so a kept connection is reused by
+# every request on its thread; opening one per request was a tenth of a page's cost on SQLite
+# and more on PostgreSQL.
+
+
 def database_from_url(name: str, url: str, *, base: Path) -> dict:
     """Translate `sqlite:///relative/path`, `sqlite:////abs/path` or `postgres://…` to Django."""
     parts = urlsplit(url)
@@ -96,7 +102,7 @@ def database_from_url(name: str, url: str, *, base: Path) -> dict:
             },
             # A file (not :memory:) so WAL and threads work in tests; one per process so
             # concurrent test sessions on one checkout never share it.
-            "CONN_MAX_AGE": None,
+            "CONN_MAX_AGE": None,  # kept connections: see above
             "TEST": {"NAME": str(path.with_name(f"test_{os.getpid()}_{path.name}"))},
         }
     if parts.scheme in ("postgres", "postgresql"):
@@ -110,7 +116,8 @@ def database_from_url(name: str, url: str, *, base: Path) -> dict:
             "PASSWORD": unquote(parts.password or ""),
             "HOST": parts.hostname or "",
             "PORT": str(parts.port or ""),
-            "CONN_MAX_AGE": 0,
+            "CONN_MAX_AGE": None,  # kept connections: see above
+            "CONN_HEALTH_CHECKS": True,  # a server restarted under us costs one retry, not a 500
             "TEST": {"NAME": f"test_{db_name}_{os.getpid()}"},
         }
     raise ConfigError(f"{name}={url!r} has scheme {parts.scheme!r}; allowed: sqlite://, postgres://")

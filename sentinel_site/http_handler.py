@@ -27,6 +27,7 @@ from concurrent.futures import ThreadPoolExecutor
 from asgiref.sync import ThreadSensitiveContext, sync_to_async
 from django.core.handlers import base
 from django.core.handlers.asgi import ASGIHandler
+from django.db import connections
 from django.http import FileResponse
 
 # Enough that a request waiting on the database (SQLite's busy timeout, a PostgreSQL row
@@ -57,18 +58,29 @@ class RequestThreads:
             raise ValueError(f"RequestThreads needs at least one thread, got {size}")
         self.app = app
         self.size = size
-        # Created on first use: the queue must belong to the serving event loop.
-        self._idle: asyncio.Queue[ThreadPoolExecutor] | None = None
+        # Created on first use: the queue must belong to the serving event loop. Last in, first
+        # out: under light load one thread (and its connection) serves everything, warm.
+        self._idle: asyncio.LifoQueue[ThreadPoolExecutor] | None = None
 
-    def _executors(self) -> asyncio.Queue[ThreadPoolExecutor]:
+    def _executors(self) -> asyncio.LifoQueue[ThreadPoolExecutor]:
         if self._idle is None:
-            idle: asyncio.Queue[ThreadPoolExecutor] = asyncio.Queue()
+            idle: asyncio.LifoQueue[ThreadPoolExecutor] = asyncio.LifoQueue()
             for index in range(self.size):
                 idle.put_nowait(
                     ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"request-{index}")
                 )
             self._idle = idle
         return self._idle
+
+    def shutdown(self) -> None:
+        """Close each thread's database connections and stop the threads (no request running)."""
+        if self._idle is None:
+            return
+        while not self._idle.empty():
+            executor = self._idle.get_nowait()
+            executor.submit(connections.close_all).result()
+            executor.shutdown()
+        self._idle = None
 
     async def __call__(self, scope, receive, send):
         idle = self._executors()

@@ -16,6 +16,14 @@ REPO = Path(__file__).resolve().parents[1]
 UPSTREAM = REPO.parent / "shared" / "upstream"
 
 
+def pytest_configure(config):
+    # The servers keep each thread's connection for good (sentinel_site/config.py). Threads of
+    # the test process itself (consumers, tickers, workers started by tests) must not: on
+    # PostgreSQL a connection left open in one of them would block dropping the test database.
+    for database in settings.DATABASES.values():
+        database["CONN_MAX_AGE"] = 0
+
+
 @pytest.fixture(scope="session", autouse=True)
 def tally_environment():
     registry.register(TALLY)

@@ -112,3 +112,44 @@ def test_append_is_callable_from_async_code(tally_spec):
     seqs = asyncio.run(agent())
     assert len(set(seqs)) == 10
     assert seqs[-1] == Event.objects.filter(run=run).count()
+
+
+def test_an_appended_event_comes_back_as_stored_and_cannot_be_saved_again(tally_spec):
+    run = create_run(tally_spec(pings=[]), clock_mode=ClockMode.VIRTUAL)
+    event = append_event(run, EventKind.ACTION, "poke", {"n": 2, "note": "ü"}, at=1.5, recorded_at=7.0)
+    stored = Event.objects.get(pk=event.pk)
+    assert (stored.seq, stored.run_id, stored.at, stored.kind, stored.type, stored.payload,
+            stored.recorded_at) == (event.seq, run.pk, 1.5, "action", "poke", {"n": 2, "note": "ü"}, 7.0)
+    assert event.seq == Event.objects.filter(run=run).count()
+    with pytest.raises(PermissionError):
+        event.save()  # it is a logged row, not a new one
+
+
+def test_appends_inside_a_callers_transaction_commit_or_roll_back_with_it(tally_spec):
+    from django.db import transaction
+
+    run = create_run(tally_spec(pings=[]), clock_mode=ClockMode.VIRTUAL)
+    before = Event.objects.filter(run=run).count()
+    with transaction.atomic():
+        first = append_event(run, EventKind.ACTION, "poke", {"n": 1})
+        second = append_event(run, EventKind.ACTION, "poke", {"n": 1})
+    assert (first.seq, second.seq) == (before + 1, before + 2)
+    with pytest.raises(RuntimeError), transaction.atomic():
+        append_event(run, EventKind.ACTION, "poke", {"n": 1})
+        raise RuntimeError("the caller changes its mind")
+    assert Event.objects.filter(run=run).count() == before + 2
+
+
+def test_a_run_is_found_by_token_only_while_open_with_its_scenario_read_lazily(tally_spec):
+    from events.lifecycle import close
+    from events.models import Run
+
+    run = create_run(tally_spec(pings=[]), clock_mode=ClockMode.VIRTUAL)
+    found = Run.objects.open_by_token(run.token)
+    assert found.pk == run.pk
+    assert found.created_at == Run.objects.get(pk=run.pk).created_at  # converted, tz-aware
+    assert found.get_deferred_fields() == {"scenario"}
+    assert found.spec == run.scenario
+    assert Run.objects.open_by_token("no-such-token") is None
+    close(run)
+    assert Run.objects.open_by_token(run.token) is None

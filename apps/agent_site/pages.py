@@ -35,7 +35,7 @@ class LiveRenderActed(ActionRejected):
 
 
 def run_for_token(token: str) -> Run:
-    run = Run.objects.filter(token=token, closed_at__isnull=True).first()
+    run = Run.objects.open_by_token(token)
     if run is None:
         raise Http404("no open run with this token")
     return run

@@ -23,7 +23,7 @@ def live_path(run: Run) -> str:
 
 def start_page_path(run: Run) -> str:
     """The scenario's start page on our site (`HOST_ADDRESS/<env>` → `/r/<token>/<env>`)."""
-    start_page = run.scenario.get("start_page") or f"{HOST_PLACEHOLDER}/{run.environment}"
+    start_page = run.spec.get("start_page") or f"{HOST_PLACEHOLDER}/{run.environment}"
     path = start_page.replace(HOST_PLACEHOLDER, site_root(run))
     if not path.startswith(site_root(run)):
         # Never redirect off-site: a start page must be one of the run's own pages.

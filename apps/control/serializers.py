@@ -140,7 +140,7 @@ class RunSerializer(serializers.ModelSerializer):
         return self._absolute(links.contact_path(run))
 
     def get_prompt(self, run: Run) -> str:
-        return run.scenario.get("prompt", "")
+        return run.spec.get("prompt", "")
 
     def get_sim_time(self, run: Run) -> float:
         from events.clock import sim_now, wall_now

@@ -13,6 +13,7 @@ from urllib.parse import urlencode
 from apps.micromail import state as mailbox
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import FOLDER_TITLES, FOLDERS, Email, EmailState, Mail
+from events.derived import per_state
 
 FILTER_LABELS = {"all": "All", "unread": "Unread", "flagged": "Flagged", "mentions": "Mentions"}
 
@@ -82,6 +83,7 @@ def heading(query: MailboxQuery) -> str:
     return f"Results for “{query.q}” in {where}"
 
 
+@per_state()
 def folder_links(mail: Mail, current: str | None, root: str) -> tuple[FolderLink, ...]:
     badges = mailbox.folder_badges(mail)
     return tuple(
@@ -96,6 +98,7 @@ def folder_links(mail: Mail, current: str | None, root: str) -> tuple[FolderLink
     )
 
 
+@per_state()
 def mailbox_screen(mail: Mail, query: MailboxQuery, root: str) -> Screen:
     """The screen for `query`; `query.email` must be in the mailbox (the view checks)."""
     folder = None if query.searches_everywhere else query.folder

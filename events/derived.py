@@ -1,0 +1,48 @@
+"""Memoising what environments derive from a folded state: screens, counts, badges.
+
+A state is immutable and the fold hands out the same object until an event changes it (page
+views change nothing), so a pure function of (state, hashable args) can be computed once per
+state instead of on every request for it. Keyed by the state's identity — hashing a whole
+mailbox would cost what the cache saves — and holding the state itself, so that while an
+entry lives no other object can take over its id.
+"""
+
+from __future__ import annotations
+
+import functools
+import threading
+from collections import OrderedDict
+from collections.abc import Callable
+from typing import Any, ParamSpec, TypeVar
+
+P = ParamSpec("P")
+R = TypeVar("R")
+
+
+def per_state(maxsize: int = 256) -> Callable[[Callable[P, R]], Callable[P, R]]:
+    """Decorator: memoise `fn(state, *args, **kwargs)`; every argument after the state hashable."""
+
+    def decorate(fn: Callable[P, R]) -> Callable[P, R]:
+        entries: OrderedDict[tuple, tuple[Any, Any]] = OrderedDict()
+        lock = threading.Lock()
+
+        @functools.wraps(fn)
+        def memoised(state, *args, **kwargs):
+            key = (id(state), args, tuple(sorted(kwargs.items())))
+            with lock:
+                entry = entries.get(key)
+                if entry is not None and entry[0] is state:
+                    entries.move_to_end(key)
+                    return entry[1]
+            result = fn(state, *args, **kwargs)  # outside the lock: two threads may both compute
+            with lock:
+                entries[key] = (state, result)
+                entries.move_to_end(key)
+                while len(entries) > maxsize:
+                    entries.popitem(last=False)
+            return result
+
+        memoised.cache_clear = entries.clear  # type: ignore[attr-defined]
+        return memoised
+
+    return decorate

@@ -1,0 +1,88 @@
+"""Django under ASGI as we serve it: one synchronous chain per request, on a few kept threads."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import threading
+
+import pytest
+from asgiref.testing import ApplicationCommunicator
+
+from sentinel_site.http_handler import RequestThreads, SyncChainHandler
+from tests.site.urls import reset_concurrency
+
+pytestmark = [
+    pytest.mark.django_db(transaction=True),
+    pytest.mark.urls("tests.site.urls"),
+]
+
+
+def mark_thread(get_response):
+    """A synchronous middleware noting the thread it ran on."""
+
+    def middleware(request):
+        request.META["middleware_thread"] = threading.current_thread().name
+        return get_response(request)
+
+    return middleware
+
+
+@pytest.fixture
+def app(settings):
+    settings.MIDDLEWARE = [*settings.MIDDLEWARE, "tests.site.test_http_handler.mark_thread"]
+    threads = RequestThreads(SyncChainHandler(), size=2)
+    yield threads
+    threads.shutdown()  # closes the kept connections: PostgreSQL must be able to drop the test db
+
+
+async def get(app, path: str) -> tuple[int, dict]:
+    scope = {"type": "http", "method": "GET", "path": path, "query_string": b"",
+             "headers": [(b"host", b"testserver")], "http_version": "1.1",
+             "scheme": "http", "server": ("testserver", 80), "client": ("127.0.0.1", 1)}
+    communicator = ApplicationCommunicator(app, scope)
+    await communicator.send_input({"type": "http.request", "body": b""})
+    start = await communicator.receive_output(timeout=10)
+    body = b""
+    while True:
+        message = await communicator.receive_output(timeout=10)
+        body += message.get("body", b"")
+        if not message.get("more_body"):
+            break
+    await communicator.wait()
+    return start["status"], json.loads(body)
+
+
+def test_middleware_and_view_run_on_one_kept_thread_with_a_kept_connection(app, settings):
+    settings.DATABASES["default"]["CONN_MAX_AGE"] = None  # as the servers run (config.py)
+
+    async def three_in_a_row():
+        return [await get(app, "/where") for _ in range(3)]
+
+    try:
+        answers = [body for status, body in asyncio.run(three_in_a_row()) if status == 200]
+    finally:
+        settings.DATABASES["default"]["CONN_MAX_AGE"] = 0
+    assert len(answers) == 3
+    for body in answers:
+        assert body["view_thread"] == body["middleware_thread"]
+        assert body["view_thread"].startswith("request-")
+    # One request at a time: the first idle thread is lent each time, with its connection.
+    assert {body["view_thread"] for body in answers} == {answers[0]["view_thread"]}
+    assert {body["connection"] for body in answers} == {answers[0]["connection"]}
+
+
+def test_requests_beyond_the_thread_count_wait_their_turn_and_all_complete(app):
+    reset_concurrency()
+
+    async def five_at_once():
+        return await asyncio.gather(*(get(app, "/slow") for _ in range(5)))
+
+    answers = asyncio.run(five_at_once())
+    assert [status for status, _ in answers] == [200] * 5
+    assert max(body["most_at_once"] for _, body in answers) == 2
+
+
+def test_a_thread_count_below_one_is_refused():
+    with pytest.raises(ValueError, match="at least one thread"):
+        RequestThreads(SyncChainHandler(), size=0)

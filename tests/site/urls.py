@@ -1,0 +1,43 @@
+"""A URLconf for the request-thread tests: views that report where they ran."""
+
+import threading
+import time
+
+from django.db import connection
+from django.http import JsonResponse
+from django.urls import path
+
+_active = 0
+_most = 0
+_lock = threading.Lock()
+
+
+def where(request):
+    with connection.cursor() as cursor:  # opens this thread's connection if it has none yet
+        cursor.execute("SELECT 1")
+    return JsonResponse(
+        {
+            "view_thread": threading.current_thread().name,
+            "middleware_thread": request.META.get("middleware_thread"),
+            "connection": id(connection.connection),
+        }
+    )
+
+
+def slow(request):
+    global _active, _most
+    with _lock:
+        _active += 1
+        _most = max(_most, _active)
+    time.sleep(0.2)
+    with _lock:
+        _active -= 1
+    return JsonResponse({"most_at_once": _most})
+
+
+def reset_concurrency() -> None:
+    global _active, _most
+    _active = _most = 0
+
+
+urlpatterns = [path("where", where), path("slow", slow)]
