@@ -15,7 +15,7 @@ from events import lifecycle
 from events.commands import perform_action, record_view
 from events.live import LIVE_KINDS, last_live_seq
 from events.models import ClockMode, Event, EventKind
-from events.projection import clear_cache, folded_state
+from events.projection import clear_cache, folded_state, state_at
 from events.store import append_event
 from tests.micromail.conftest import mail_run, mail_url  # noqa: F401 — fixtures
 
@@ -155,3 +155,13 @@ def test_micromail_pages_start_their_live_client_at_the_last_live_event(
     clear_cache()
     assert page_live_seq(browser, mail_url()) == last_live_seq(mail_run.pk)
     assert_live_seq_matches_the_log(mail_run)
+
+
+def test_a_page_that_acts_starts_its_live_client_after_its_own_action(
+    mail_run,  # noqa: F811 — the imported fixtures
+    mail_url,  # noqa: F811
+):
+    unread = next(i for i, s in state_at(mail_run).states.items() if not s.is_read)
+    seq = page_live_seq(Client(), mail_url(f"?folder=inbox&email={unread}"))  # opening marks read
+    opened = Event.objects.filter(run=mail_run, kind=EventKind.ACTION, type="open_email").get()
+    assert seq == opened.seq == last_live_seq(mail_run.pk)  # nothing left to push back to it

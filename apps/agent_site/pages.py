@@ -20,7 +20,7 @@ from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllow
 
 from apps.control import links
 from events.clock import sim_now, wall_now
-from events.commands import current_state, perform_action, record_view
+from events.commands import perform_action, record_view
 from events.models import Event, Run
 from events.projection import folded_state, state_at
 from events.registry import ActionRejected
@@ -77,7 +77,9 @@ class Page:
         if self.live:
             raise LiveRenderActed()
         event = perform_action(self.run, action, payload)
-        self.state = current_state(self.run)
+        fire_due(self.run)
+        folded = folded_state(self.run)  # the page's live client starts after its own action
+        self.state, self.live_seq = folded.state, folded.live_seq
         return event
 
 
