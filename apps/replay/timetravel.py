@@ -3,8 +3,9 @@
 The admin URL `/admin/events/run/<id>/at/<seq>/site/<path>` resolves `<path>` against the
 environment's urlconf and calls its view with `request.sentinel_time_travel` set; `@run_page`
 then folds `state_at(run, seq)` and renders read-only (no view logged, no action performed).
-The response gets a banner, its POST forms disabled and its live-update client removed, so
-nothing on the page can reach the live run.
+The shell leaves out the live-update client on a read-only page (templates/site/base.html: it
+would subscribe to the run's *current* log); the response gets a banner and its POST forms
+disabled, so nothing on the page can reach the live run.
 """
 
 from __future__ import annotations
@@ -45,8 +46,6 @@ def environment_path(run: Run, full_path: str) -> str:
     return full_path[len(prefix) :] if full_path.startswith(prefix) else ""
 
 
-# The live-update client (templates/site/base.html) would subscribe to the run's *current* log.
-_LIVE_CLIENT = re.compile(r'<div id="sentinel-live"[^>]*>.*?</div>', re.DOTALL)
 _BODY = re.compile(r"<body[^>]*>", re.IGNORECASE)
 
 _DISABLE_FORMS = """<script>
@@ -105,7 +104,6 @@ def render_site_at(request: HttpRequest, run: Run, seq: int, path: str) -> HttpR
         response = response.render()
     if response.get("Content-Type", "").startswith("text/html") and not response.streaming:
         html = response.content.decode(response.charset or "utf-8")
-        html = _LIVE_CLIENT.sub("", html)
         timeline_url = reverse("admin:events_run_timeline", args=[run.pk])
         if _BODY.search(html):
             html = _BODY.sub(
