@@ -129,3 +129,47 @@ def test_a_scenario_authored_in_the_admin_is_written_in_our_key_order():
         "type": "new_email",
         "payload": {"email_id": "base-04"},
     }
+
+
+def write_scenario(folder: Path, name: str, **changes) -> dict:
+    template = next(p for p in sorted((REPO / "scenarios" / "micromail").glob("*.json")) if p.name != "dev.json")
+    data = json.loads(template.read_text())
+    data.update(changes)
+    (folder / "micromail").mkdir(parents=True, exist_ok=True)
+    (folder / "micromail" / name).write_text(json.dumps(data, indent=2) + "\n")
+    return data
+
+
+def load(folder: Path, *args: str) -> str:
+    out = io.StringIO()
+    call_command("loadscenarios", str(folder), *args, stdout=out, stderr=io.StringIO())
+    return out.getvalue()
+
+
+def test_reloading_unchanged_files_replaces_nothing_and_says_so(tmp_path):
+    write_scenario(tmp_path, "one.json")
+    assert "(1 new, 0 replaced, 0 unchanged)" in load(tmp_path)
+    assert "(0 new, 0 replaced, 1 unchanged)" in load(tmp_path)
+
+
+def test_a_row_edited_in_the_admin_is_not_overwritten_without_replace(tmp_path):
+    write_scenario(tmp_path, "one.json")
+    load(tmp_path)
+    Scenario.objects.filter(path="micromail/one.json").update(prompt="an author's unsaved work")
+    write_scenario(tmp_path, "other.json", id="micromail-other")  # a new file alongside
+    with pytest.raises(CommandError) as caught:
+        load(tmp_path)
+    message = str(caught.value)
+    assert "micromail/one.json" in message and "--replace" in message and "dumpscenarios" in message
+    assert Scenario.objects.get(path="micromail/one.json").prompt == "an author's unsaved work"
+    assert not Scenario.objects.filter(path="micromail/other.json").exists()  # nothing imported
+    assert "(1 new, 1 replaced, 0 unchanged)" in load(tmp_path, "--replace")
+    assert Scenario.objects.get(path="micromail/one.json").prompt != "an author's unsaved work"
+
+
+def test_a_file_of_the_same_path_from_another_folder_is_a_conflict_too(tmp_path):
+    write_scenario(tmp_path / "ours", "one.json")
+    write_scenario(tmp_path / "theirs", "one.json", prompt="someone else's dev scenario")
+    load(tmp_path / "ours")
+    with pytest.raises(CommandError, match="1 rows differ"):
+        load(tmp_path / "theirs")
