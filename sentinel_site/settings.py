@@ -47,7 +47,7 @@ INSTALLED_APPS = [
     "apps.micromail",
 ]
 
-# Django's stock middleware, run as one synchronous chain (see sentinel_site/middleware.py).
+# Django's stock middleware, run as one synchronous chain (see sentinel_site/http_handler.py).
 MIDDLEWARE = [
     "django.middleware.security.SecurityMiddleware",
     "django.contrib.sessions.middleware.SessionMiddleware",
