@@ -42,7 +42,6 @@ def per_state(maxsize: int = 256) -> Callable[[Callable[P, R]], Callable[P, R]]:
                     entries.popitem(last=False)
             return result
 
-        memoised.cache_clear = entries.clear  # type: ignore[attr-defined]
         return memoised
 
     return decorate
