@@ -13,16 +13,21 @@ from typing import Any
 from events.clock import sim_now, wall_now
 from events.live import log_grew
 from events.models import Event, EventKind, Run
-from events.projection import state_at
+from events.projection import Folded, folded_state
 from events.registry import ActionRejected, PayloadError, get_environment, validate_payload
 from events.scheduler import fire_due
 from events.store import append_event
 
 
+def current_folded(run: Run, *, reload: bool = True) -> Folded:
+    """The state an agent sees right now, with its log position: fire what is due, then fold
+    (zero staleness). `reload=False` when `run` was read from the database just now."""
+    fire_due(run, reload=reload)
+    return folded_state(run)
+
+
 def current_state(run: Run) -> Any:
-    """The state an agent sees right now: fire what is due, then fold (zero staleness)."""
-    fire_due(run)
-    return state_at(run)
+    return current_folded(run).state
 
 
 def perform_action(run: Run, name: str, payload: dict[str, Any]) -> Event:

@@ -10,10 +10,10 @@ entry lives no other object can take over its id.
 from __future__ import annotations
 
 import functools
-import threading
-from collections import OrderedDict
 from collections.abc import Callable
 from typing import Any, ParamSpec, TypeVar
+
+from events.lru import LRU
 
 P = ParamSpec("P")
 R = TypeVar("R")
@@ -23,23 +23,16 @@ def per_state(maxsize: int = 256) -> Callable[[Callable[P, R]], Callable[P, R]]:
     """Decorator: memoise `fn(state, *args, **kwargs)`; every argument after the state hashable."""
 
     def decorate(fn: Callable[P, R]) -> Callable[P, R]:
-        entries: OrderedDict[tuple, tuple[Any, Any]] = OrderedDict()
-        lock = threading.Lock()
+        entries: LRU[tuple, tuple[Any, Any]] = LRU(maxsize)
 
         @functools.wraps(fn)
         def memoised(state, *args, **kwargs):
             key = (id(state), args, tuple(sorted(kwargs.items())))
-            with lock:
-                entry = entries.get(key)
-                if entry is not None and entry[0] is state:
-                    entries.move_to_end(key)
-                    return entry[1]
-            result = fn(state, *args, **kwargs)  # outside the lock: two threads may both compute
-            with lock:
-                entries[key] = (state, result)
-                entries.move_to_end(key)
-                while len(entries) > maxsize:
-                    entries.popitem(last=False)
+            entry = entries.get(key)
+            if entry is not None and entry[0] is state:
+                return entry[1]
+            result = fn(state, *args, **kwargs)  # two threads may both compute: same result
+            entries.put(key, (state, result))
             return result
 
         return memoised

@@ -13,8 +13,6 @@ would scan every page view the run has logged.
 from __future__ import annotations
 
 import functools
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,6 +20,7 @@ from django.db import connection, connections
 
 from apps.catalog.loader import load_catalog
 from events.live import LIVE_KINDS
+from events.lru import LRU
 from events.models import Event, Run
 from events.registry import Environment, LoggedEvent, get_environment
 
@@ -90,35 +89,7 @@ def fold_from_scratch(run: Run, seq: int | None = None) -> tuple[Any, int]:
     return folded.state, folded.seq
 
 
-class _Cache:
-    def __init__(self, size: int):
-        self.size = size
-        self.entries: OrderedDict[tuple[int, str], Folded] = OrderedDict()
-        self.lock = threading.Lock()
-
-    def get(self, key) -> Folded | None:
-        with self.lock:
-            entry = self.entries.get(key)
-            if entry is not None:
-                self.entries.move_to_end(key)
-            return entry
-
-    def put(self, key, entry: Folded) -> None:
-        with self.lock:
-            current = self.entries.get(key)
-            if current is not None and current.seq > entry.seq:
-                return  # a concurrent caller already folded further
-            self.entries[key] = entry
-            self.entries.move_to_end(key)
-            while len(self.entries) > self.size:
-                self.entries.popitem(last=False)
-
-    def clear(self) -> None:
-        with self.lock:
-            self.entries.clear()
-
-
-_cache = _Cache(CACHE_SIZE)
+_cache: LRU[tuple[int, str], Folded] = LRU(CACHE_SIZE)
 
 
 def clear_cache() -> None:
@@ -135,7 +106,8 @@ def folded_state(run: Run, seq: int | None = None) -> Folded:
     else:
         result = _fold_from_scratch(run, seq)
     if seq is None or cached is None or result.seq >= cached.seq:
-        _cache.put(key, result)
+        # Unless a concurrent caller already folded further.
+        _cache.put(key, result, unless=lambda current: current.seq > result.seq)
     return result
 
 

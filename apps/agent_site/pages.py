@@ -20,11 +20,10 @@ from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllow
 
 from apps.control import links
 from events.clock import sim_now, wall_now
-from events.commands import perform_action, record_view
+from events.commands import current_folded, perform_action, record_view
 from events.models import Event, Run
-from events.projection import folded_state, state_at
+from events.projection import state_at
 from events.registry import ActionRejected
-from events.scheduler import fire_due
 
 
 class LiveRenderActed(ActionRejected):
@@ -77,8 +76,7 @@ class Page:
         if self.live:
             raise LiveRenderActed()
         event = perform_action(self.run, action, payload)
-        fire_due(self.run)
-        folded = folded_state(self.run)  # the page's live client starts after its own action
+        folded = current_folded(self.run)  # the page's live client starts after its own action
         self.state, self.live_seq = folded.state, folded.live_seq
         return event
 
@@ -95,8 +93,7 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
                         now=past.at, read_only=True, base=past.root)
             return view(request, page, *args, **kwargs)
         run = run_for_token(token)
-        fire_due(run, reload=False)  # zero staleness (the run was read just now)
-        folded = folded_state(run)
+        folded = current_folded(run, reload=False)  # the run was read just now
         live = bool(getattr(request, "sentinel_live", False))
         page = Page(request=request, run=run, state=folded.state, now=sim_now(run, wall_now()),
                     live=live, live_seq=folded.live_seq)

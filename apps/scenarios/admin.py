@@ -17,7 +17,7 @@ from apps.scenarios.chart import timeline_svg
 from apps.scenarios.dry_run import dry_run, validate_timeline_entry
 from apps.scenarios.format import ScenarioError
 from apps.scenarios.models import Scenario, TimelineEvent
-from apps.scenarios.serialization import parsed_scenario, run_spec, scenario_text
+from apps.scenarios.serialization import parsed_scenario, run_spec, scenario_text, timeline_of
 from events import lifecycle
 from events.registry import UnknownEnvironment, get_environment
 
@@ -174,7 +174,7 @@ class ScenarioAdmin(admin.ModelAdmin):
         extra_context = extra_context or {}
         scenario = self.get_object(request, object_id)
         if scenario is not None:
-            events = list(scenario.timeline.order_by("position", "id"))
+            events = timeline_of(scenario)
             extra_context["timeline_chart"] = timeline_svg(scenario, events)
             extra_context["dry_run_url"] = reverse(
                 "admin:scenarios_scenario_dry_run", args=[scenario.pk]
@@ -212,7 +212,7 @@ class ScenarioAdmin(admin.ModelAdmin):
             from django.core.exceptions import PermissionDenied
 
             raise PermissionDenied
-        events = list(scenario.timeline.order_by("position", "id"))
+        events = timeline_of(scenario)
         result = dry_run(scenario, events)
         baseline_names = sorted({name for step in result.steps for name in step.baselines})
         context = {
@@ -255,7 +255,7 @@ class ScenarioAdmin(admin.ModelAdmin):
     @admin.action(description="Duplicate the selected scenarios")
     def duplicate(self, request, queryset):
         for scenario in queryset:
-            events = list(scenario.timeline.order_by("position", "id"))
+            events = timeline_of(scenario)
             copy = Scenario.objects.get(pk=scenario.pk)
             copy.pk = None
             base = scenario.path.removesuffix(".json")

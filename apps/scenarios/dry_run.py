@@ -14,6 +14,7 @@ from typing import Any
 
 from apps.catalog.loader import load_catalog
 from apps.scenarios.models import Scenario, TimelineEvent
+from apps.scenarios.serialization import timeline_of
 from events.evaluation import session_meta
 from events.registry import (
     ActionRejected,
@@ -62,7 +63,7 @@ def dry_run(
     """Simulate `scenario` (optionally with an edited, unsaved timeline) and check it."""
     result = DryRun()
     if events is None:
-        events = list(scenario.timeline.order_by("position", "id"))
+        events = timeline_of(scenario)
     try:
         environment = get_environment(scenario.environment)
     except UnknownEnvironment as error:

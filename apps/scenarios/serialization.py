@@ -108,10 +108,15 @@ def _number(row: Scenario, key: str, value: float | None) -> float | int | None:
     return value
 
 
+def timeline_of(row: Scenario) -> list[TimelineEvent]:
+    """The row's timeline in file order; uses a `prefetch_related("timeline")` when there is one."""
+    return sorted(row.timeline.all(), key=lambda event: (event.position, event.pk))
+
+
 def scenario_document(row: Scenario, events: list[TimelineEvent] | None = None) -> dict[str, Any]:
     """The scenario as a JSON object, keys in the order of the file it came from."""
     if events is None:
-        events = list(row.timeline.order_by("position", "id"))
+        events = timeline_of(row)
     values: dict[str, Any] = {
         "id": row.scenario_id,
         "environment": row.environment,

@@ -34,8 +34,7 @@ class Command(BaseCommand):
             if not target.is_relative_to(root):
                 raise CommandError(f"scenario {row.pk}: path {row.path!r} leaves the target folder")
             target.parent.mkdir(parents=True, exist_ok=True)
-            events = sorted(row.timeline.all(), key=lambda e: (e.position, e.pk))
             with open(target, "w", encoding="utf-8", newline="") as fh:
-                fh.write(scenario_text(row, events))
+                fh.write(scenario_text(row))
             count += 1
         self.stdout.write(f"wrote {count} scenario files to {root}")

@@ -97,6 +97,5 @@ def _compare_with_rows(read: list[ScenarioFile]) -> tuple[list[str], list[str], 
         if row is None:
             new.append(path)
             continue
-        events = sorted(row.timeline.all(), key=lambda e: (e.position, e.pk))
-        (unchanged if scenario_text(row, events) == scenario_file.text else differing).append(path)
+        (unchanged if scenario_text(row) == scenario_file.text else differing).append(path)
     return new, unchanged, differing
