@@ -12,7 +12,7 @@ from typing import Any
 from django.db import transaction
 from django.utils import timezone
 
-from apps.catalog.loader import load_catalog
+from events.catalog import load_catalog
 from events.clock import sim_now, wall_now
 from events.models import ClockMode, Event, EventKind, Run, RunStatus
 from events.registry import get_environment

@@ -36,7 +36,7 @@ from django.db import close_old_connections, transaction
 from django.db.models import Max
 from django.http import Http404, HttpRequest, QueryDict
 from django.middleware.csrf import CSRF_ALLOWED_CHARS
-from django.urls import Resolver404, resolve
+from django.urls import Resolver404, resolve, reverse
 from django.utils.crypto import get_random_string
 
 from events.models import Event, EventKind, Run
@@ -101,7 +101,8 @@ class NotLive(Exception):
 def page_path_for(run: Run, url: str) -> tuple[str, str]:
     """Split and check a page URL sent by a client: it must be one of *this* run's pages."""
     parts = urlsplit(url or "")
-    if parts.scheme or parts.netloc or not parts.path.startswith(f"/r/{run.token}/"):
+    run_home = reverse("run-home", kwargs={"token": run.token})
+    if parts.scheme or parts.netloc or not parts.path.startswith(run_home):
         raise NotLive("the URL is not a page of this run")
     return parts.path, parts.query
 

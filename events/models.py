@@ -8,14 +8,15 @@ import secrets
 from django.db import connections, models
 from django.db.models import Q
 
+from events.lru import LRU
+
 
 def new_run_token() -> str:
     return secrets.token_urlsafe(24)
 
 
-_SPEC_CACHE_SIZE = 4096
 # Keyed by (pk, token): a rolled-back transaction (tests) can hand a pk to another run.
-_spec_cache: dict[tuple[int, str], dict] = {}
+_spec_cache: LRU[tuple[int, str], dict] = LRU(4096)
 
 
 class RunStatus(models.TextChoices):
@@ -109,9 +110,7 @@ class Run(models.Model):
         spec = _spec_cache.get(key)
         if spec is None:
             spec = Run.objects.filter(pk=self.pk).values_list("scenario", flat=True).get()
-            if len(_spec_cache) >= _SPEC_CACHE_SIZE:
-                _spec_cache.pop(next(iter(_spec_cache)))
-            _spec_cache[key] = spec
+            _spec_cache.put(key, spec)
         return spec
 
     @property

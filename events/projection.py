@@ -18,7 +18,7 @@ from typing import Any
 
 from django.db import connection, connections
 
-from apps.catalog.loader import load_catalog
+from events.catalog import load_catalog
 from events.live import LIVE_KINDS
 from events.lru import LRU
 from events.models import Event, Run

@@ -25,7 +25,6 @@ from events.store import TimelineEntryAlreadyFired, append_event
 @dataclass
 class FireResult:
     fired: list[Event] = field(default_factory=list)
-    completed: bool = False  # the run reached the end of its timeline during this call
     next_index: int = 0  # the first timeline entry not fired yet
 
 
@@ -45,6 +44,13 @@ def _remember_next_unfired(run: Run, index: int) -> None:
 def _first_unfired(run: Run) -> int:
     known = _next_unfired.get((run.pk, run.token))
     return fired_through(run) + 1 if known is None else known
+
+
+def live_runs():
+    """Runs whose live clock is running: what every ticker backend watches.
+
+    The scenario column is deferred: Run.spec serves it from a per-process cache."""
+    return Run.objects.filter(status=RunStatus.RUNNING_AUTO, closed_at__isnull=True).defer("scenario")
 
 
 def fired_through(run: Run) -> int:
@@ -117,11 +123,9 @@ def fire_due(
         log_grew(run.pk, result.fired[-1].seq)  # open pages of this run get pushed
     if run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:
         # The live clock ran out: the run completes at the end of its timeline. Conditional
-        # write so only one caller performs (and reports) the transition.
-        result.completed = bool(
-            Run.objects.filter(pk=run.pk, status=RunStatus.RUNNING_AUTO).update(
-                status=RunStatus.COMPLETED, sim_time=run.event_timeline_end
-            )
+        # write so only one caller performs the transition.
+        Run.objects.filter(pk=run.pk, status=RunStatus.RUNNING_AUTO).update(
+            status=RunStatus.COMPLETED, sim_time=run.event_timeline_end
         )
         run.refresh_from_db(fields=["status", "sim_time"])
     return result

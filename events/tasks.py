@@ -8,8 +8,7 @@ from celery import shared_task
 
 from events.clock import wall_now
 from events.models import Run, RunStatus
-from events.scheduler import fire_due, fired_through, next_wake
-from events.ticker import live_runs
+from events.scheduler import fire_due, fired_through, live_runs, next_wake
 
 HORIZON_S = 2.0  # schedule precise wake-ups for what falls due before the next heartbeat+
 

@@ -21,16 +21,11 @@ from django.db import close_old_connections
 
 from events.clock import wall_now
 from events.models import Run, RunStatus
-from events.scheduler import fire_due, fired_through, next_wake
+from events.scheduler import fire_due, fired_through, live_runs, next_wake
 
 log = logging.getLogger(__name__)
 
 MAX_SLEEP_S = 1.0  # cap, so runs started by another process are noticed within a second
-
-
-def live_runs():
-    # The scenario column is deferred: Run.spec serves it from a per-process cache.
-    return Run.objects.filter(status=RunStatus.RUNNING_AUTO, closed_at__isnull=True).defer("scenario")
 
 
 class Schedule:

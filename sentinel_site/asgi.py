@@ -24,7 +24,7 @@ from channels.security.websocket import AllowedHostsOriginValidator  # noqa: E40
 from django.conf import settings  # noqa: E402
 from django.contrib.staticfiles.handlers import ASGIStaticFilesHandler  # noqa: E402
 
-from events.routing import websocket_urlpatterns  # noqa: E402
+from sentinel_site.routing import websocket_urlpatterns  # noqa: E402
 from events.ticker import ticker  # noqa: E402
 
 # Everything imported so far lives as long as the server: keep the cyclic collector from

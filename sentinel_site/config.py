@@ -38,17 +38,6 @@ def env_bool(name: str, default: bool = False) -> bool:
     raise ConfigError(f"{name}={raw!r} is not a boolean; allowed: 1/0, true/false, yes/no, on/off")
 
 
-def env_float(name: str, default: float, *, minimum: float | None = None) -> float:
-    raw = env_str(name, str(default))
-    try:
-        value = float(raw)
-    except ValueError:
-        raise ConfigError(f"{name}={raw!r} is not a number") from None
-    if minimum is not None and value < minimum:
-        raise ConfigError(f"{name}={value} is below the minimum {minimum}")
-    return value
-
-
 def env_dir(name: str, default: Path, *, base: Path) -> Path:
     """A directory that must exist (relative paths are taken from the project root)."""
     raw = env_str(name)

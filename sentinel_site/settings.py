@@ -36,7 +36,6 @@ INSTALLED_APPS = [
     "channels",
     "django_htmx",
     "events",
-    "apps.catalog",
     "apps.scenarios",
     "apps.control",
     "apps.agent_site",
@@ -103,7 +102,8 @@ CELERY_BROKER_URL = env_url(
     "CELERY_BROKER_URL", REDIS_URL or "memory://", schemes=("redis", "rediss", "amqp", "memory")
 )
 CELERY_TASK_IGNORE_RESULT = True
-CELERY_BEAT_HEARTBEAT_S = 1.0
+# Beat's schedule file is runtime state, not source: under var/ with the SQLite database.
+CELERY_BEAT_SCHEDULE_FILENAME = str(VAR_DIR / "celerybeat-schedule")
 
 SENTINEL_CONTROL_TOKEN = env_str("SENTINEL_CONTROL_TOKEN")
 SENTINEL_CATALOG_DIR = env_dir("SENTINEL_CATALOG_DIR", BASE_DIR / "fixtures", base=BASE_DIR)

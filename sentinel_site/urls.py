@@ -4,14 +4,17 @@ from django.urls import include, path
 from apps.control.urls import api_urlpatterns, flat_urlpatterns, run_urlpatterns
 from events.registry import all_environments
 
+# The one spelling of a run's URL prefix: every run URL is reverse()d from the patterns below.
+RUN_PREFIX = "r/<str:token>/"
+
 urlpatterns = [
     path("admin/", admin.site.urls),
     path("api/", include(api_urlpatterns)),
-    path("r/<str:token>/", include(run_urlpatterns)),
-    path("r/<str:token>/", include("apps.agent_site.urls")),  # live pages: the polling fallback
+    path(RUN_PREFIX, include(run_urlpatterns)),
+    path(RUN_PREFIX, include("apps.agent_site.urls")),  # the run's home, live pages' polling
     # Each environment's pages, under its run: /r/<token>/<environment>/…
     *[
-        path(f"r/<str:token>/{environment.name}/", include(environment.urlconf))
+        path(f"{RUN_PREFIX}{environment.name}/", include(environment.urlconf))
         for environment in all_environments()
         if environment.urlconf
     ],

@@ -10,7 +10,7 @@ from django.conf import settings
 from apps.scenarios.format import parse_scenario
 from events import registry
 from events.projection import clear_cache
-from tests.tally import TALLY, tally_scenario
+from apps.tally.environment import TALLY, tally_scenario
 
 REPO = Path(__file__).resolve().parents[1]
 UPSTREAM = REPO.parent / "shared" / "upstream"

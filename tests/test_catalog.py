@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from apps.catalog.loader import CatalogError, read_catalog
+from events.catalog import CatalogError, read_catalog
 
 
 def test_our_fixtures_load_with_a_single_self_user(settings):

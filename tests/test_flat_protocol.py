@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from rest_framework.test import APIClient
 
-from tests.tally import tally_scenario
+from apps.tally.environment import tally_scenario
 
 pytestmark = pytest.mark.django_db
 

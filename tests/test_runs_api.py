@@ -10,7 +10,7 @@ from django.db import close_old_connections
 from rest_framework.test import APIClient
 
 from events.models import Event, EventKind, Run
-from tests.tally import tally_scenario
+from apps.tally.environment import tally_scenario
 
 pytestmark = pytest.mark.django_db
 

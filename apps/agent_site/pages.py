@@ -18,7 +18,7 @@ from typing import Any
 
 from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllowed
 
-from apps.control import links
+from apps.agent_site import links
 from events.clock import sim_now, wall_now
 from events.commands import current_folded, perform_action, record_view
 from events.models import Event, Run

@@ -1,10 +1,11 @@
-"""Agent-site URLs shared by every environment, under /r/<token>/ (`token` is a URL kwarg)."""
+"""Agent-site URLs shared by every environment, under the run's prefix (`token` is a URL kwarg)."""
 
 from django.urls import path
 
 from apps.agent_site import views
 
 urlpatterns = [
-    # Also the websocket path (events.routing): the same URL over HTTP is the polling fallback.
+    path("", views.run_home, name="run-home"),
+    # Also the websocket path (sentinel_site/routing.py): over HTTP, the polling fallback.
     path("live", views.live_poll, name="live-poll"),
 ]

@@ -1,4 +1,5 @@
-"""The polling fallback of live pages: `GET /r/<token>/live?url=<page URL>&seq=<N>`.
+"""The run's own URLs that every environment shares: its home, and the polling fallback of live
+pages, `GET /r/<token>/live?url=<page URL>&seq=<N>`.
 
 Same answer as the websocket push (events.consumers), over plain HTTP, for browsers whose
 socket cannot connect: 204 when the run's log has no scenario/action event after `seq`, else
@@ -7,12 +8,19 @@ socket cannot connect: 204 when the run's log has no scenario/action event after
 
 from __future__ import annotations
 
-from django.http import HttpRequest, HttpResponse, JsonResponse
+from django.http import HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
 from django.views.decorators.http import require_GET
 
+from apps.agent_site.links import environment_root
 from apps.agent_site.pages import run_for_token
 from events import live
 from events.scheduler import fire_due
+
+
+@require_GET
+def run_home(request: HttpRequest, token: str) -> HttpResponse:
+    """/r/<token>/ is the environment's home page (a bare prefix would be a dead end)."""
+    return HttpResponseRedirect(environment_root(run_for_token(token)) + "/")
 
 
 @require_GET

@@ -15,7 +15,7 @@ from django.views.decorators.http import require_http_methods, require_POST
 
 from apps.agent_site.pages import run_for_token
 from apps.control import slot
-from apps.control.links import contact_path, start_page_path
+from apps.agent_site.links import contact_path, start_page_path
 from events import lifecycle
 from events.commands import perform_action
 from events.models import ClockMode, Run, RunStatus

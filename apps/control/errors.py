@@ -6,7 +6,7 @@ from rest_framework import status as http
 from rest_framework.response import Response
 from rest_framework.views import exception_handler as drf_exception_handler
 
-from apps.catalog.loader import CatalogError
+from events.catalog import CatalogError
 from apps.scenarios.format import ScenarioError
 from apps.scenarios.library import UnknownScenario
 from events.lifecycle import LifecycleError

@@ -15,10 +15,10 @@ from rest_framework.permissions import AllowAny
 from rest_framework.request import Request
 from rest_framework.response import Response
 
-from apps.catalog.loader import load_catalog
+from events.catalog import load_catalog
 from apps.control import slot
 from apps.control.auth import is_control_authenticated
-from apps.control.links import start_page_path
+from apps.agent_site.links import start_page_path
 from apps.control.serializers import InitPayloadSerializer
 from apps.scenarios.library import UnknownScenario, get_dev_scenario, get_scenario, scenario_library
 from events import lifecycle

@@ -14,7 +14,7 @@ from typing import Any
 from django.db import transaction
 from django.utils import timezone
 
-from apps.catalog.loader import CatalogError, load_catalog
+from events.catalog import CatalogError, load_catalog
 from apps.replay.models import RunVerdict
 from apps.replay.records import latest_verdict, record_verdict
 from events.models import ClockMode, Event, Run, RunStatus

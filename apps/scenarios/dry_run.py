@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any
 
-from apps.catalog.loader import load_catalog
+from events.catalog import load_catalog
 from apps.scenarios.models import Scenario, TimelineEvent
 from apps.scenarios.serialization import timeline_of
 from events.evaluation import session_meta

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from apps.catalog.loader import load_catalog
+from events.catalog import load_catalog
 from apps.micromail.environment import MICROMAIL
 from apps.micromail.state import Mail
 from apps.scenarios.format import parse_scenario

@@ -9,7 +9,7 @@ import json
 from django.core.management.base import BaseCommand, CommandError
 
 from apps.replay.records import record_verdict, replay
-from events.management.commands._runs import get_run
+from apps.replay.management.commands._runs import get_run
 
 
 class Command(BaseCommand):

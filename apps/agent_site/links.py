@@ -1,6 +1,10 @@
-"""Where a run's pages live. Everything an agent reaches is under /r/<token>/ on our own site."""
+"""Where a run's pages live. Everything an agent reaches is under the run's prefix on our own
+site; the prefix itself is spelled once (`RUN_PREFIX` in sentinel_site/urls.py) and every URL
+here is `reverse()`d from it."""
 
 from __future__ import annotations
+
+from django.urls import reverse
 
 from events.models import Run
 
@@ -8,7 +12,8 @@ HOST_PLACEHOLDER = "HOST_ADDRESS"
 
 
 def site_root(run: Run) -> str:
-    return f"/r/{run.token}"
+    """/r/<token> (no trailing slash)."""
+    return reverse("run-home", kwargs={"token": run.token}).rstrip("/")
 
 
 def environment_root(run: Run) -> str:
@@ -18,7 +23,7 @@ def environment_root(run: Run) -> str:
 
 def live_path(run: Run) -> str:
     """The websocket (and polling) endpoint of the run's live pages (events.consumers)."""
-    return f"{site_root(run)}/live"
+    return reverse("live-poll", kwargs={"token": run.token})
 
 
 def start_page_path(run: Run) -> str:
@@ -32,8 +37,8 @@ def start_page_path(run: Run) -> str:
 
 
 def contact_path(run: Run) -> str:
-    return f"{site_root(run)}/contact"
+    return reverse("run-contact", kwargs={"token": run.token})
 
 
 def task_path(run: Run) -> str:
-    return f"{site_root(run)}/start"
+    return reverse("run-start", kwargs={"token": run.token})

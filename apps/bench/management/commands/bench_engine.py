@@ -43,7 +43,7 @@ class Command(BaseCommand):
             raise CommandError(str(exc)) from None
         if runs < 1 or seconds <= 0:
             raise CommandError("--runs must be ≥ 1 and --seconds > 0")
-        from tests.tally import TALLY, tally_scenario
+        from apps.tally.environment import TALLY, tally_scenario
 
         if TALLY.name not in registry.environment_names():
             registry.register(TALLY)

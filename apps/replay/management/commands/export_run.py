@@ -3,7 +3,7 @@
 from django.core.management.base import BaseCommand
 
 from apps.replay.transfer import export_lines
-from events.management.commands._runs import get_run
+from apps.replay.management.commands._runs import get_run
 
 
 class Command(BaseCommand):

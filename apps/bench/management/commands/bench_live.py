@@ -24,7 +24,7 @@ from django.conf import settings
 from django.core.management import call_command
 from django.core.management.base import BaseCommand, CommandError
 
-from apps.catalog.loader import load_catalog
+from events.catalog import load_catalog
 from sentinel_site.figures import percentile
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
