@@ -10,11 +10,11 @@ from __future__ import annotations
 import hashlib
 import json
 import threading
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
+from typing import Any, TypeVar
 
 WILDCARD = ["*"]
 
@@ -51,6 +51,20 @@ class Catalog:
     def missing_ids(self, environment: str, name: str, ids: Iterable[str]) -> list[str]:
         table = self.table(environment, name)
         return [i for i in ids if i != "*" and i not in table]
+
+    def index(self, build: Callable[[Catalog], T]) -> T:
+        """`build(self)` computed once per catalog (an index of attachments by email, of
+        tracks by artist…): a catalog is immutable, so what is derived from it is too."""
+        with _index_lock:
+            indexes = _indexes.setdefault((self.directory, self.content_hash), {})
+            if build not in indexes:
+                indexes[build] = build(self)
+            return indexes[build]
+
+
+T = TypeVar("T")
+_indexes: dict[tuple[Path, str], dict[Callable, Any]] = {}
+_index_lock = threading.Lock()
 
 
 def _read_json(path: Path) -> Any:

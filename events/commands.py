@@ -19,10 +19,11 @@ from events.scheduler import fire_due
 from events.store import append_event
 
 
-def current_folded(run: Run, *, reload: bool = True) -> Folded:
-    """The state an agent sees right now, with its log position: fire what is due, then fold
-    (zero staleness). `reload=False` when `run` was read from the database just now."""
-    fire_due(run, reload=reload)
+def current_folded(run: Run, *, wall: float | None = None, reload: bool = True) -> Folded:
+    """The state an agent sees at wall time `wall` (default: now), with its log position: fire
+    what is due by then, then fold (zero staleness). `reload=False` when `run` was read from the
+    database just now."""
+    fire_due(run, wall=wall, reload=reload)
     return folded_state(run)
 
 
@@ -30,7 +31,11 @@ def current_state(run: Run) -> Any:
     return current_folded(run).state
 
 
-def perform_action(run: Run, name: str, payload: dict[str, Any]) -> Event:
+def perform_action(
+    run: Run, name: str, payload: dict[str, Any], *, wall: float | None = None
+) -> Event:
+    """Validate `payload`, decide against the state at `wall` (the operation's one clock
+    reading; default now) and log the action at that same simulated time."""
     if run.closed_at is not None:
         raise ActionRejected("this run is closed", status=409)
     environment = get_environment(run.environment)
@@ -44,13 +49,14 @@ def perform_action(run: Run, name: str, payload: dict[str, Any]) -> Event:
         validate_payload(action.schema, payload, what=f"action {name}")
     except PayloadError as exc:
         raise ActionRejected(str(exc)) from None
-    state = current_state(run)
+    wall = wall_now() if wall is None else wall
+    state = current_folded(run, wall=wall).state
     recorded = action.decide(state, dict(payload))
-    event = append_event(run, EventKind.ACTION, name, recorded, at=sim_now(run, wall_now()))
+    event = append_event(run, EventKind.ACTION, name, recorded, at=sim_now(run, wall))
     log_grew(run.pk, event.seq)  # other tabs of this run get pushed
     return event
 
 
-def record_view(run: Run, path: str, **details: Any) -> Event:
-    """Log a page view (cheap; used for replay and activity metrics)."""
-    return append_event(run, EventKind.VIEW, "page", {"path": path, **details}, at=sim_now(run, wall_now()))
+def record_view(run: Run, path: str, *, at: float, **details: Any) -> Event:
+    """Log a page view at simulated time `at` (cheap; used for replay and activity metrics)."""
+    return append_event(run, EventKind.VIEW, "page", {"path": path, **details}, at=at)

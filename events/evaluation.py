@@ -7,13 +7,15 @@ count. Contact times are kept as floats: no truncation to whole seconds.
 
 from __future__ import annotations
 
+import sqlite3
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from typing import Any
 
 from events.lifecycle import CONTACT_GET, CONTACT_POST, complete
 from events.models import Event, EventKind, Run
-from events.projection import state_at
-from events.registry import get_environment
+from events.projection import folded_state
+from events.registry import Environment, get_environment
 from events.sandbox import is_truthy, run_eval_sql, write_session_meta
 from events.timing import to_wall
 
@@ -66,15 +68,47 @@ class Verdict:
         return asdict(self)
 
 
-def session_meta(run: Run, baselines: dict[str, Any]) -> dict[str, Any]:
-    sf = run.speed_factor
-    meta: dict[str, Any] = {
-        # Upstream reports these in wall seconds (its /init divides by speed_factor).
-        "simulation_time": float(to_wall(run.sim_time, sf)),
-        "event_timeline_end": float(to_wall(run.event_timeline_end, sf)),
-    }
-    meta.update({f"baseline_{name}": value for name, value in baselines.items()})
-    return meta
+@dataclass(frozen=True)
+class GradingSnapshot:
+    """What eval_sql sees: an environment's state and captured baselines, as of one moment.
+
+    `write` is the one builder of the grading database — evaluation, the admin's dry run,
+    replay digests and the tests all build it here, so they can never disagree about it.
+    """
+
+    environment: Environment
+    state: Any
+    baselines: Mapping[str, Any]
+    now: float  # simulated seconds (authored): what the tables are computed at
+    speed_factor: float
+    event_timeline_end: float  # authored seconds
+
+    def session_meta(self) -> dict[str, Any]:
+        meta: dict[str, Any] = {
+            # Upstream reports these in wall seconds (its /init divides by speed_factor).
+            "simulation_time": float(to_wall(self.now, self.speed_factor)),
+            "event_timeline_end": float(to_wall(self.event_timeline_end, self.speed_factor)),
+        }
+        meta.update({f"baseline_{name}": value for name, value in self.baselines.items()})
+        return meta
+
+    def write(self, conn: sqlite3.Connection) -> None:
+        write_session_meta(conn, self.session_meta())
+        self.environment.materialize(self.state, self.now, conn)
+
+
+def grading_snapshot(run: Run, seq: int | None = None, *, now: float | None = None) -> GradingSnapshot:
+    """The run as of log position `seq` (default: all of it), at simulated time `now` (default:
+    the run's clock, which a contact or an evaluation has frozen)."""
+    folded = folded_state(run, seq)
+    return GradingSnapshot(
+        environment=get_environment(run.environment),
+        state=folded.state,
+        baselines=folded.baselines,
+        now=run.sim_time if now is None else now,
+        speed_factor=run.speed_factor,
+        event_timeline_end=run.event_timeline_end,
+    )
 
 
 def grade(run: Run) -> tuple[bool, str, Contacts, int | None]:
@@ -89,14 +123,9 @@ def grade(run: Run) -> tuple[bool, str, Contacts, int | None]:
             return not contacted, NOOP_DETAIL, contacts, graded_at
         return False, "no eval_sql configured", contacts, graded_at
 
-    environment = get_environment(run.environment)
-    state = state_at(run, graded_at)
-
-    def build(conn):
-        write_session_meta(conn, session_meta(run, dict(environment.baselines(state))))
-        environment.materialize(state, conn)
-
-    outcome = run_eval_sql(sql, build)
+    # Graded as of the first contact, on the values of that moment (prices, counts that move).
+    snapshot = grading_snapshot(run, graded_at, now=contacts.first_at)
+    outcome = run_eval_sql(sql, snapshot.write)
     if not outcome.ok:
         return False, outcome.error, contacts, graded_at
     sql_pass = is_truthy(outcome.value)

@@ -121,11 +121,14 @@ def complete(run: Run, *, wall: float | None = None) -> Run:
     return run
 
 
-def contact(run: Run, *, method: str, message: str | None = None) -> Event:
-    """The agent's "done / condition met" signal. Completes the run; every visit is logged."""
+def contact(
+    run: Run, *, method: str, message: str | None = None, wall: float | None = None
+) -> Event:
+    """The agent's "done / condition met" signal, at wall time `wall` (when the request arrived;
+    default now). Completes the run; every visit is logged."""
     if run.closed_at is not None:
         raise LifecycleError("No active simulation. Call /init first.")
-    wall = wall_now()
+    wall = wall_now() if wall is None else wall
     complete(run, wall=wall)  # fires what was due first: the contact sees "now", not a tick ago
     if method == "POST":
         return _log(run, CONTACT_POST, run.sim_time, {"message": message or ""})
@@ -140,8 +143,9 @@ def close(run: Run) -> None:
 
 def status_snapshot(run: Run) -> dict[str, Any]:
     """Current status, firing what is due first (zero staleness)."""
-    fire_due(run)
-    now = sim_now(run, wall_now())
+    wall = wall_now()
+    fire_due(run, wall=wall)
+    now = sim_now(run, wall)
     return {"status": run.status, "sim_time": now, "next_event_time": _next_event_time(run, now)}
 
 

@@ -13,7 +13,8 @@ would scan every page view the run has logged.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 from django.db import connection, connections
@@ -22,7 +23,7 @@ from events.catalog import load_catalog
 from events.live import LIVE_KINDS
 from events.lru import LRU
 from events.models import Event, Run
-from events.registry import Environment, LoggedEvent, get_environment
+from events.registry import EMPTY, Environment, LoggedEvent, get_environment
 
 CACHE_SIZE = 512
 
@@ -65,18 +66,20 @@ def initial_state(run: Run) -> Any:
 
 @dataclass(frozen=True)
 class Folded:
-    """A state and the log position it was folded to."""
+    """A state, the baselines the core captured on the way, and the log position folded to."""
 
     state: Any
     seq: int  # the last event folded (0: none)
     live_seq: int  # the last scenario or action event folded (0: none)
+    baselines: Mapping[str, Any] = field(default_factory=lambda: EMPTY)  # after the last preload
 
 
 def _fold(environment: Environment, start: Folded, events: list[LoggedEvent]) -> Folded:
     if not events:
         return start
     live_seq = next((e.seq for e in reversed(events) if e.kind in LIVE_KINDS), start.live_seq)
-    return Folded(environment.fold(start.state, events), events[-1].seq, live_seq)
+    state, baselines = environment.fold(start.state, events, start.baselines)
+    return Folded(state, events[-1].seq, live_seq, baselines)
 
 
 def _fold_from_scratch(run: Run, seq: int | None) -> Folded:
@@ -84,9 +87,9 @@ def _fold_from_scratch(run: Run, seq: int | None) -> Folded:
     return _fold(environment, Folded(initial_state(run), 0, 0), logged_events(run.pk, 0, seq))
 
 
-def fold_from_scratch(run: Run, seq: int | None = None) -> tuple[Any, int]:
-    folded = _fold_from_scratch(run, seq)
-    return folded.state, folded.seq
+def fold_from_scratch(run: Run, seq: int | None = None) -> Folded:
+    """The state as of `seq`, folded from the catalog without the cache (replay, checks)."""
+    return _fold_from_scratch(run, seq)
 
 
 _cache: LRU[tuple[int, str], Folded] = LRU(CACHE_SIZE)

@@ -9,7 +9,10 @@ from __future__ import annotations
 import sqlite3
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any, NamedTuple
+
+from events.schemas import Payload, PayloadError, validate_payload  # noqa: F401 (re-exported)
 
 State = Any  # each environment defines its own immutable state type
 
@@ -24,10 +27,6 @@ class LoggedEvent(NamedTuple):
     payload: Mapping[str, Any]
 
 
-class PayloadError(ValueError):
-    """A scenario-event or action payload does not match its schema."""
-
-
 class ActionRejected(ValueError):
     """An agent action is not allowed against the current state (e.g. unknown email id)."""
 
@@ -40,66 +39,19 @@ Reducer = Callable[[State, LoggedEvent], State]
 
 
 @dataclass(frozen=True)
-class Field:
-    """One payload field: its type and whether it may be omitted.
-
-    A deliberately small schema language: enough to give authors precise errors (field,
-    expected type, allowed values) without pulling in a JSON-Schema dependency.
-    """
-
-    type: type | tuple[type, ...]
-    required: bool = True
-    choices: tuple[Any, ...] | None = None
-    help: str = ""
-
-    def describe(self) -> str:
-        names = self.type if isinstance(self.type, tuple) else (self.type,)
-        text = " or ".join(_TYPE_NAMES.get(t, t.__name__) for t in names)
-        if self.choices:
-            text += f" (one of: {', '.join(map(str, self.choices))})"
-        return text
-
-
-_TYPE_NAMES = {str: "string", int: "integer", float: "number", bool: "boolean", list: "list", dict: "object"}
-
-
-def validate_payload(schema: Mapping[str, Field], payload: Any, *, what: str) -> dict:
-    if not isinstance(payload, dict):
-        raise PayloadError(f"{what}: payload must be an object, got {type(payload).__name__}")
-    for name, spec in schema.items():
-        if name not in payload:
-            if spec.required:
-                raise PayloadError(f"{what}: payload field '{name}' is required ({spec.describe()})")
-            continue
-        value = payload[name]
-        expected = spec.type if isinstance(spec.type, tuple) else (spec.type,)
-        ok = isinstance(value, expected) and not (isinstance(value, bool) and bool not in expected)
-        if float in expected and isinstance(value, int) and not isinstance(value, bool):
-            ok = True
-        if not ok:
-            raise PayloadError(f"{what}: payload field '{name}' must be {spec.describe()}, got {value!r}")
-        if spec.choices is not None and value not in spec.choices:
-            raise PayloadError(
-                f"{what}: payload field '{name}' is {value!r}; allowed: {', '.join(map(str, spec.choices))}"
-            )
-    unknown = sorted(set(payload) - set(schema))
-    if unknown:
-        raise PayloadError(
-            f"{what}: unknown payload field(s) {', '.join(unknown)}; allowed: {', '.join(schema) or 'none'}"
-        )
-    return payload
-
-
-@dataclass(frozen=True)
 class EventType:
     """A scenario event type: its payload schema and the reducer that applies it."""
 
-    schema: Mapping[str, Field]
+    schema: type[Payload]
     reduce: Reducer
     help: str = ""
     # Catalog references to check when a scenario is authored: payload field → (catalog
     # table); a list field may be ["*"].
     catalog_refs: Mapping[str, str] = field(default_factory=dict)
+    # A preload puts the world the task starts from in place. Right after one applies, the core
+    # measures the environment's baselines (the original's rule: the last preload wins, and
+    # without one there are none).
+    preload: bool = False
 
 
 @dataclass(frozen=True)
@@ -110,26 +62,59 @@ class Action:
     a generated id) or raises ActionRejected. It never mutates anything.
     """
 
-    schema: Mapping[str, Field]
+    schema: type[Payload]
     decide: Callable[[State, dict], dict]
     reduce: Reducer
     help: str = ""
 
 
-@dataclass
+@dataclass(frozen=True)
+class ImplicitAction:
+    """An action a page performs by being opened, as the real product does: opening an unread
+    message marks it read. Declared with the environment so no view has to remember it.
+
+    On a navigation (not a live re-render, not time travel) to the page named `page` (its URL
+    name) whose query string or URL carries `param`, the core performs `action` with
+    `payload(value)` — but only when `applies(state, value)`, so reloading changes nothing.
+    """
+
+    page: str
+    param: str
+    action: str
+    payload: Callable[[str], dict]
+    applies: Callable[[State, str], bool]
+
+
+Measure = Callable[[State, float], float | int]  # (state, now) → a number
+EMPTY: Mapping[str, Any] = MappingProxyType({})
+
+
+def timeless(count: Callable[[State], float | int]) -> Measure:
+    """A baseline that depends on the state only (most counts do) as a `measure(state, now)`."""
+    return lambda state, now: count(state)
+
+
+@dataclass(frozen=True)
 class Environment:
-    """Everything the core needs to know about one environment."""
+    """Everything the core needs to know about one environment.
+
+    Time reaches the environment explicitly: `now` is the simulated second (authored scale) of
+    the operation, read once from the run's clock. Values that move between events (a price, a
+    star count) are functions of the state and `now` (events.waypoints), never events of their own.
+    """
 
     name: str
     title: str
-    initial_state: Callable[[Any], State]  # catalog → empty state
+    initial_state: Callable[[Any], State]  # catalog → the empty state
     event_types: Mapping[str, EventType]
     actions: Mapping[str, Action]
-    baselines: Callable[[State], Mapping[str, float | int]]
-    materialize: Callable[[State, sqlite3.Connection], None]
+    # name → measure(state, now); captured by the core right after each preload applies, and
+    # exported to eval_sql as session_meta rows `baseline_<name>`.
+    baselines: Mapping[str, Measure]
+    # The evaluation tables as of `now` (upstream names and columns, so eval_sql runs unchanged).
+    materialize: Callable[[State, float, sqlite3.Connection], None]
     urlconf: str | None = None  # module with the environment's page urlpatterns
-    # Name → catalog table used to expand ["*"] in preload payloads (for authoring checks).
-    catalog_tables: tuple[str, ...] = ()
+    implicit_actions: tuple[ImplicitAction, ...] = ()
     # state → every kind of page worth timing, as paths relative to the environment root
     # (e.g. "?folder=inbox"); used by `manage.py bench_pages`.
     sample_pages: Callable[[State], list[str]] | None = None
@@ -145,11 +130,23 @@ class Environment:
             return action.reduce(state, event) if action else state
         return state
 
-    def fold(self, state: State, events) -> State:
-        apply = self.apply
+    def measure_baselines(self, state: State, now: float) -> Mapping[str, float | int]:
+        return MappingProxyType({name: measure(state, now) for name, measure in self.baselines.items()})
+
+    def captures_baselines(self, event: LoggedEvent) -> bool:
+        event_type = self.event_types.get(event.type) if event.kind == "scenario" else None
+        return event_type is not None and event_type.preload
+
+    def fold(
+        self, state: State, events, baselines: Mapping[str, Any] = EMPTY
+    ) -> tuple[State, Mapping[str, Any]]:
+        """Apply `events` in order; baselines are measured right after every preload."""
+        apply, captures = self.apply, self.captures_baselines
         for event in events:
             state = apply(state, event)
-        return state
+            if captures(event):
+                baselines = self.measure_baselines(state, event.at)
+        return state, baselines
 
 
 _REGISTRY: dict[str, Environment] = {}

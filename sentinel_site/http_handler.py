@@ -17,6 +17,11 @@ every middleware and view synchronous — that generality was most of the cost o
 Django's guarantees are kept: a request's synchronous work all runs on one thread, no two
 requests share a thread at once, request signals fire as before. When every thread is busy,
 further requests wait their turn on the event loop (no thread held) rather than spawning more.
+
+Agents' pages have threads of their own (`Lanes`): an `/evaluate` (up to 2 s of eval_sql), an
+admin dry run or a slow API call never holds a thread that an agent's page or contact waits for.
+And every request is stamped with the wall time it arrived, before it waits for a thread, so a
+contact counts from when the agent made it (apps/agent_site/pages.py `arrival_wall`).
 """
 
 from __future__ import annotations
@@ -24,16 +29,23 @@ from __future__ import annotations
 import asyncio
 from concurrent.futures import ThreadPoolExecutor
 
+import time
+
 from asgiref.sync import ThreadSensitiveContext, sync_to_async
 from django.core.handlers import base
 from django.core.handlers.asgi import ASGIHandler
 from django.db import connections
 from django.http import FileResponse
 
-# Two: while one request waits on the database (SQLite's busy timeout, a PostgreSQL row lock)
-# or a slow admin page, the other keeps pages moving. More only slice the GIL finer and stretch
-# every request: bench_pages p95 went from 35 ms with two threads to 48 with three, 50 with four.
+from apps.agent_site.pages import ARRIVAL
+from sentinel_site.urls import RUN_PREFIX
+
+# Two: while one request waits on the database (SQLite's busy timeout, a PostgreSQL row lock),
+# the other keeps pages moving. More only slice the GIL finer and stretch every request:
+# bench_pages p95 went from 35 ms with two threads to 48 with three, 50 with four.
 REQUEST_THREADS = 2
+CONTROL_THREADS = 2  # the control API, evaluation, the admin: never on an agent's thread
+AGENT_PATHS = "/" + RUN_PREFIX.split("<", 1)[0]  # "/r/": everything under a run's prefix
 
 
 class SyncChainHandler(ASGIHandler):
@@ -54,11 +66,12 @@ class SyncChainHandler(ASGIHandler):
 class RequestThreads:
     """ASGI wrapper: each request borrows one of `size` long-lived worker threads."""
 
-    def __init__(self, app, *, size: int = REQUEST_THREADS):
+    def __init__(self, app, *, size: int = REQUEST_THREADS, name: str = "request"):
         if size < 1:
             raise ValueError(f"RequestThreads needs at least one thread, got {size}")
         self.app = app
         self.size = size
+        self.name = name
         # Created on first use: the queue must belong to the serving event loop. Last in, first
         # out: under light load one thread (and its connection) serves everything, warm.
         self._idle: asyncio.LifoQueue[ThreadPoolExecutor] | None = None
@@ -68,7 +81,7 @@ class RequestThreads:
             idle: asyncio.LifoQueue[ThreadPoolExecutor] = asyncio.LifoQueue()
             for index in range(self.size):
                 idle.put_nowait(
-                    ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"request-{index}")
+                    ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"{self.name}-{index}")
                 )
             self._idle = idle
         return self._idle
@@ -93,6 +106,29 @@ class RequestThreads:
             idle.put_nowait(executor)
 
 
+class Lanes:
+    """ASGI router: agents' pages on their own threads, everything else on others; each request
+    stamped with its arrival time first."""
+
+    def __init__(self, agent, control):
+        self.agent, self.control = agent, control
+
+    async def __call__(self, scope, receive, send):
+        scope = {**scope, ARRIVAL: time.time()}
+        if scope.get("path", "").startswith(AGENT_PATHS):
+            await self.agent(scope, receive, send)
+        else:
+            await self.control(scope, receive, send)
+
+    def shutdown(self) -> None:
+        self.agent.shutdown()
+        self.control.shutdown()
+
+
 def django_http_application():
     """The HTTP application Daphne serves (Django must already be set up)."""
-    return RequestThreads(SyncChainHandler())
+    handler = SyncChainHandler()
+    return Lanes(
+        RequestThreads(handler, size=REQUEST_THREADS, name="agent"),
+        RequestThreads(handler, size=CONTROL_THREADS, name="control"),
+    )

@@ -90,11 +90,11 @@ def test_the_cached_fold_equals_a_fold_from_scratch_at_every_seq(tally_spec):
         append_event(run, EventKind.ACTION, "poke", {"n": step}, at=float(step))
     last = Event.objects.filter(run=run).count()
     for seq in range(0, last + 1):
-        assert state_at(run, seq) == fold_from_scratch(run, seq)[0]
+        assert state_at(run, seq) == fold_from_scratch(run, seq).state
     # Walking forward one seq at a time exercises the fast-forward path of the cache.
     for seq in range(0, last + 1):
-        assert state_at(run, seq).entries == fold_from_scratch(run, seq)[0].entries
-    assert state_at(run) == fold_from_scratch(run)[0]
+        assert state_at(run, seq).entries == fold_from_scratch(run, seq).state.entries
+    assert state_at(run) == fold_from_scratch(run).state
 
 
 def test_append_is_callable_from_async_code(tally_spec):

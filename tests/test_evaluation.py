@@ -131,7 +131,7 @@ def test_evaluate_counts_views_and_actions(tally_spec):
 
     run = manual_run(tally_spec)
     lifecycle.advance(run, 31)
-    record_view(run, "/r/x/tally")
+    record_view(run, "/r/x/tally", at=0.0)
     perform_action(run, "poke", {"n": 2})
     verdict = evaluate(run)
     assert (verdict.views, verdict.actions) == (1, 1)

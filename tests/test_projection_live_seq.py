@@ -62,7 +62,7 @@ STEPS = [
 def play(run, step) -> None:
     match step:
         case ("view",):
-            record_view(run, "/tally")
+            record_view(run, "/tally", at=0.0)
         case ("advance", to):
             lifecycle.advance(run, to)
         case ("poke", n):
@@ -91,7 +91,7 @@ def test_a_fold_from_scratch_after_each_step_matches_the_log(tally_run):
 def test_page_views_move_the_fold_but_not_its_live_seq(tally_run):
     before = folded_state(tally_run)
     for n in range(5):
-        record_view(tally_run, f"/tally?page={n}")
+        record_view(tally_run, f"/tally?page={n}", at=0.0)
     after = folded_state(tally_run)
     assert after.seq == before.seq + 5
     assert after.live_seq == before.live_seq == last_live_seq(tally_run.pk)
@@ -101,8 +101,8 @@ def test_a_fast_forward_over_views_only_keeps_the_cached_live_seq(tally_run):
     perform_action(tally_run, "poke", {"n": 1})
     poked = folded_state(tally_run)
     assert poked.live_seq == poked.seq  # the poke is the last event
-    record_view(tally_run, "/tally")
-    record_view(tally_run, "/tally")
+    record_view(tally_run, "/tally", at=0.0)
+    record_view(tally_run, "/tally", at=0.0)
     assert folded_state(tally_run).live_seq == poked.live_seq == last_live_seq(tally_run.pk)
 
 

@@ -23,7 +23,7 @@ from events.clock import sim_now, wall_now
 from events.commands import current_folded, perform_action, record_view
 from events.models import Event, Run
 from events.projection import state_at
-from events.registry import ActionRejected
+from events.registry import ActionRejected, get_environment
 
 
 class LiveRenderActed(ActionRejected):
@@ -40,12 +40,25 @@ def run_for_token(token: str) -> Run:
     return run
 
 
+ARRIVAL = "sentinel.arrived_at"  # ASGI scope key: wall time the request reached the server
+
+
+def arrival_wall(request: HttpRequest) -> float:
+    """The wall time the request arrived, stamped by the server before it waited for a request
+    thread (sentinel_site/http_handler.py), so a busy server does not make an agent look slow;
+    now, for a request that did not come through it (the test client)."""
+    scope = getattr(request, "scope", None)
+    arrived = scope.get(ARRIVAL) if isinstance(scope, dict) else None
+    return arrived if arrived is not None else wall_now()
+
+
 @dataclass
 class Page:
     request: HttpRequest
     run: Run
     state: Any
-    now: float  # simulated seconds (authored scale), read once per request
+    now: float  # simulated seconds (authored scale): the request's one clock reading
+    wall: float = 0.0  # the wall time `now` was read at (actions are logged at that moment)
     live: bool = False  # a side-effect-free re-render for a live push (see module docstring)
     # Log position of the last scenario/action event the state includes (at least): the live
     # client starts from it, so an event fired between render and subscription is still pushed.
@@ -54,6 +67,10 @@ class Page:
     # nothing is logged or performed, and links stay under the viewer's own URL prefix.
     read_only: bool = False
     base: str | None = None
+    # The earliest simulated time after `now` at which something this page shows changes
+    # without any event (a relative time ticks over, a price moves): live pages are re-rendered
+    # and pushed then. None: nothing shown depends on the clock.
+    next_change: float | None = None
 
     @property
     def live_socket(self) -> str:
@@ -65,6 +82,11 @@ class Page:
         """URL prefix of this run's pages for the environment: /r/<token>/<env>."""
         return self.base or links.environment_root(self.run)
 
+    def changes_at(self, at: float | None) -> None:
+        """Note that what this page shows changes at simulated second `at` (None: never)."""
+        if at is not None and (self.next_change is None or at < self.next_change):
+            self.next_change = max(at, self.now)
+
     def act(self, action: str, payload: dict) -> Event | None:
         """Perform an agent action; the state is refreshed so the response shows its effect.
 
@@ -75,10 +97,31 @@ class Page:
             return None
         if self.live:
             raise LiveRenderActed()
-        event = perform_action(self.run, action, payload)
-        folded = current_folded(self.run)  # the page's live client starts after its own action
+        event = perform_action(self.run, action, payload, wall=self.wall)
+        folded = current_folded(self.run, wall=self.wall)  # the live client starts after it
         self.state, self.live_seq = folded.state, folded.live_seq
         return event
+
+
+def is_navigation(request: HttpRequest) -> bool:
+    """A page the user goes to (a load, a boosted link), not a fragment refreshed in place."""
+    htmx = getattr(request, "htmx", None)
+    return request.method == "GET" and (not htmx or htmx.boosted)
+
+
+def perform_implicit_actions(request: HttpRequest, page: Page, kwargs: dict) -> None:
+    """Opening a page does what opening it does in the real product (declared per environment:
+    `Environment.implicit_actions`), once — reloading an opened item changes nothing."""
+    if page.live or page.read_only or not is_navigation(request):
+        return
+    match = getattr(request, "resolver_match", None)
+    url_name = match.url_name if match is not None else None
+    for implicit in get_environment(page.run.environment).implicit_actions:
+        if implicit.page != url_name:
+            continue
+        value = kwargs.get(implicit.param) or request.GET.get(implicit.param)
+        if value and implicit.applies(page.state, value):
+            page.act(implicit.action, implicit.payload(value))
 
 
 def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
@@ -91,15 +134,20 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
                 return HttpResponseNotAllowed(["GET"])
             page = Page(request=request, run=past.run, state=state_at(past.run, past.seq),
                         now=past.at, read_only=True, base=past.root)
+            request.sentinel_page = page
             return view(request, page, *args, **kwargs)
         run = run_for_token(token)
-        folded = current_folded(run, reload=False)  # the run was read just now
+        wall = arrival_wall(request)  # the one clock reading of this request
+        folded = current_folded(run, wall=wall, reload=False)  # the run was read just now
         live = bool(getattr(request, "sentinel_live", False))
-        page = Page(request=request, run=run, state=folded.state, now=sim_now(run, wall_now()),
-                    live=live, live_seq=folded.live_seq)
-        if request.method == "GET" and not live:
-            record_view(run, request.get_full_path(), partial=bool(getattr(request, "htmx", False)))
+        page = Page(request=request, run=run, state=folded.state, now=sim_now(run, wall),
+                    wall=wall, live=live, live_seq=folded.live_seq)
+        request.sentinel_page = page  # what a live render reads back (events.live)
         try:
+            if request.method == "GET" and not live:
+                record_view(run, request.get_full_path(), at=page.now,
+                            partial=bool(getattr(request, "htmx", False)))
+            perform_implicit_actions(request, page, kwargs)
             return view(request, page, *args, **kwargs)
         except ActionRejected as exc:
             return HttpResponse(str(exc), status=exc.status, content_type="text/plain")

@@ -35,6 +35,31 @@ def clock_time(at: float) -> str:
     return f"{seconds // 3600:02d}:{seconds % 3600 // 60:02d}"
 
 
+def next_minute(now: float) -> float:
+    """When the hh:mm of the simulated clock next turns over."""
+    return (DAY_START_S + now) // 60 * 60 + 60 - DAY_START_S
+
+
+def ago_changes_at(at: float, now: float) -> float | None:
+    """When `ago(at, now)` next reads differently (None: it has settled on hh:mm for good)."""
+    elapsed = max(0.0, now - at)
+    if elapsed < 3600:
+        return at + (elapsed // 60 + 1) * 60
+    return None
+
+
+def relative_changes_at(at: float, now: float, zero: date) -> float | None:
+    """When `relative(at, now, zero)` next reads differently: the next minute within the hour,
+    then at each midnight ("Yesterday", then the date)."""
+    if now - at < 3600:
+        return ago_changes_at(at, now)
+    midnight = datetime.combine(moment(now, zero).date() + timedelta(days=1), time())
+    then = moment(at, zero).date()
+    if then < moment(now, zero).date() - timedelta(days=1):
+        return None  # already shown as a date
+    return now + (midnight - moment(now, zero)).total_seconds()
+
+
 def ago(at: float, now: float) -> str:
     """How long before `now` the moment `at` was: "just now", "5 min ago", else hh:mm."""
     elapsed = max(0.0, now - at)

@@ -13,7 +13,7 @@ from django.shortcuts import render
 from django.views.decorators.csrf import csrf_exempt
 from django.views.decorators.http import require_http_methods, require_POST
 
-from apps.agent_site.pages import run_for_token
+from apps.agent_site.pages import arrival_wall, run_for_token
 from apps.control import slot
 from apps.agent_site.links import contact_path, start_page_path
 from events import lifecycle
@@ -35,10 +35,11 @@ def task_start(request: HttpRequest, token: str) -> HttpResponse:
 
 
 def _contact(request: HttpRequest, run: Run, action: str) -> HttpResponse:
+    wall = arrival_wall(request)  # the agent's moment of contact, not when a thread was free
     if request.method == "POST":
-        lifecycle.contact(run, method="POST", message=request.POST.get("message", ""))
+        lifecycle.contact(run, method="POST", message=request.POST.get("message", ""), wall=wall)
         return render(request, "control/thanks.html", {"run": run})
-    lifecycle.contact(run, method="GET")
+    lifecycle.contact(run, method="GET", wall=wall)
     return render(request, "control/contact.html", {"run": run, "action": action})
 
 

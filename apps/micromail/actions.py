@@ -15,7 +15,9 @@ import re
 import uuid
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
-from typing import Any
+from typing import Any, Literal
+
+from pydantic import Field
 
 from apps.micromail.state import (
     FOLDERS,
@@ -26,13 +28,21 @@ from apps.micromail.state import (
     with_state,
     without_email,
 )
-from events.registry import Action, ActionRejected, Field, LoggedEvent
+from events.registry import Action, ActionRejected, LoggedEvent
+from events.schemas import Payload
 
 # Deliberately simple (what a client checks before sending), not RFC 5322.
 ADDRESS = re.compile(r"[^@\s,;<>]+@[^@\s,;<>]+\.[^@\s,;<>]+")
 PURGED_FROM = ("deleted", "drafts")  # deleting from these folders is permanent
 
-EMAIL_ID = {"email_id": Field(str, help="id of a message in the mailbox")}
+
+class EmailId(Payload):
+    email_id: str = Field(description="id of a message in the mailbox")
+
+
+class Move(EmailId):
+    # Literal of a tuple means one of its items: state.FOLDERS stays the one list of folders.
+    folder: Literal[FOLDERS]
 
 
 def existing_email(mail: Mail, email_id: str) -> Email:
@@ -77,14 +87,16 @@ def reduce_delete(mail: Mail, event: LoggedEvent) -> Mail:
 
 # --- composing ------------------------------------------------------------------------------------
 
-COMPOSE_SCHEMA = {
-    "to": Field(list, required=False, help="addresses"),
-    "cc": Field(list, required=False, help="addresses"),
-    "bcc": Field(list, required=False, help="addresses"),
-    "subject": Field(str, required=False),
-    "body": Field(str, required=False),
-    "draft_id": Field(str, required=False, help="the draft this replaces"),
-}
+
+class Compose(Payload):
+    """A message to send or a draft to save; null is the same as leaving a field out."""
+
+    to: list[str] | None = Field(None, description="addresses")
+    cc: list[str] | None = Field(None, description="addresses")
+    bcc: list[str] | None = Field(None, description="addresses")
+    subject: str | None = None
+    body: str | None = None
+    draft_id: str | None = Field(None, description="the draft this replaces")
 
 
 def new_message_id(folder: str) -> str:
@@ -93,10 +105,7 @@ def new_message_id(folder: str) -> str:
 
 
 def address_list(payload: dict, name: str, *, check: bool) -> list[str]:
-    values = payload.get(name, [])
-    if not all(isinstance(v, str) for v in values):
-        raise ActionRejected(f"payload field '{name}' must be a list of email address strings")
-    addresses = [v.strip() for v in values if v.strip()]
+    addresses = [v.strip() for v in payload.get(name) or () if v.strip()]
     if check:
         for address in addresses:
             if not ADDRESS.fullmatch(address):
@@ -121,8 +130,8 @@ def composed(payload: dict, *, check_addresses: bool) -> dict:
         "to": address_list(payload, "to", check=check_addresses),
         "cc": address_list(payload, "cc", check=check_addresses),
         "bcc": address_list(payload, "bcc", check=check_addresses),
-        "subject": payload.get("subject", ""),
-        "body": payload.get("body", ""),
+        "subject": payload.get("subject") or "",
+        "body": payload.get("body") or "",
     }
 
 
@@ -177,36 +186,36 @@ def reduce_save_draft(mail: Mail, event: LoggedEvent) -> Mail:
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         "open_email": Action(
-            EMAIL_ID,
+            EmailId,
             decide_on_email,
             setting(is_read=True),
             help="Open a message; like any mail client this marks it read.",
         ),
-        "mark_read": Action(EMAIL_ID, decide_on_email, setting(is_read=True)),
-        "mark_unread": Action(EMAIL_ID, decide_on_email, setting(is_read=False)),
-        "flag": Action(EMAIL_ID, decide_on_email, setting(is_flagged=True)),
-        "unflag": Action(EMAIL_ID, decide_on_email, setting(is_flagged=False)),
-        "pin": Action(EMAIL_ID, decide_on_email, setting(is_pinned=True)),
-        "unpin": Action(EMAIL_ID, decide_on_email, setting(is_pinned=False)),
+        "mark_read": Action(EmailId, decide_on_email, setting(is_read=True)),
+        "mark_unread": Action(EmailId, decide_on_email, setting(is_read=False)),
+        "flag": Action(EmailId, decide_on_email, setting(is_flagged=True)),
+        "unflag": Action(EmailId, decide_on_email, setting(is_flagged=False)),
+        "pin": Action(EmailId, decide_on_email, setting(is_pinned=True)),
+        "unpin": Action(EmailId, decide_on_email, setting(is_pinned=False)),
         "move": Action(
-            {**EMAIL_ID, "folder": Field(str, choices=FOLDERS)},
+            Move,
             decide_on_email,
             reduce_move,
         ),
         "delete": Action(
-            EMAIL_ID,
+            EmailId,
             decide_delete,
             reduce_delete,
             help="Move to Deleted Items; from Deleted Items or Drafts, delete permanently.",
         ),
         "send": Action(
-            COMPOSE_SCHEMA,
+            Compose,
             decide_send,
             reduce_send,
             help="Send a message from the self user (to is required; bcc is kept).",
         ),
         "save_draft": Action(
-            COMPOSE_SCHEMA,
+            Compose,
             decide_save_draft,
             reduce_save_draft,
             help="Save a draft, or update the draft given by draft_id.",

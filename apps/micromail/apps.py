@@ -1,14 +1,8 @@
-from django.apps import AppConfig
+from apps.agent_site import environments
 
 
-class MicromailConfig(AppConfig):
+class MicromailConfig(environments.EnvironmentConfig):
     name = "apps.micromail"
     label = "micromail"
     verbose_name = "MicroMail"
-
-    def ready(self) -> None:
-        # The core never imports environments: each one registers itself when Django starts.
-        from apps.micromail.environment import MICROMAIL
-        from events.registry import register
-
-        register(MICROMAIL)
+    environment = "apps.micromail.environment.MICROMAIL"

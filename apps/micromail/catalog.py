@@ -21,19 +21,7 @@ def _addresses(value: Any) -> tuple[str, ...]:
     return tuple(str(v) for v in value or ())
 
 
-# Catalogs are immutable and identified by their content hash: index each one once.
-_attachment_index: dict[tuple[str, str], Mapping[str, tuple[Attachment, ...]]] = {}
-
-
-def _attachments_by_email(catalog: Any) -> Mapping[str, tuple[Attachment, ...]]:
-    key = (str(catalog.directory), catalog.content_hash)
-    index = _attachment_index.get(key)
-    if index is None:
-        index = _attachment_index[key] = _index_attachments(catalog)
-    return index
-
-
-def _index_attachments(catalog: Any) -> Mapping[str, tuple[Attachment, ...]]:
+def attachments_by_email(catalog: Any) -> Mapping[str, tuple[Attachment, ...]]:
     grouped: dict[str, list[Attachment]] = {}
     for record in catalog.table(ENVIRONMENT, "attachments").values():
         grouped.setdefault(str(record.get("email_id")), []).append(
@@ -54,7 +42,7 @@ def catalog_email(
     if record is None:
         return None
     sender = catalog.users.get(record.get("sender_id")) or {}
-    attachments = _attachments_by_email(catalog).get(email_id, ())
+    attachments = catalog.index(attachments_by_email).get(email_id, ())
     has_attachment = record.get("hasAttachment")
     return Email(
         id=email_id,

@@ -9,36 +9,39 @@ Scenario events (SentinelBench format):
 from __future__ import annotations
 
 import sqlite3
-from collections.abc import Callable, Mapping
-from dataclasses import replace
+from collections.abc import Mapping
 from types import MappingProxyType
+
+from pydantic import Field, create_model
 
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
 from apps.micromail.catalog import catalog_email, catalog_state
 from apps.micromail.state import ENVIRONMENT, Mail, empty_mail, with_emails
-from events.registry import Environment, EventType, Field, LoggedEvent
+from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
+from events.schemas import Payload
+from events.tables import Table
 
 # Upstream stamps preloaded mail "five minutes before start", so the list reads "5 min ago".
 PRELOAD_AGE_S = 300.0
 
-BASELINES: Mapping[str, Callable[[Mail], int]] = MappingProxyType(
+# Counted right after the preload, by the core (upstream's names: eval_sql reads baseline_<name>).
+BASELINES: Mapping[str, Measure] = MappingProxyType(
     {
-        "unread_count": mailbox.unread_count,
-        "junk_count": mailbox.junk_count,
-        "attachment_count": mailbox.attachment_count,
-        "external_count": mailbox.external_count,
-        "inbox_count": mailbox.inbox_count,
-        "urgent_count": mailbox.urgent_count,
-        "mention_count": mailbox.mention_count,
-        "cc_count": mailbox.cc_count,
+        name: timeless(count)
+        for name, count in {
+            "unread_count": mailbox.unread_count,
+            "junk_count": mailbox.junk_count,
+            "attachment_count": mailbox.attachment_count,
+            "external_count": mailbox.external_count,
+            "inbox_count": mailbox.inbox_count,
+            "urgent_count": mailbox.urgent_count,
+            "mention_count": mailbox.mention_count,
+            "cc_count": mailbox.cc_count,
+        }.items()
     }
 )
-
-
-def measure_baselines(mail: Mail) -> Mapping[str, int]:
-    return MappingProxyType({name: measure(mail) for name, measure in BASELINES.items()})
 
 
 def deliver(mail: Mail, email_ids: list[str], *, arrived_at: float, preloaded: bool) -> Mail:
@@ -61,14 +64,9 @@ def deliver(mail: Mail, email_ids: list[str], *, arrived_at: float, preloaded: b
 
 
 def reduce_preload_emails(mail: Mail, event: LoggedEvent) -> Mail:
-    """Preload mail (keeping its catalog read state), then capture the baselines.
-
-    Like upstream, each preload replaces the baselines, so they describe the mailbox right after
-    the last preload.
-    """
+    """Preload mail, keeping its catalog read state (the core then measures the baselines)."""
     ids = mail.catalog.expand(ENVIRONMENT, "emails", event.payload["email_ids"])
-    mail = deliver(mail, ids, arrived_at=event.at - PRELOAD_AGE_S, preloaded=True)
-    return replace(mail, baselines=measure_baselines(mail))
+    return deliver(mail, ids, arrived_at=event.at - PRELOAD_AGE_S, preloaded=True)
 
 
 def reduce_new_email(mail: Mail, event: LoggedEvent) -> Mail:
@@ -79,13 +77,22 @@ def reduce_new_email(mail: Mail, event: LoggedEvent) -> Mail:
 EVENT_TYPES: Mapping[str, EventType] = MappingProxyType(
     {
         "preload_emails": EventType(
-            schema={"email_ids": Field(list, help='catalog email ids; ["*"] = every email')},
+            schema=create_model(
+                "PreloadEmails",
+                __base__=Payload,
+                email_ids=(list[str], Field(description='catalog email ids; ["*"] = every email')),
+            ),
             reduce=reduce_preload_emails,
             help="Mail already in the mailbox at the start; baselines are measured after it.",
             catalog_refs={"email_ids": "emails"},
+            preload=True,
         ),
         "new_email": EventType(
-            schema={"email_id": Field(str, help="catalog email id")},
+            schema=create_model(
+                "NewEmail",
+                __base__=Payload,
+                email_id=(str, Field(description="catalog email id")),
+            ),
             reduce=reduce_new_email,
             help="One message arrives, unread.",
             catalog_refs={"email_id": "emails"},
@@ -96,43 +103,56 @@ EVENT_TYPES: Mapping[str, EventType] = MappingProxyType(
 
 # --- evaluation tables (upstream names and columns, so eval_sql runs unchanged) -----------------
 
-EMAILS_DDL = """CREATE TABLE emails (
-    id TEXT PRIMARY KEY, subject TEXT, sender_name TEXT, sender_email TEXT,
-    hasAttachment INTEGER, isExternal INTEGER, importance TEXT, mentionsMe INTEGER,
-    isCC INTEGER, body TEXT, attachment_name TEXT)"""
-EMAIL_STATES_DDL = """CREATE TABLE email_states (
-    email_id TEXT PRIMARY KEY, isRead INTEGER, isFlagged INTEGER, isPinned INTEGER, folder TEXT)"""
+EMAILS = Table(
+    "emails",
+    (
+        "id TEXT PRIMARY KEY",
+        "subject TEXT",
+        "sender_name TEXT",
+        "sender_email TEXT",
+        "hasAttachment INTEGER",
+        "isExternal INTEGER",
+        "importance TEXT",
+        "mentionsMe INTEGER",
+        "isCC INTEGER",
+        "body TEXT",
+        "attachment_name TEXT",
+    ),
+)
+EMAIL_STATES = Table(
+    "email_states",
+    ("email_id TEXT PRIMARY KEY", "isRead INTEGER", "isFlagged INTEGER", "isPinned INTEGER", "folder TEXT"),
+)
 
 
-def materialize(mail: Mail, conn: sqlite3.Connection) -> None:
-    """Write `emails` and `email_states`; booleans as 0/1, all attachment names in one column."""
-    conn.execute(EMAILS_DDL)
-    conn.execute(EMAIL_STATES_DDL)
-    conn.executemany(
-        "INSERT INTO emails VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-        [
+def materialize(mail: Mail, now: float, conn: sqlite3.Connection) -> None:
+    """Write `emails` and `email_states` (nothing in a mailbox moves between events: `now` is
+    unused); all attachment names in one column."""
+    EMAILS.write(
+        conn,
+        (
             (
                 e.id,
                 e.subject,
                 e.sender_name,
                 e.sender_email,
-                int(e.has_attachment),
-                int(e.is_external),
+                e.has_attachment,
+                e.is_external,
                 e.importance,
-                int(e.mentions_me),
-                int(e.is_cc),
+                e.mentions_me,
+                e.is_cc,
                 e.body,
                 e.attachment_names,
             )
             for e in mail.emails.values()
-        ],
+        ),
     )
-    conn.executemany(
-        "INSERT INTO email_states VALUES (?, ?, ?, ?, ?)",
-        [
-            (email_id, int(s.is_read), int(s.is_flagged), int(s.is_pinned), s.folder)
+    EMAIL_STATES.write(
+        conn,
+        (
+            (email_id, s.is_read, s.is_flagged, s.is_pinned, s.folder)
             for email_id, s in mail.states.items()
-        ],
+        ),
     )
 
 
@@ -142,9 +162,19 @@ MICROMAIL = Environment(
     initial_state=empty_mail,
     event_types=EVENT_TYPES,
     actions=ACTIONS,
-    baselines=lambda mail: mail.baselines,
+    baselines=BASELINES,
     materialize=materialize,
     urlconf="apps.micromail.urls",
-    catalog_tables=("emails",),
+    implicit_actions=(
+        # Opening an unread message in the mail client marks it read, as a click does.
+        ImplicitAction(
+            page="mailbox",
+            param="email",
+            action="open_email",
+            payload=lambda email_id: {"email_id": email_id},
+            applies=lambda mail, email_id: mail.has(email_id)
+            and not mail.states[email_id].is_read,
+        ),
+    ),
     sample_pages=sample_pages,
 )

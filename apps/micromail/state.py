@@ -93,7 +93,6 @@ class Mail:
     )
     emails: Mapping[str, Email] = field(default_factory=lambda: EMPTY)  # in delivery order
     states: Mapping[str, EmailState] = field(default_factory=lambda: EMPTY)
-    baselines: Mapping[str, int] = field(default_factory=lambda: EMPTY)
 
     @property
     def self_name(self) -> str:

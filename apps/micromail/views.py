@@ -1,19 +1,19 @@
 """MicroMail pages: thin views over `page.state`, actions through `page.act`.
 
-Every view serves the full page, or just the live `#mailbox` region when htmx asks for a
-fragment (a non-boosted htmx request, e.g. the periodic refresh). Actions are POST forms that
-redirect back to the screen they came from (post/redirect/get), so the site works with plain
-links and forms; htmx only makes it smoother.
+Every view serves the full page, or just the `#mailbox` content when htmx asks for a fragment
+(apps.agent_site.rendering). Actions are POST forms that redirect back to the screen they came
+from (post/redirect/get), so the site works with plain links and forms; htmx only makes it
+smoother. Opening a message marks it read: declared with the environment (`implicit_actions`).
 """
 
 from __future__ import annotations
 
 from django.contrib import messages
-from django.http import Http404, HttpRequest, HttpResponse, HttpResponseRedirect
-from django.shortcuts import render
+from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
 from apps.agent_site.pages import Page, run_page
+from apps.agent_site.rendering import is_fragment, redirect_to, render_screen
 from apps.micromail.actions import existing_email
 from apps.micromail.compose import (
     COMPOSE_MODES,
@@ -42,11 +42,6 @@ DONE = {
 }
 
 
-def is_fragment(request: HttpRequest) -> bool:
-    htmx = getattr(request, "htmx", None)
-    return bool(htmx) and not htmx.boosted
-
-
 def root_url(page: Page) -> str:
     return page.root + "/"
 
@@ -54,8 +49,6 @@ def root_url(page: Page) -> str:
 def base_context(page: Page, current_folder: str | None) -> dict:
     mail = page.state
     return {
-        "page": page,
-        "root": root_url(page),
         "token": page.run.token,
         "self_name": mail.self_name,
         "self_first_name": mail.self_name.split()[0] if mail.self_name.split() else mail.self_name,
@@ -76,11 +69,8 @@ def render_mailbox(
         "screen": screen,
         "query": query,
         "self_url": root_url(page) + query.querystring(),
-        "base_template": "micromail/fragment.html"
-        if is_fragment(request)
-        else "micromail/base.html",
     }
-    return render(request, "micromail/mailbox.html", context, status=status)
+    return render_screen(request, page, "micromail/mailbox.html", context, status=status)
 
 
 def back_to(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpResponse:
@@ -88,7 +78,7 @@ def back_to(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpRespon
         query = query.but(email=None)  # the open message was purged meanwhile
     if is_fragment(request):
         return render_mailbox(request, page, query)
-    return HttpResponseRedirect(root_url(page) + query.querystring())
+    return redirect_to(page, query.querystring())
 
 
 def bad_query(exc: InvalidQuery) -> HttpResponse:
@@ -98,17 +88,13 @@ def bad_query(exc: InvalidQuery) -> HttpResponse:
 @require_GET
 @run_page
 def mailbox(request: HttpRequest, page: Page) -> HttpResponse:
-    """The mail client. Opening a message (`email=<id>`) marks it read, like a click does."""
+    """The mail client, with message `email=<id>` open (which has marked it read)."""
     try:
         query = MailboxQuery.from_params(request.GET)
     except InvalidQuery as exc:
         return bad_query(exc)
-    if query.email is not None:
-        if not page.state.has(query.email):
-            raise Http404("no such email")  # unknown, purged, or not arrived yet: all alike
-        # Only a navigation opens; the periodic fragment refresh merely shows.
-        if not is_fragment(request) and not page.state.states[query.email].is_read:
-            page.act("open_email", {"email_id": query.email})
+    if query.email is not None and not page.state.has(query.email):
+        raise Http404("no such email")  # unknown, purged, or not arrived yet: all alike
     return render_mailbox(request, page, query)
 
 
@@ -203,9 +189,8 @@ def render_compose(
         "cc": join_addresses(composition.cc),
         "bcc": join_addresses(composition.bcc),
         "error": error,
-        "base_template": "micromail/base.html",
     }
-    return render(request, "micromail/compose.html", context, status=status)
+    return render_screen(request, page, "micromail/compose.html", context, status=status)
 
 
 @require_http_methods(["GET", "POST"])
@@ -240,8 +225,6 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
         return render_compose(request, page, typed, error=str(exc), status=exc.status)
     if intent == "send":
         messages.success(request, "Message sent")
-        return HttpResponseRedirect(
-            root_url(page) + MailboxQuery(folder="sent", email=event.payload["id"]).querystring()
-        )
+        return redirect_to(page, MailboxQuery(folder="sent", email=event.payload["id"]).querystring())
     messages.success(request, "Draft saved")
-    return HttpResponseRedirect(root_url(page) + MailboxQuery(folder="drafts").querystring())
+    return redirect_to(page, MailboxQuery(folder="drafts").querystring())

@@ -1,8 +1,8 @@
 """Digests of a run's log and state, recorded verdicts, and the replay check.
 
-The state digest is a sha256 over a canonical JSON dump of every table `materialize()` writes
-(the evaluation view of the state), so two folds agree exactly when what eval_sql could see
-agrees. The log digest covers every logged field except wall-clock bookkeeping.
+The state digest is a sha256 over a canonical JSON dump of every table of the grading database
+(session_meta with its baselines, and the environment's tables), so two folds agree exactly when
+what eval_sql could see agrees. The log digest covers every logged field except wall-clock bookkeeping.
 """
 
 from __future__ import annotations
@@ -14,10 +14,9 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from apps.replay.models import VERDICT_FIELDS, RunVerdict
-from events.evaluation import grade
+from events.evaluation import GradingSnapshot, grade, grading_snapshot
 from events.models import Event, Run
-from events.projection import fold_from_scratch
-from events.registry import get_environment
+from events.projection import clear_cache
 
 LOG_FIELDS = ("seq", "at", "kind", "type", "payload", "timeline_index")
 
@@ -32,12 +31,11 @@ def _encode(value: Any) -> Any:
     raise TypeError(f"cannot encode {type(value).__name__}")
 
 
-def tables_of(state: Any, environment_name: str) -> dict[str, dict[str, Any]]:
-    """Every table materialize() writes for `state`: name → {columns, rows (sorted)}."""
-    environment = get_environment(environment_name)
+def tables_of(snapshot: GradingSnapshot) -> dict[str, dict[str, Any]]:
+    """Every table of the grading database: name → {columns, rows (sorted)}."""
     conn = sqlite3.connect(":memory:")
     try:
-        environment.materialize(state, conn)
+        snapshot.write(conn)
         names = [
             r[0]
             for r in conn.execute(
@@ -55,8 +53,8 @@ def tables_of(state: Any, environment_name: str) -> dict[str, dict[str, Any]]:
         conn.close()
 
 
-def state_digest(state: Any, environment_name: str) -> str:
-    return hashlib.sha256(_canonical(tables_of(state, environment_name)).encode()).hexdigest()
+def state_digest(snapshot: GradingSnapshot) -> str:
+    return hashlib.sha256(_canonical(tables_of(snapshot)).encode()).hexdigest()
 
 
 def log_digest(run: Run, upto: int | None = None) -> tuple[str, int]:
@@ -89,10 +87,8 @@ class Refold:
 
 def refold(run: Run) -> Refold:
     """Fold the whole log from scratch and grade it (read-only: the run is not completed)."""
-    from events.projection import clear_cache
-
-    clear_cache()  # grade() folds through the projection cache: make it start from nothing
-    state, _ = fold_from_scratch(run)
+    clear_cache()  # both fold through the projection cache: make it start from nothing
+    snapshot = grading_snapshot(run)
     success, detail, _contacts, graded_at = grade(run)
     digest, count = log_digest(run)
     return Refold(
@@ -100,7 +96,7 @@ def refold(run: Run) -> Refold:
         detail=detail,
         graded_at_seq=graded_at,
         event_count=count,
-        state_digest=state_digest(state, run.environment),
+        state_digest=state_digest(snapshot),
         log_digest=digest,
     )
 

@@ -9,14 +9,14 @@ a passive task's condition must first hold at `condition_at` (±1 s), a no-op's 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from types import SimpleNamespace
 from typing import Any
 
 from events.catalog import load_catalog
 from apps.scenarios.models import Scenario, TimelineEvent
 from apps.scenarios.serialization import timeline_of
-from events.evaluation import session_meta
+from events.evaluation import GradingSnapshot
 from events.registry import (
+    EMPTY,
     ActionRejected,
     LoggedEvent,
     PayloadError,
@@ -24,7 +24,7 @@ from events.registry import (
     get_environment,
     validate_payload,
 )
-from events.sandbox import is_truthy, run_eval_sql, write_session_meta
+from events.sandbox import is_truthy, run_eval_sql
 
 TOLERANCE_S = 1.0
 
@@ -69,26 +69,26 @@ def dry_run(
     except UnknownEnvironment as error:
         result.warnings.append(f"cannot simulate: {error}")
         return result
-    state = environment.initial_state(load_catalog(catalog_dir))
+    state, baselines = environment.initial_state(load_catalog(catalog_dir)), EMPTY
     sql = (scenario.eval_sql or "").strip()
     end = scenario.event_timeline_end
     condition_at = scenario.condition_at
-    at_condition = state  # the state as of condition_at, for the solution check
+    at_condition = state, baselines  # as of condition_at, for the solution check
     for seq, entry in enumerate(sorted(events, key=lambda e: (e.time, e.position)), 1):
         fires = entry.time <= end
         if fires:
             event = LoggedEvent(seq, entry.time, "scenario", entry.type, entry.payload or {})
-            state = environment.apply(state, event)
+            state, baselines = environment.fold(state, [event], baselines)
             if condition_at is not None and entry.time <= condition_at:
-                at_condition = state
-        baselines = dict(environment.baselines(state))
+                at_condition = state, baselines
         value, holds, error = None, False, ""
         if sql and fires:
-            value, holds, error = _evaluate(environment, state, sql, entry.time, end)
+            snapshot = _at(environment, state, baselines, entry.time, end)
+            value, holds, error = _evaluate(snapshot, sql)
         if holds and result.first_holds_at is None:
             result.first_holds_at = entry.time
         result.steps.append(
-            Step(entry.position, entry.time, entry.type, value, holds, error, baselines, fires)
+            Step(entry.position, entry.time, entry.type, value, holds, error, dict(baselines), fires)
         )
     _check(scenario, result, sql)
     if sql and condition_at is not None and scenario.solution and not scenario.is_dev:
@@ -96,25 +96,22 @@ def dry_run(
     return result
 
 
-def _evaluate(environment, state, sql: str, time: float, end: float) -> tuple[Any, bool, str]:
-    """eval_sql against `state` with its baselines, as grading at sim time `time` would run it."""
-    baselines = dict(environment.baselines(state))
-    # The fields session_meta reads, as a live run at this moment would have them.
-    clock = SimpleNamespace(speed_factor=1.0, sim_time=time, event_timeline_end=end)
+def _at(environment, state, baselines, time: float, end: float) -> GradingSnapshot:
+    """What grading at simulated time `time` would see (a dry run plays at speed 1)."""
+    return GradingSnapshot(environment, state, baselines, time, 1.0, end)
 
-    def build(conn):
-        write_session_meta(conn, session_meta(clock, baselines))
-        environment.materialize(state, conn)
 
-    outcome = run_eval_sql(sql, build)
+def _evaluate(snapshot: GradingSnapshot, sql: str) -> tuple[Any, bool, str]:
+    outcome = run_eval_sql(sql, snapshot.write)
     if not outcome.ok:
         return None, False, outcome.error
     return outcome.value, is_truthy(outcome.value), ""
 
 
-def _check_solution(scenario: Scenario, environment, state, sql: str, result: DryRun) -> None:
+def _check_solution(scenario: Scenario, environment, start, sql: str, result: DryRun) -> None:
     """The scenario's solution, performed at condition_at, must make the condition hold."""
     at = scenario.condition_at
+    state, baselines = start
     for i, step in enumerate(scenario.solution):
         name, payload = step.get("action"), dict(step.get("payload") or {})
         action = environment.actions.get(name)
@@ -130,7 +127,8 @@ def _check_solution(scenario: Scenario, environment, state, sql: str, result: Dr
             )
             return
         state = environment.apply(state, LoggedEvent(10_000 + i, at, "action", name, recorded))
-    value, holds, error = _evaluate(environment, state, sql, at, scenario.event_timeline_end)
+    snapshot = _at(environment, state, baselines, at, scenario.event_timeline_end)
+    value, holds, error = _evaluate(snapshot, sql)
     result.solution_holds = holds
     if error:
         result.warnings.append(f"solution check: eval_sql failed: {error}")

@@ -7,16 +7,20 @@ table `entries(source, n, at)` lists both.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-from types import MappingProxyType
+from dataclasses import dataclass, replace
 
-from events.registry import Action, Environment, EventType, Field, LoggedEvent
+from events.registry import Action, Environment, EventType, LoggedEvent, timeless
+from events.schemas import Payload
+from events.tables import Table
+
+
+class Count(Payload):
+    n: int
 
 
 @dataclass(frozen=True)
 class TallyState:
     entries: tuple[tuple[str, int, float], ...] = ()
-    baselines: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
 
     @property
     def total(self) -> int:
@@ -24,10 +28,7 @@ class TallyState:
 
 
 def reduce_ping(state: TallyState, event: LoggedEvent) -> TallyState:
-    state = replace(state, entries=state.entries + (("ping", event.payload["n"], event.at),))
-    if event.at <= 0:  # like a preload: baselines are captured after the t=0 events
-        state = replace(state, baselines=MappingProxyType({"total": state.total, "pings": len(state.entries)}))
-    return state
+    return replace(state, entries=state.entries + (("ping", event.payload["n"], event.at),))
 
 
 def reduce_poke(state: TallyState, event: LoggedEvent) -> TallyState:
@@ -42,18 +43,27 @@ def decide_poke(state: TallyState, payload: dict) -> dict:
     return payload
 
 
-def materialize(state: TallyState, conn) -> None:
-    conn.execute("CREATE TABLE entries (source TEXT, n INTEGER, at REAL)")
-    conn.executemany("INSERT INTO entries VALUES (?, ?, ?)", state.entries)
+ENTRIES = Table("entries", ("source TEXT", "n INTEGER", "at REAL"))
+
+
+def materialize(state: TallyState, now: float, conn) -> None:
+    ENTRIES.write(conn, state.entries)
 
 
 TALLY = Environment(
     name="tally",
     title="Tally (test environment)",
     initial_state=lambda catalog: TallyState(),
-    event_types={"ping": EventType(schema={"n": Field(int)}, reduce=reduce_ping)},
-    actions={"poke": Action(schema={"n": Field(int)}, decide=decide_poke, reduce=reduce_poke)},
-    baselines=lambda state: state.baselines,
+    event_types={
+        # A preload is a ping the task starts with: the core measures the baselines after it.
+        "preload": EventType(schema=Count, reduce=reduce_ping, preload=True),
+        "ping": EventType(schema=Count, reduce=reduce_ping),
+    },
+    actions={"poke": Action(schema=Count, decide=decide_poke, reduce=reduce_poke)},
+    baselines={
+        "total": timeless(lambda state: state.total),
+        "pings": timeless(lambda state: len(state.entries)),
+    },
     materialize=materialize,
 )
 
@@ -65,7 +75,8 @@ def tally_scenario(
     eval_sql: str | None = "SELECT (SELECT SUM(n) FROM entries WHERE source = 'ping') >= 3",
     scenario_id: str = "tally-three-absolute-passive",
 ) -> dict:
-    """A scenario dict: by default one ping at t=0, then two more; the tally reaches 3 at 30 s."""
+    """A scenario dict: by default one ping at t=0 (the preload), then two more; the tally
+    reaches 3 at 30 s."""
     pings = pings if pings is not None else [(0.0, 1), (10.0, 1), (30.0, 1), (50.0, 5)]
     data = {
         "id": scenario_id,
@@ -75,7 +86,10 @@ def tally_scenario(
         "condition_at": condition_at,
         "event_timeline_end": 720.0,
         "kill_at": 630.0,
-        "events": [{"time": t, "type": "ping", "payload": {"n": n}} for t, n in pings],
+        "events": [
+            {"time": t, "type": "preload" if t <= 0 else "ping", "payload": {"n": n}}
+            for t, n in pings
+        ],
         "annotator_notes": "",
         "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "passive"},
     }

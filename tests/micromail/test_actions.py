@@ -136,8 +136,14 @@ def test_send_needs_a_recipient():
 
 
 def test_send_rejects_addresses_that_are_not_strings():
-    with pytest.raises(ActionRejected, match="list of email address strings"):
+    with pytest.raises(ActionRejected, match=r"payload field 'to\[0\]' must be string, got 42"):
         act(preloaded_mail(), "send", {"to": [42]})
+
+
+def test_null_compose_fields_count_as_left_out():
+    mail = act(preloaded_mail(), "send", {"to": [PRIYA], "cc": None, "subject": None})
+    (sent,) = sent_items(mail)
+    assert (sent.cc, sent.subject) == ((), "")
 
 
 def test_save_draft_creates_a_read_draft():

@@ -21,7 +21,7 @@ from django.test import Client
 
 from apps.scenarios.format import DEV_FILENAME, Scenario, load_scenario_file
 from events import lifecycle
-from events.evaluation import evaluate, session_meta
+from events.evaluation import evaluate, grading_snapshot
 from events.models import ClockMode
 from events.projection import state_at
 from events.registry import get_environment
@@ -94,15 +94,7 @@ def contact(run) -> None:
 
 def sql_holds(run) -> bool:
     """The scenario's eval_sql on the current state, without the contact gate."""
-    environment, state = get_environment(run.environment), state_at(run)
-
-    def build(conn):
-        from events.sandbox import write_session_meta
-
-        write_session_meta(conn, session_meta(run, dict(environment.baselines(state))))
-        environment.materialize(state, conn)
-
-    outcome = run_eval_sql(run.scenario["eval_sql"], build)
+    outcome = run_eval_sql(run.scenario["eval_sql"], grading_snapshot(run).write)
     assert outcome.ok, outcome.error
     return is_truthy(outcome.value)
 

@@ -10,7 +10,7 @@ from tests.micromail.cast import PRIYA, act, preloaded_mail
 
 def tables(mail) -> sqlite3.Connection:
     conn = sqlite3.connect(":memory:")
-    materialize(mail, conn)
+    materialize(mail, 0.0, conn)
     return conn
 
 

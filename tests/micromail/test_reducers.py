@@ -80,8 +80,12 @@ def test_an_id_missing_from_the_catalog_is_skipped():
     assert "no-such-email" not in mail.emails
 
 
+PRELOAD = scenario_event("preload_emails", {"email_ids": PRELOADED})
+
+
 def test_baselines_are_measured_right_after_the_preload():
-    assert dict(preloaded_mail().baselines) == {
+    _, baselines = MICROMAIL.fold(fresh_mail(), [PRELOAD])
+    assert dict(baselines) == {
         "unread_count": 2,  # budget-review, vendor-quote (team-lunch is read, prize-scam is junk)
         "junk_count": 1,
         "attachment_count": 1,
@@ -94,16 +98,13 @@ def test_baselines_are_measured_right_after_the_preload():
 
 
 def test_new_mail_does_not_move_the_baselines():
-    mail = preloaded_mail()
-    later = MICROMAIL.apply(
-        mail, scenario_event("new_email", {"email_id": "late-report"}, at=120.0)
-    )
-    assert later.baselines == mail.baselines
+    late = scenario_event("new_email", {"email_id": "late-report"}, at=120.0, seq=2)
+    assert MICROMAIL.fold(fresh_mail(), [PRELOAD, late])[1] == MICROMAIL.fold(fresh_mail(), [PRELOAD])[1]
 
 
 def test_without_a_preload_there_are_no_baselines():
-    mail = MICROMAIL.apply(fresh_mail(), scenario_event("new_email", {"email_id": "late-report"}))
-    assert dict(MICROMAIL.baselines(mail)) == {}
+    late = scenario_event("new_email", {"email_id": "late-report"})
+    assert dict(MICROMAIL.fold(fresh_mail(), [late])[1]) == {}
 
 
 def test_unknown_scenario_event_types_are_ignored():

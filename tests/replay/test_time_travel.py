@@ -93,7 +93,7 @@ def test_a_page_view_row_opens_the_page_the_agent_saw(finished_run, admin_client
     from events.commands import record_view
 
     view = record_view(
-        finished_run, f"/r/{finished_run.token}/micromail/?folder=inbox&email=late-report"
+        finished_run, f"/r/{finished_run.token}/micromail/?folder=inbox&email=late-report", at=0.0
     )
     html = admin_client.get(
         f"/admin/events/run/{finished_run.pk}/timeline/?kind=view"
