@@ -55,17 +55,31 @@ class EventType:
 
 
 @dataclass(frozen=True)
+class PageStep:
+    """How a person performs an action through the pages: open `path` (relative to the
+    environment root, e.g. "?folder=inbox&email=x"); then, unless `form` is None, submit the
+    form (or submit button) marked `data-action="<action name>"` on that page with these field
+    values. With `form=None`, opening the page is the action (an implicit one)."""
+
+    path: str
+    form: Mapping[str, str | list[str]] | None = None
+
+
+@dataclass(frozen=True)
 class Action:
     """An agent action: validated against the current state by `decide`, then logged.
 
     `decide(state, payload)` returns the payload to record (it may add derived fields, e.g.
-    a generated id) or raises ActionRejected. It never mutates anything.
+    a generated id) or raises ActionRejected. It never mutates anything. `page(state, payload)`
+    says where a person does it in the site (the generic tests carry out every scenario's
+    solution that way, through forms and links).
     """
 
     schema: type[Payload]
     decide: Callable[[State, dict], dict]
     reduce: Reducer
     help: str = ""
+    page: Callable[[State, dict], PageStep] | None = None
 
 
 @dataclass(frozen=True)
