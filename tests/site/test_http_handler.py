@@ -9,7 +9,9 @@ import threading
 import pytest
 from asgiref.testing import ApplicationCommunicator
 
-from sentinel_site.http_handler import RequestThreads, SyncChainHandler
+import time
+
+from sentinel_site.http_handler import Lanes, RequestThreads, SyncChainHandler
 from tests.site.urls import reset_concurrency
 
 pytestmark = [
@@ -66,7 +68,7 @@ def test_middleware_and_view_run_on_one_kept_thread_with_a_kept_connection(app, 
     assert len(answers) == 3
     for body in answers:
         assert body["view_thread"] == body["middleware_thread"]
-        assert body["view_thread"].startswith("request-")
+        assert body["view_thread"].startswith("request-")  # RequestThreads' default name
     # One request at a time: the first idle thread is lent each time, with its connection.
     assert {body["view_thread"] for body in answers} == {answers[0]["view_thread"]}
     assert {body["connection"] for body in answers} == {answers[0]["connection"]}
@@ -86,3 +88,46 @@ def test_requests_beyond_the_thread_count_wait_their_turn_and_all_complete(app):
 def test_a_thread_count_below_one_is_refused():
     with pytest.raises(ValueError, match="at least one thread"):
         RequestThreads(SyncChainHandler(), size=0)
+
+
+@pytest.fixture
+def lanes(settings):
+    handler = SyncChainHandler()
+    app = Lanes(RequestThreads(handler, size=2, name="agent"),
+                RequestThreads(handler, size=2, name="control"))
+    yield app
+    app.shutdown()
+
+
+def test_agents_pages_do_not_wait_behind_control_requests(lanes):
+    reset_concurrency()
+
+    async def busy_control_then_a_page():
+        slow = [asyncio.create_task(get(lanes, "/slow")) for _ in range(4)]  # 0.4 s of work
+        await asyncio.sleep(0.05)
+        started = time.monotonic()
+        status, body = await get(lanes, "/r/where")
+        waited = time.monotonic() - started
+        await asyncio.gather(*slow)
+        return status, body, waited
+
+    status, body, waited = asyncio.run(busy_control_then_a_page())
+    assert status == 200 and body["view_thread"].startswith("agent-")
+    assert waited < 0.15  # the control lane is still busy for ~0.35 s
+
+
+def test_a_request_is_stamped_when_it_arrives_not_when_a_thread_is_free(lanes):
+    reset_concurrency()
+
+    async def busy_agents_then_arrival():
+        slow = [asyncio.create_task(get(lanes, "/r/slow")) for _ in range(2)]
+        await asyncio.sleep(0.05)
+        sent = time.time()
+        status, body = await get(lanes, "/r/arrival")
+        await asyncio.gather(*slow)
+        return sent, status, body
+
+    sent, status, body = asyncio.run(busy_agents_then_arrival())
+    assert status == 200
+    assert abs(body["arrived"] - sent) < 0.05
+    assert body["ran"] - body["arrived"] > 0.1  # it waited for one of the two busy threads

@@ -40,4 +40,19 @@ def reset_concurrency() -> None:
     _active = _most = 0
 
 
-urlpatterns = [path("where", where), path("slow", slow)]
+def arrival(request):
+    """When the request arrived (stamped before it waited for a thread) and when it ran."""
+    from apps.agent_site.pages import arrival_wall
+
+    return JsonResponse({"arrived": arrival_wall(request), "ran": time.time(),
+                         "view_thread": threading.current_thread().name})
+
+
+urlpatterns = [
+    path("where", where),
+    path("slow", slow),
+    # Under the run prefix: served on the agents' lane (sentinel_site.http_handler.Lanes).
+    path("r/where", where),
+    path("r/slow", slow),
+    path("r/arrival", arrival),
+]

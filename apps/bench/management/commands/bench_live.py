@@ -1,12 +1,16 @@
 """Measure live push latency: event fired on the server → update received by every subscriber.
 
-    python manage.py bench_live --clients 50 --seconds 30 [--rate 2] [--runs 1]
+    python manage.py bench_live [--env micromail] --clients 50 --seconds 30 [--rate 2] [--runs 1]
 
 Starts the site (sentinel_site.site_server) over the configured database and settings (so it
 measures whichever shape the environment selects: embedded, or Redis + Celery), creates
-virtual-clock MicroMail runs through the multi-run API, subscribes `--clients` websocket
-clients to their inbox pages (round-robin over `--runs` runs), then advances every run through
-`/api/runs/<id>/advance/` `--rate` times a second, each advance firing one `new_email`.
+virtual-clock runs of `--env` through the multi-run API, subscribes `--clients` websocket
+clients to its start page (round-robin over `--runs` runs), then advances every run through
+`/api/runs/<id>/advance/` `--rate` times a second, each advance firing one scenario event.
+
+The timeline is the environment's own material, so any registered environment can be measured:
+the preload of its scenario with the most events, then every later event of all its scenarios
+in turn (an event delivering what is already there changes nothing but is pushed all the same).
 Latency per (event, client) = wall time the client received the first update including the
 event − the event's `recorded_at`. Progress goes to stderr; stdout ends with exactly one line:
 
@@ -24,30 +28,36 @@ from django.conf import settings
 from django.core.management import call_command
 from django.core.management.base import BaseCommand, CommandError
 
-from events.catalog import load_catalog
+from apps.scenarios.library import scenario_library
+from events.registry import environment_names
 from sentinel_site.figures import percentile
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
-PRELOADED = 12  # emails in the inbox before the bench starts
 SEQ = re.compile(r'"seq": (\d+)')
+LIVE_SOCKET = re.compile(r'id="sentinel-live"[^>]*data-socket="([^"]+)"')
 
 
-def bench_scenario(email_ids: list[str], events: int) -> dict:
-    """Preload a few emails at t=0, then one new_email per simulated second (ids cycle)."""
-    arriving = email_ids[PRELOADED:] or email_ids
+def bench_scenario(environment: str, events: int) -> dict:
+    """A no-op scenario of `environment`: a realistic preload at t=0, then one of its own
+    scenario events per simulated second."""
+    own = [s for s in scenario_library().values() if s.environment == environment]
+    if not own:
+        raise CommandError(f"no scenarios for {environment!r} in {settings.SENTINEL_SCENARIO_DIR}")
+    busiest = max(own, key=lambda s: sum(1 for e in s.events if e["time"] > 0))
+    preload = [e for e in busiest.events if e["time"] <= 0]
+    stream = [e for s in own for e in s.events if e["time"] > 0]
+    if not stream:
+        raise CommandError(f"the {environment} scenarios have no events after t=0 to fire")
     return {
         "id": "bench-live",
-        "environment": "micromail",
-        "start_page": "HOST_ADDRESS/micromail",
+        "environment": environment,
+        "start_page": busiest.start_page,
         "prompt": "bench_live",
         "condition_at": None,
         "event_timeline_end": float(events + 10),
         "kill_at": float(events + 10),
-        "events": [{"time": 0.0, "type": "preload_emails",
-                    "payload": {"email_ids": email_ids[:PRELOADED]}}]
-        + [{"time": float(i), "type": "new_email",
-            "payload": {"email_id": arriving[(i - 1) % len(arriving)]}}
-           for i in range(1, events + 1)],
+        "events": [{**e, "time": 0.0} for e in preload]
+        + [{**stream[(i - 1) % len(stream)], "time": float(i)} for i in range(1, events + 1)],
         "eval_sql": "SELECT 1",
         "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "passive"},
     }
@@ -57,12 +67,15 @@ class Command(BaseCommand):
     help = "Measure websocket push latency of live pages (event fired → update received)."
 
     def add_arguments(self, parser):
+        parser.add_argument("--env", default="micromail", help="environment name")
         parser.add_argument("--clients", type=int, default=50, help="websocket subscribers")
         parser.add_argument("--seconds", type=float, default=30.0, help="how long to fire events")
         parser.add_argument("--rate", type=float, default=2.0, help="advances per second (per run)")
         parser.add_argument("--runs", type=int, default=1, help="runs the clients are spread over")
 
-    def handle(self, *args, clients, seconds, rate, runs, **options):
+    def handle(self, *args, env, clients, seconds, rate, runs, **options):
+        if env not in environment_names():
+            raise CommandError(f"unknown --env {env!r}; valid: {', '.join(environment_names())}")
         for name, value in (("clients", clients), ("seconds", seconds), ("rate", rate), ("runs", runs)):
             if not value > 0:
                 raise CommandError(f"--{name} must be > 0, got {value}")
@@ -73,13 +86,12 @@ class Command(BaseCommand):
         except ImportError:
             raise CommandError("bench_live needs the `websockets` package: pip install websockets") from None
         call_command("migrate", verbosity=0, interactive=False)
-        catalog = load_catalog()
-        email_ids = list(catalog.table("micromail", "emails"))
         events = int(seconds * rate) + 5
+        scenario = bench_scenario(env, events)
         try:
             with site_server(log_path=settings.BASE_DIR / "var" / "bench-live.log") as base_url:
                 result = asyncio.run(
-                    Bench(base_url.removeprefix("http://"), bench_scenario(email_ids, events),
+                    Bench(base_url.removeprefix("http://"), scenario,
                           clients, seconds, rate, runs, self.stderr).main()
                 )
         except ServerDidNotStart as exc:
@@ -114,11 +126,15 @@ class Bench:
         return response.json()
 
     async def client(self, run: dict, received: list, ready: asyncio.Event, stop: asyncio.Event):
+        import httpx
         import websockets
 
-        url = f"/r/{run['token']}/micromail/?folder=inbox"
-        async with websockets.connect(f"ws://{self.host}/r/{run['token']}/live",
-                                      max_size=None) as ws:
+        # The run's task URL redirects to its start page; its live socket is named in the page.
+        async with httpx.AsyncClient(base_url=f"http://{self.host}") as http:
+            response = await http.get(run["task_url"].split(self.host, 1)[-1], follow_redirects=True)
+        url = response.url.raw_path.decode()
+        socket = LIVE_SOCKET.search(response.text).group(1)
+        async with websockets.connect(f"ws://{self.host}{socket}", max_size=None) as ws:
             await ws.send(json.dumps({"url": url, "seq": 0}))
             await ws.recv()  # seq 0 is behind the preload: the first push is the warm-up
             ready.set()

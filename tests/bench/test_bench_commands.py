@@ -1,0 +1,35 @@
+"""The page and live-push benchmarks run for a registered environment, against a real server,
+and name the valid environments when given another."""
+
+from __future__ import annotations
+
+import re
+from io import StringIO
+
+import pytest
+from django.core.management import call_command
+from django.core.management.base import CommandError
+
+pytestmark = pytest.mark.django_db(transaction=True)
+
+
+def run(command: str, *args: str) -> str:
+    out = StringIO()
+    call_command(command, *args, stdout=out, stderr=StringIO())
+    return out.getvalue().strip().splitlines()[-1]
+
+
+def test_bench_live_measures_pushes_of_the_chosen_environment():
+    line = run("bench_live", "--env", "micromail", "--seconds", "1", "--clients", "2")
+    assert re.fullmatch(r"bench_live: push_p50_ms=[\d.]+ push_p99_ms=[\d.]+ messages=[1-9]\d*", line)
+
+
+def test_bench_pages_times_the_chosen_environment():
+    line = run("bench_pages", "--env", "micromail", "--seconds", "1", "--clients", "1")
+    assert re.fullmatch(r"bench_pages: env=micromail p50_ms=[\d.]+ p95_ms=[\d.]+ requests=[1-9]\d*", line)
+
+
+@pytest.mark.parametrize("command", ["bench_live", "bench_pages"])
+def test_an_unknown_environment_is_named_with_the_valid_ones(command):
+    with pytest.raises(CommandError, match=r"unknown --env 'nope'; valid: .*micromail"):
+        run(command, "--env", "nope", "--seconds", "1")
