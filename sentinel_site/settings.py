@@ -35,6 +35,7 @@ INSTALLED_APPS = [
     "drf_spectacular",
     "channels",
     "django_htmx",
+    "lucide",
     "events",
     "apps.scenarios",
     "apps.control",

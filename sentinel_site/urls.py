@@ -1,5 +1,7 @@
 from django.contrib import admin
+from django.templatetags.static import static
 from django.urls import include, path
+from django.views.generic import RedirectView
 
 from apps.control.urls import api_urlpatterns, flat_urlpatterns, run_urlpatterns
 from events.registry import all_environments
@@ -8,6 +10,7 @@ from events.registry import all_environments
 RUN_PREFIX = "r/<str:token>/"
 
 urlpatterns = [
+    path("favicon.ico", RedirectView.as_view(url=static("site/favicon.svg"), permanent=True)),
     path("admin/", admin.site.urls),
     path("api/", include(api_urlpatterns)),
     path(RUN_PREFIX, include(run_urlpatterns)),
