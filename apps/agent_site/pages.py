@@ -17,6 +17,7 @@ from functools import wraps
 from typing import Any
 
 from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllowed
+from django.shortcuts import render
 
 from apps.agent_site import links
 from events.clock import sim_now, wall_now
@@ -124,6 +125,18 @@ def perform_implicit_actions(request: HttpRequest, page: Page, kwargs: dict) -> 
             page.act(implicit.action, implicit.payload(value))
 
 
+def rejected(request: HttpRequest, page: Page, exc: ActionRejected) -> HttpResponse:
+    """A refused page or action as a page of the site, naming the reason (with JavaScript on,
+    the shell swaps it in like any page: static/site/shell.js)."""
+    context = {
+        "page": page,
+        "message": str(exc),
+        "back": page.root + "/",
+        "environment_title": get_environment(page.run.environment).title,
+    }
+    return render(request, "site/rejected.html", context, status=exc.status)
+
+
 def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
     @wraps(view)
     def wrapper(request: HttpRequest, token: str, *args, **kwargs) -> HttpResponse:
@@ -150,6 +163,6 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             perform_implicit_actions(request, page, kwargs)
             return view(request, page, *args, **kwargs)
         except ActionRejected as exc:
-            return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
+            return rejected(request, page, exc)
 
     return wrapper
