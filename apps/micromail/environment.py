@@ -12,7 +12,7 @@ import sqlite3
 from collections.abc import Mapping
 from types import MappingProxyType
 
-from pydantic import Field, create_model
+from pydantic import Field
 
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
@@ -74,25 +74,25 @@ def reduce_new_email(mail: Mail, event: LoggedEvent) -> Mail:
     return deliver(mail, [event.payload["email_id"]], arrived_at=event.at, preloaded=False)
 
 
+class PreloadEmails(Payload):
+    email_ids: list[str] = Field(description='catalog email ids; ["*"] = every email')
+
+
+class NewEmail(Payload):
+    email_id: str = Field(description="catalog email id")
+
+
 EVENT_TYPES: Mapping[str, EventType] = MappingProxyType(
     {
         "preload_emails": EventType(
-            schema=create_model(
-                "PreloadEmails",
-                __base__=Payload,
-                email_ids=(list[str], Field(description='catalog email ids; ["*"] = every email')),
-            ),
+            schema=PreloadEmails,
             reduce=reduce_preload_emails,
             help="Mail already in the mailbox at the start; baselines are measured after it.",
             catalog_refs={"email_ids": "emails"},
             preload=True,
         ),
         "new_email": EventType(
-            schema=create_model(
-                "NewEmail",
-                __base__=Payload,
-                email_id=(str, Field(description="catalog email id")),
-            ),
+            schema=NewEmail,
             reduce=reduce_new_email,
             help="One message arrives, unread.",
             catalog_refs={"email_id": "emails"},
