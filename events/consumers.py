@@ -2,10 +2,18 @@
 
 Protocol (JSON text frames):
 - client → server, on open and after every in-page navigation:
-  `{"url": "/r/<token>/micromail/?folder=inbox", "seq": <log position the page shows>}`
-- server → client, whenever the run's log grows by a scenario or action event:
-  `{"type": "regions", "seq": N, "html": "<nav id=… data-live hx-swap-oob=\"true\">…"}`
+  `{"url": "/r/<token>/micromail/?folder=inbox", "seq": <log position the page shows>,
+    "due": <simulated second its content next changes with the clock, or null>}`
+- server → client, whenever the run's log grows by a scenario or action event, and whenever
+  the clock reaches the page's `due` and the regions read differently:
+  `{"type": "regions", "url": …, "seq": N, "next_change": <the new due, or null>,
+    "html": "<nav id=… data-live hx-swap-oob=\"true\">…"}`
   and `{"type": "error", "detail": …}` for a URL that is not one of this run's pages.
+
+Clock-driven pushes: after each push (and on subscribing) the socket sets one timer for the wall
+time at which the page's `next_change` comes on the run's clock, when the clock is running; a
+clock moved by hand (`/advance`, start) is broadcast as `run.clock_moved` and re-checked at once.
+At most one clock-driven push per wall second per socket, whatever the speed factor.
 
 The socket joins the channel group of its run only, so one run's events never reach another
 run's pages.
@@ -13,14 +21,22 @@ run's pages.
 
 from __future__ import annotations
 
+import asyncio
 import logging
 
 from channels.db import database_sync_to_async
 from channels.generic.websocket import AsyncJsonWebsocketConsumer
 
 from events import live
+from events.clock import sim_now, wall_due, wall_now
+from events.models import RunStatus
 
 log = logging.getLogger(__name__)
+
+CLOCK_PUSH_INTERVAL_S = 1.0  # at most one clock-driven push per wall second
+# A timer fires this long after its due time, so the run's clock has surely reached it (the wall
+# → simulated conversion rounds) and the re-render shows the change.
+DUE_MARGIN_S = 0.02
 
 
 class RunLiveConsumer(AsyncJsonWebsocketConsumer):
@@ -34,12 +50,21 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         self.host = headers.get(b"host", b"testserver").decode("latin-1")
         self.url: str | None = None
         self.seen = 0
+        self.clock = self.run  # the run's clock as last read (status, start, simulated time)
+        self.next_change: float | None = None  # when the page shown next changes with the clock
+        self.sent: str | None = None  # the regions last sent (a clock push sends only a change)
+        self.clock_pushed_at = float("-inf")
+        self.timer: asyncio.TimerHandle | None = None
+        self.due_task: asyncio.Task | None = None
         self.group = live.group_name(self.run.pk)
         await self.channel_layer.group_add(self.group, self.channel_name)
         await self.accept()
 
     async def disconnect(self, code) -> None:
         if getattr(self, "group", None):
+            self.disarm()
+            if self.due_task is not None:
+                self.due_task.cancel()
             await self.channel_layer.group_discard(self.group, self.channel_name)
 
     async def receive_json(self, content, **kwargs) -> None:
@@ -49,32 +74,91 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         except live.NotLive as exc:
             await self.send_json({"type": "error", "detail": str(exc)})
             return
-        seq = content.get("seq")
-        self.url = url
+        seq, due = content.get("seq"), content.get("due")
+        self.disarm()
+        self.url, self.sent = url, None
         self.seen = seq if isinstance(seq, int) and seq >= 0 else 0
-        # An event may have fired between the page's render and this subscription.
-        latest = await database_sync_to_async(live.last_live_seq)(self.run.pk)
+        self.next_change = float(due) if isinstance(due, int | float) else None
+        # An event may have fired, or the clock moved, between the page's render and now.
+        latest, reading = await database_sync_to_async(live.subscription)(self.run.pk)
+        if reading is not None:
+            self.clock = live.with_clock(self.run, reading)
         if latest > self.seen:
             await self.push(latest)
+        else:
+            self.arm()
 
     async def run_log_grew(self, message: dict) -> None:
         if self.url is not None and message["seq"] > self.seen:
             await self.push(message["seq"])
 
-    async def push(self, seq: int) -> None:
+    async def run_clock_moved(self, message: dict) -> None:
+        self.clock = live.with_clock(self.run, message["clock"])
+        self.arm()  # re-check the due time now: it may have come, or a timer may be needed
+
+    async def push(self, seq: int, *, clock_driven: bool = False) -> None:
         url = self.url
+        now = sim_now(self.clock, wall_now())
         try:
-            update = await live.shared_update(self.run, url, seq, self.host)
+            update = await live.shared_update(self.run, url, seq, now, self.host)
         except live.NotLive as exc:
             # e.g. the open item was purged meanwhile: the page stays as it is until navigated.
             log.info("no live update for %s: %s", url, exc)
-            self.seen = max(self.seen, seq)
+            self.seen, self.next_change = max(self.seen, seq), None
             return
         except Exception:  # a page that fails to render must not close every push after it
             log.exception("live render of %s failed", url)
-            self.seen = max(self.seen, seq)
+            self.seen, self.next_change = max(self.seen, seq), None
             return
         if url != self.url:
             return  # the page navigated meanwhile; its new URL brought its own push
         self.seen = max(self.seen, update.seq, seq)
-        await self.send(text_data=update.text)
+        self.next_change = update.next_change
+        if not (clock_driven and update.html == self.sent):
+            self.sent = update.html
+            await self.send(text_data=update.text)
+        self.arm()
+
+    # -- the clock timer ------------------------------------------------------------------------
+
+    def disarm(self) -> None:
+        if self.timer is not None:
+            self.timer.cancel()
+            self.timer = None
+
+    def arm(self) -> None:
+        """Set the one timer for the page's next clock-driven change, if the clock brings it."""
+        self.disarm()
+        if self.url is None or self.next_change is None:
+            return
+        wall = wall_now()
+        if sim_now(self.clock, wall) >= self.next_change:
+            due = wall  # already there (a clock moved by hand, a late subscription)
+        elif self.clock.status == RunStatus.RUNNING_AUTO:
+            if self.next_change > self.clock.event_timeline_end:
+                return  # the clock stops at the timeline's end, before the change
+            due = wall_due(self.clock, self.next_change)
+        else:
+            return  # a stopped clock changes nothing until it is moved (run.clock_moved)
+        if due is None:
+            return
+        due = max(due + DUE_MARGIN_S, self.clock_pushed_at + CLOCK_PUSH_INTERVAL_S)
+        self.timer = asyncio.get_running_loop().call_later(max(0.0, due - wall), self.on_due)
+
+    def on_due(self) -> None:
+        self.timer = None
+        if self.due_task is None or self.due_task.done():
+            self.due_task = asyncio.ensure_future(self.clock_due())
+        # else: the previous one is still rendering and re-arms when done
+
+    async def clock_due(self) -> None:
+        reading = await database_sync_to_async(live.clock_reading)(self.run.pk)
+        if reading is None or self.next_change is None:
+            return
+        self.clock = live.with_clock(self.run, reading)  # a fresh read: it may have stopped
+        wall = wall_now()
+        if sim_now(self.clock, wall) < self.next_change:
+            self.arm()  # completed, or moved meanwhile: not due after all
+            return
+        self.clock_pushed_at = wall
+        await self.push(self.seen, clock_driven=True)

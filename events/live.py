@@ -1,32 +1,39 @@
-"""Live push: when a run's log grows, open pages of that run get their live regions re-rendered.
+"""Live push: open pages of a run get their live regions re-rendered when the run's log grows
+and when what they show changes with the clock.
 
 The flow, one path for every backend:
 
 1. Whoever appends `scenario` or `action` events (the ticker in any backend, a lazy catch-up
-   inside a request, an agent action) calls `log_grew(run_id, seq)`. After the transaction
-   commits, a `run.log_grew` message goes to the channel group `run.<id>` through the
-   configured channel layer (in-memory embedded, Redis in production).
+   inside a request, an agent action) calls `log_grew(run_id, seq)`; whoever moves a clock by
+   hand (`/advance`, starting the clock) calls `clock_moved(run_id)`. After the transaction
+   commits, a `run.log_grew` / `run.clock_moved` message goes to the channel group `run.<id>`
+   through the configured channel layer (in-memory embedded, Redis in production).
 2. Each subscribed socket (`events.consumers.RunLiveConsumer`) knows which URL its page shows.
-   It asks `live_regions(...)` for that URL: the page's normal view is rendered in-process, for
-   the same run and query, as an HTMX partial request flagged `sentinel_live` — so it logs no
-   view event and performs no implicit action — and the elements marked `data-live` are cut out.
+   It asks `shared_update(...)` for that URL: the page's normal view renders it in-process, for
+   the same run and query, flagged `sentinel_live` — so it logs no view event and performs no
+   implicit action. The page's templates mark their live regions with a tag
+   (apps/agent_site/templatetags/live.py) which, on such a request, records each region's HTML
+   on the request (`request.sentinel_live_regions`): nothing is cut out of the HTML afterwards.
+   The render also says when what it shows next changes with the clock
+   (`request.sentinel_page.next_change`, simulated seconds); the socket sets a timer for it.
 3. The regions go to the browser as out-of-band swaps (`hx-swap-oob="true"`); the client
    (static/site/live.js) swaps them in place.
 
-One render per (run, URL, log position) is shared by every subscriber in the process, down to
-the encoded frame: CSRF token values of forms in pushed regions are left blank and each browser
-fills in its own page's token, so a form in a pushed region still posts.
+One render per (run, URL, log position, clock window) is shared by every subscriber and every
+poll in the process, down to the encoded frame: CSRF token values of forms in pushed regions are
+left blank and each browser fills in its own page's token, so a form in a pushed region still
+posts. A clock window ends at the render's `next_change`: until then, a render at a later
+simulated time would show the same thing.
 """
 
 from __future__ import annotations
 
 import asyncio
+import copy
 import json
 import logging
 import re
 import threading
-import weakref
-from collections import OrderedDict
 from dataclasses import dataclass
 from functools import cached_property
 from urllib.parse import urlsplit
@@ -39,12 +46,14 @@ from django.middleware.csrf import CSRF_ALLOWED_CHARS
 from django.urls import Resolver404, resolve, reverse
 from django.utils.crypto import get_random_string
 
+from events.lru import LRU
 from events.models import Event, EventKind, Run
 
 log = logging.getLogger(__name__)
 
 LIVE_KINDS = (EventKind.SCENARIO, EventKind.ACTION)
-MESSAGE_TYPE = "run.log_grew"
+LOG_GREW = "run.log_grew"
+CLOCK_MOVED = "run.clock_moved"
 POLL_INTERVAL_MS = 2000  # the fallback when the socket cannot connect (documented in the shell)
 
 
@@ -53,7 +62,7 @@ def group_name(run_id: int) -> str:
 
 
 # ---------------------------------------------------------------------------------------------
-# Broadcast (sync callers: the scheduler, commands; any thread, any backend)
+# Broadcast (sync callers: the scheduler, commands, the life-cycle; any thread, any backend)
 
 
 def log_grew(run_id: int, seq: int) -> None:
@@ -61,16 +70,30 @@ def log_grew(run_id: int, seq: int) -> None:
 
     Never raises: a push is a convenience (pages also poll and reload), an append is not.
     """
-    transaction.on_commit(lambda: _send(run_id, seq))
+    transaction.on_commit(lambda: _send(run_id, {"type": LOG_GREW, "run": run_id, "seq": seq}))
 
 
-def _send(run_id: int, seq: int) -> None:
+def clock_moved(run_id: int) -> None:
+    """Tell subscribers of the run that its clock was moved or started (not by time passing),
+    once the write is committed: each re-checks when its page next changes.
+
+    The message carries the clock as committed, read once here for all subscribers.
+    """
+
+    def send() -> None:
+        reading = clock_reading(run_id)
+        if reading is not None:
+            _send(run_id, {"type": CLOCK_MOVED, "run": run_id, "clock": reading})
+
+    transaction.on_commit(send)
+
+
+def _send(run_id: int, message: dict) -> None:
     from channels.layers import get_channel_layer
 
     layer = get_channel_layer()
     if layer is None:
         return
-    message = {"type": MESSAGE_TYPE, "run": run_id, "seq": seq}
     try:
         loop = asyncio.get_running_loop()
     except RuntimeError:
@@ -80,7 +103,7 @@ def _send(run_id: int, seq: int) -> None:
             loop.create_task(layer.group_send(group_name(run_id), message))
         else:
             async_to_sync(layer.group_send)(group_name(run_id), message)
-    except Exception:  # noqa: BLE001 — e.g. Redis unreachable: the page falls back to polling
+    except Exception:  # e.g. Redis unreachable: the page falls back to polling
         log.warning("live push for run %s failed", run_id, exc_info=True)
 
 
@@ -88,6 +111,29 @@ def last_live_seq(run_id: int) -> int:
     """Log position of the run's last scenario or action event (0 when none)."""
     found = Event.objects.filter(run_id=run_id, kind__in=LIVE_KINDS).aggregate(m=Max("seq"))["m"]
     return found or 0
+
+
+# ---------------------------------------------------------------------------------------------
+# The run's clock as a socket last read it (fields that change while a run lives)
+
+
+def clock_reading(run_id: int) -> dict | None:
+    """The run's clock fields, fresh from the database, as a channel-layer-safe dict (None: the
+    run is gone). Speed and clock mode never change; a closed run's pages stop rendering."""
+    return Run.objects.filter(pk=run_id).values("status", "started_at", "sim_time").first()
+
+
+def with_clock(run: Run, reading: dict) -> Run:
+    """A copy of `run` whose clock reads `reading` (events.clock's functions take a Run)."""
+    clock = copy.copy(run)
+    clock.status, clock.started_at = reading["status"], reading["started_at"]
+    clock.sim_time = reading["sim_time"]
+    return clock
+
+
+def subscription(run_id: int) -> tuple[int, dict | None]:
+    """What a socket reads when a page subscribes: the log position and the clock."""
+    return last_live_seq(run_id), clock_reading(run_id)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -118,7 +164,11 @@ def without_csrf_tokens(html: str) -> str:
 
 
 def live_request(path: str, query: str, host: str = "testserver") -> HttpRequest:
-    """A GET for `path?query` as an HTMX partial request, flagged so @run_page does not log it."""
+    """A GET for `path?query`, flagged so @run_page neither logs it nor acts on it.
+
+    The whole page is rendered, not an htmx fragment: the shell has live regions too (its
+    clock), and only the recorded regions are sent, so the rest costs little.
+    """
     from django_htmx.middleware import HtmxDetails
 
     request = HttpRequest()
@@ -133,16 +183,17 @@ def live_request(path: str, query: str, host: str = "testserver") -> HttpRequest
         "SERVER_NAME": name or "testserver",
         "SERVER_PORT": port or "80",
         "HTTP_HOST": host or "testserver",
-        "HTTP_HX_REQUEST": "true",
         "CSRF_COOKIE": _PLACEHOLDER_SECRET,
     }
     request.htmx = HtmxDetails(request)
     request.sentinel_live = True
+    request.sentinel_live_regions = []  # [(id, outer HTML with hx-swap-oob)], filled by the tag
     return request
 
 
-def render_page(run: Run, url: str, host: str = "testserver") -> str:
-    """The page at `url` of `run`, rendered by its own view as a live (side-effect-free) request."""
+def render_page(run: Run, url: str, host: str = "testserver") -> HttpRequest:
+    """Render the page at `url` of `run` by its own view as a live (side-effect-free) request;
+    the request comes back holding what the render recorded (its regions, its page)."""
     path, query = page_path_for(run, url)
     try:
         match = resolve(path)
@@ -150,67 +201,27 @@ def render_page(run: Run, url: str, host: str = "testserver") -> str:
         raise NotLive("no page at this URL") from None
     if match.kwargs.get("token") != run.token:
         raise NotLive("the URL is not a page of this run")
+    request = live_request(path, query, host)
     try:
-        response = match.func(live_request(path, query, host), *match.args, **match.kwargs)
+        response = match.func(request, *match.args, **match.kwargs)
     except Http404 as exc:  # the run closed, or the open item was purged meanwhile
         raise NotLive(f"the page is gone: {exc}") from None
     if hasattr(response, "render"):
         response.render()
     if response.status_code != 200:
         raise NotLive(f"the page answered {response.status_code}")
-    return response.content.decode(response.charset or "utf-8")
+    return request
 
 
-_ATTRS = r"""(?:\s+[^\s"'>/=]+(?:\s*=\s*(?:"[^"]*"|'[^']*'|[^\s"'>]+))?)*"""
-_START_TAG = re.compile(r"<([a-zA-Z][\w-]*)(" + _ATTRS + r")\s*/?>")
-_LIVE_ATTR = re.compile(r"\sdata-live(?=[\s=/>]|$)")
-_ID_ATTR = re.compile(r"""\sid\s*=\s*(?:"([^"]*)"|'([^']*)'|([^\s"'>]+))""")
 _BETWEEN_TAGS = re.compile(r">\s+<")
 
 
-def _end_of(html: str, tag: str, start: int) -> int:
-    """Offset just past the end tag closing the `tag` element whose start tag ends at `start`."""
-    depth = 1
-    for match in re.finditer(rf"<(/?){tag}(?=[\s/>])[^>]*>", html[start:], re.IGNORECASE):
-        depth += -1 if match.group(1) else 1
-        if depth == 0:
-            return start + match.end()
-    raise ValueError(f"<{tag}> live region is not closed")
-
-
-def extract_regions(html: str) -> list[tuple[str, str]]:
-    """The `data-live` regions of a rendered page: [(id, outer HTML)], outermost, in order.
-
-    A scan for the marker rather than a full HTML parse (a push renders on the hot path); it
-    needs each region to be one element with an explicit end tag, which templates give.
-    Whitespace-only runs between tags are collapsed (rendering is the same; the push smaller).
-    """
-    regions, position = [], 0
-    while (marker := html.find("data-live", position)) >= 0:
-        tag_start = html.rfind("<", 0, marker)
-        match = _START_TAG.match(html, tag_start)
-        position = marker + len("data-live")
-        if match is None or match.end() <= marker or not _LIVE_ATTR.search(match.group(2)):
-            continue  # the words "data-live" in text or another attribute's value
-        found = _ID_ATTR.search(match.group(2))
-        if found is None:
-            continue
-        region_id = next(group for group in found.groups() if group is not None)
-        end = _end_of(html, match.group(1), match.end())
-        outer = html[tag_start:end]
-        if "<pre" not in outer and "<textarea" not in outer:
-            outer = _BETWEEN_TAGS.sub("> <", outer)
-        regions.append((region_id, outer))
-        position = end
-    return regions
-
-
-def as_oob(regions: list[tuple[str, str]]) -> str:
-    """Regions as out-of-band swaps: each root element gets hx-swap-oob="true"."""
-    return "\n".join(
-        re.sub(r"^<([a-zA-Z][\w-]*)", r'<\1 hx-swap-oob="true"', outer, count=1)
-        for _, outer in regions
-    )
+def compact(outer: str) -> str:
+    """Whitespace-only runs between tags become one space (rendered the same, the push smaller;
+    one space, not none, so inline neighbours keep their gap), except where it is content."""
+    if "<pre" in outer or "<textarea" in outer:
+        return outer
+    return _BETWEEN_TAGS.sub("> <", outer)
 
 
 @dataclass(frozen=True)
@@ -218,63 +229,72 @@ class LiveUpdate:
     url: str  # the page URL rendered (the client ignores updates for a page it has left)
     seq: int  # the log position the render includes at least
     html: str  # out-of-band swaps, CSRF token values blank (the client fills in its own)
+    # Simulated time at which what the render shows next changes with the clock (None: never).
+    next_change: float | None = None
+    regions: tuple[tuple[str, str], ...] = ()  # (id, outer HTML) as recorded, in page order
 
     def message(self) -> dict:
-        return {"type": "regions", "url": self.url, "seq": self.seq, "html": self.html}
+        # "html" last: bench_live reads the header of a frame without parsing the HTML.
+        return {"type": "regions", "url": self.url, "seq": self.seq,
+                "next_change": self.next_change, "html": self.html}
 
     @cached_property
     def text(self) -> str:
         """The message as one JSON frame, encoded once for all subscribers."""
         return json.dumps(self.message())
 
+    def shows(self, seq: int, now: float) -> bool:
+        """Is this render what a fresh one at log position `seq`, simulated time `now` gives?"""
+        return self.seq >= seq and (self.next_change is None or now < self.next_change)
+
 
 def render_update(run: Run, url: str, host: str = "testserver") -> LiveUpdate:
-    """Render `url` now and cut out its live regions (sync: call from a worker thread)."""
+    """Render `url` now and collect its live regions (sync: call from a worker thread)."""
     seq = last_live_seq(run.pk)
-    html = as_oob(extract_regions(render_page(run, url, host)))
-    return LiveUpdate(url=url, seq=seq, html=without_csrf_tokens(html))
+    request = render_page(run, url, host)
+    regions = tuple(request.sentinel_live_regions)
+    page = getattr(request, "sentinel_page", None)
+    if page is not None:
+        seq = max(seq, page.live_seq)  # the render may have fired what was due itself
+    html = "\n".join(compact(outer) for _, outer in regions)
+    return LiveUpdate(url=url, seq=seq, html=without_csrf_tokens(html),
+                      next_change=getattr(page, "next_change", None), regions=regions)
 
 
-class _SharedRenders:
-    """One render per (run, URL, log position) for all subscribers on one event loop."""
-
-    SIZE = 256
-
-    def __init__(self) -> None:
-        self.updates: OrderedDict[tuple[int, str], LiveUpdate] = OrderedDict()
-        self.locks: dict[tuple[int, str], asyncio.Lock] = {}
-
-    async def get(self, run: Run, url: str, seq: int, host: str) -> LiveUpdate:
-        from channels.db import database_sync_to_async
-
-        key = (run.pk, url)
-        lock = self.locks.setdefault(key, asyncio.Lock())
-        async with lock:
-            cached = self.updates.get(key)
-            if cached is not None and cached.seq >= seq:
-                self.updates.move_to_end(key)
-                return cached
-            update = await database_sync_to_async(render_update)(run, url, host)
-            self.updates[key] = update
-            self.updates.move_to_end(key)
-            while len(self.updates) > self.SIZE:
-                old, _ = self.updates.popitem(last=False)
-                self.locks.pop(old, None)
-            return update
+# One render per (run, URL, log position, clock window) for the whole process: sockets on the
+# event loop and polls in request threads share it. Striped locks make concurrent askers for the
+# same page wait for one render instead of doing their own.
+RENDERS_KEPT = 256
+_renders: LRU[tuple[int, str], LiveUpdate] = LRU(RENDERS_KEPT)
+_render_locks = tuple(threading.Lock() for _ in range(64))
 
 
-_renders: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-_renders_guard = threading.Lock()
+def shared_render(run: Run, url: str, seq: int, now: float, host: str = "testserver") -> LiveUpdate:
+    """The live regions of `url` as of log position `seq` (at least) and simulated time `now`,
+    reusing a render that shows the same (sync)."""
+    key = (run.pk, url)
+    cached = _renders.get(key)
+    if cached is not None and cached.shows(seq, now):
+        return cached
+    with _render_locks[hash(key) % len(_render_locks)]:
+        cached = _renders.get(key)
+        if cached is not None and cached.shows(seq, now):
+            return cached
+        update = render_update(run, url, host)
+        _renders.put(key, update, unless=lambda kept: kept.seq > update.seq)
+        return update
 
 
-async def shared_update(run: Run, url: str, seq: int, host: str = "testserver") -> LiveUpdate:
-    """The live regions of `url` including at least log position `seq`, rendered once per loop."""
-    loop = asyncio.get_running_loop()
-    with _renders_guard:
-        renders = _renders.get(loop)
-        if renders is None:
-            renders = _renders[loop] = _SharedRenders()
-    return await renders.get(run, url, seq, host)
+async def shared_update(
+    run: Run, url: str, seq: int, now: float, host: str = "testserver"
+) -> LiveUpdate:
+    """`shared_render` for the event loop: a reusable render costs no thread hop."""
+    from channels.db import database_sync_to_async
+
+    cached = _renders.get((run.pk, url))
+    if cached is not None and cached.shows(seq, now):
+        return cached
+    return await database_sync_to_async(shared_render)(run, url, seq, now, host)
 
 
 def open_run(token: str) -> Run | None:

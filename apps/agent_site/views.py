@@ -1,12 +1,16 @@
 """The run's own URLs that every environment shares: its home, and the polling fallback of live
-pages, `GET /r/<token>/live?url=<page URL>&seq=<N>`.
+pages, `GET /r/<token>/live?url=<page URL>&seq=<N>&due=<simulated seconds or empty>`.
 
 Same answer as the websocket push (events.consumers), over plain HTTP, for browsers whose
-socket cannot connect: 204 when the run's log has no scenario/action event after `seq`, else
-`{"type": "regions", "seq": M, "html": <out-of-band swaps>}`. A pure read: nothing is logged.
+socket cannot connect: 204 when the run's log has no scenario/action event after `seq` and the
+run's clock has not reached `due` (when the page's content next changes with the clock), else
+`{"type": "regions", "url": …, "seq": M, "next_change": <the new due or null>, "html": <out-of-band
+swaps>}`. A pure read: nothing is logged; the render is shared with the sockets (events.live).
 """
 
 from __future__ import annotations
+
+import math
 
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
 from django.views.decorators.http import require_GET
@@ -14,6 +18,7 @@ from django.views.decorators.http import require_GET
 from apps.agent_site.links import environment_root
 from apps.agent_site.pages import run_for_token
 from events import live
+from events.clock import sim_now, wall_now
 from events.scheduler import fire_due
 
 
@@ -35,11 +40,19 @@ def live_poll(request: HttpRequest, token: str) -> HttpResponse:
         since = int(request.GET.get("seq", "0"))
     except ValueError:
         return JsonResponse({"detail": "seq must be an integer log position"}, status=400)
-    fire_due(run)  # zero staleness: polling alone (no ticker) still moves a live clock's page
-    if live.last_live_seq(run.pk) <= since:
+    try:
+        due = float(request.GET["due"]) if request.GET.get("due") else None
+        if due is not None and not math.isfinite(due):
+            raise ValueError(due)
+    except ValueError:
+        return JsonResponse({"detail": "due must be simulated seconds or empty"}, status=400)
+    wall = wall_now()  # the poll's one clock reading
+    fire_due(run, wall=wall)  # zero staleness: polling alone (no ticker) still moves a live clock
+    now, latest = sim_now(run, wall), live.last_live_seq(run.pk)
+    if latest <= since and (due is None or now < due):
         return HttpResponse(status=204)
     try:
-        update = live.render_update(run, url, request.get_host())
+        update = live.shared_render(run, url, latest, now, request.get_host())
     except live.NotLive as exc:
         return JsonResponse({"detail": str(exc)}, status=404)
     return JsonResponse(update.message())

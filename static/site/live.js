@@ -1,16 +1,18 @@
 /* Sentinel live pages — our own small client (no CDN, no htmx ws extension).
  *
  * The server pushes re-rendered `[data-live]` regions of this page as out-of-band swaps over
- * the websocket `/r/<token>/live` (events/consumers.py); when the socket cannot connect, the
- * same URL is polled over HTTP every `data-poll-ms` (2 s). The client keeps what the user is
+ * the websocket `/r/<token>/live` (events/consumers.py) when the run's log grows and when the
+ * clock changes what they show; when the socket cannot connect, the same URL is polled over
+ * HTTP every `data-poll-ms` (2 s), with `due` (when the page next changes with the clock, as
+ * the server said: data-due, then each update's next_change). The client keeps what the user is
  * doing: window and region scroll positions, focus, checked rows and chosen options; a region
  * holding a field being typed in, or typed text not sent yet, is swapped only once the user
- * leaves it. Config: <div id="sentinel-live" data-socket data-seq data-poll-ms> in the shell.
+ * leaves it. Config: <div id="sentinel-live" data-socket data-seq data-due data-poll-ms>.
  */
 (function () {
   "use strict";
   var config = null, configNode = null, socket = null, subscribed = null;
-  var seq = 0, pollTimer = null, retryMs = 1000, pending = {};
+  var seq = 0, due = null, pollTimer = null, retryMs = 1000, pending = {};
 
   function pageUrl() { return location.pathname + location.search; }
   function hasSocket() { return typeof window.WebSocket === "function"; }
@@ -58,8 +60,11 @@
   }
 
   function apply(message) {
-    if (!message || message.type !== "regions" || message.seq <= seq || message.url !== pageUrl()) return;
+    // A clock-driven update keeps the log position: equal is new enough (the server sends only
+    // regions that read differently, in order).
+    if (!message || message.type !== "regions" || message.seq < seq || message.url !== pageUrl()) return;
     seq = message.seq;
+    due = typeof message.next_change === "number" ? message.next_change : null;
     var holder = document.createElement("template");
     holder.innerHTML = message.html;
     Array.prototype.slice.call(holder.content.children).forEach(function (el) { if (el.id) swap(el); });
@@ -71,7 +76,7 @@
 
   function poll() {
     if (!config) return;
-    fetch(config.socket + "?url=" + encodeURIComponent(pageUrl()) + "&seq=" + seq,
+    fetch(config.socket + "?url=" + encodeURIComponent(pageUrl()) + "&seq=" + seq + "&due=" + (due === null ? "" : due),
           { credentials: "same-origin", headers: { Accept: "application/json" } })
       .then(function (r) { return r.status === 200 ? r.json() : null; })
       .then(apply, function () {});
@@ -82,7 +87,7 @@
   function subscribe() {
     if (socket && socket.readyState === 1 && subscribed !== pageUrl()) {
       subscribed = pageUrl();
-      socket.send(JSON.stringify({ url: subscribed, seq: seq }));
+      socket.send(JSON.stringify({ url: subscribed, seq: seq, due: due }));
     }
   }
   function connect() {
@@ -109,6 +114,7 @@
     if (node !== configNode) {  // a new page (load or boosted navigation): its own log position
       configNode = node; pending = {}; subscribed = null;
       seq = parseInt(node.dataset.seq || "0", 10);
+      due = node.dataset.due ? parseFloat(node.dataset.due) : null;
       var socketPath = node.dataset.socket, changed = !config || config.socket !== socketPath;
       config = { socket: socketPath, pollMs: parseInt(node.dataset.pollMs || "2000", 10) };
       if (changed) {

@@ -18,10 +18,11 @@ from channels.layers import get_channel_layer
 from channels.testing import WebsocketCommunicator
 from django.test import Client
 
-from events import lifecycle
-from events.live import extract_regions, last_live_seq
+from events import lifecycle, live
+from events.live import last_live_seq, render_update
 from events.models import ClockMode, Event, EventKind
 from events.projection import state_at
+from tests.live.pushed import regions
 from tests.micromail.cast import CATALOG_DIR, LATE_AT, mailbox_scenario
 
 pytestmark = pytest.mark.django_db(transaction=True)
@@ -61,10 +62,6 @@ async def subscribe(run, url: str) -> WebsocketCommunicator:
     return socket
 
 
-def regions(message: dict) -> dict[str, str]:
-    return dict(extract_regions(message["html"]))
-
-
 def run_async(coroutine_function):
     return async_to_sync(coroutine_function)()
 
@@ -85,9 +82,9 @@ def test_a_fired_event_is_pushed_to_its_own_run_only():
 
     message = run_async(story)
     assert message["type"] == "regions" and message["url"] == inbox(ours)
-    live = regions(message)
-    assert set(live) == {"folders", "message-list", "reading-pane"}
-    assert REPORT in live["message-list"] and 'hx-swap-oob="true"' in live["message-list"]
+    pushed = regions(message)
+    assert set(pushed) == {"sim-clock", "folders", "message-list", "reading-pane"}
+    assert REPORT in pushed["message-list"] and 'hx-swap-oob="true"' in pushed["message-list"]
     assert message["seq"] == last_live_seq(ours.pk)
 
 
@@ -184,18 +181,6 @@ def test_pushed_forms_leave_the_csrf_token_to_the_browser():
     assert not re.search(r'name="csrfmiddlewaretoken" value="[^"]', html)
 
 
-def test_regions_are_the_outermost_marked_elements_with_ids():
-    html = (
-        '<main><nav id="a" data-live class="x"><div><div data-live id="inner">1</div></div></nav>'
-        '<p>the words data-live in text</p><section data-live>no id</section>'
-        '<ul id=b data-live><li>2</li></ul></main>'
-    )
-    assert extract_regions(html) == [
-        ("a", '<nav id="a" data-live class="x"><div><div data-live id="inner">1</div></div></nav>'),
-        ("b", "<ul id=b data-live><li>2</li></ul>"),
-    ]
-
-
 def test_polling_answers_204_until_the_log_grows_then_the_regions():
     run = new_run()
     browser = Client()
@@ -208,6 +193,44 @@ def test_polling_answers_204_until_the_log_grows_then_the_regions():
     body = json.loads(response.content)
     assert REPORT in regions(body)["message-list"] and body["seq"] > seq
     assert browser.get(poll, {"url": inbox(run), "seq": body["seq"]}).status_code == 204
+
+
+def test_polling_answers_once_the_clock_reaches_the_pages_due():
+    run = new_run()  # 09:00; the shell clock next changes at 09:01
+    browser = Client()
+    seq = last_live_seq(run.pk)
+    poll = f"/r/{run.token}/live"
+    assert browser.get(poll, {"url": inbox(run), "seq": seq, "due": 60}).status_code == 204
+    lifecycle.advance(run, 61.0)  # no event: only the clock moved
+    response = browser.get(poll, {"url": inbox(run), "seq": seq, "due": 60})
+    assert response.status_code == 200
+    body = json.loads(response.content)
+    assert body["seq"] == seq and body["next_change"] == 120.0
+    assert "09:01" in regions(body)["sim-clock"] and "6 min ago" in regions(body)["message-list"]
+    assert browser.get(poll, {"url": inbox(run), "seq": seq, "due": 120}).status_code == 204
+
+
+def test_polling_refuses_a_due_that_is_not_a_time():
+    run = new_run()
+    response = Client().get(f"/r/{run.token}/live", {"url": inbox(run), "seq": 0, "due": "soon"})
+    assert response.status_code == 400 and "due" in response.content.decode()
+
+
+def test_one_render_serves_a_log_position_and_a_clock_window(monkeypatch):
+    run = new_run()
+    url, seq = inbox(run), last_live_seq(run.pk)
+    renders = []
+    monkeypatch.setattr(live, "render_update",
+                        lambda *args: renders.append(args) or render_update(*args))
+
+    first = live.shared_render(run, url, seq, 0.0)
+    assert live.shared_render(run, url, seq, 59.0) is first  # 09:00 still reads 09:00
+    lifecycle.advance(run, 61.0)
+    turned = live.shared_render(run, url, seq, 61.0)
+    assert turned is not first and turned.next_change == 120.0
+    assert live.shared_render(run, url, seq, 100.0) is turned
+    assert live.shared_render(run, url, seq + 1, 100.0) is not turned  # the log grew
+    assert len(renders) == 3
 
 
 def test_polling_refuses_another_runs_url():
@@ -225,10 +248,12 @@ def test_group_messages_use_the_configured_layer():
         channel = await layer.new_channel()
         await layer.group_add(f"run.{run.pk}", channel)
         await database_sync_to_async(lifecycle.advance)(run, LATE_AT)
-        return await asyncio.wait_for(layer.receive(channel), WAIT_S)
+        return [await asyncio.wait_for(layer.receive(channel), WAIT_S) for _ in range(2)]
 
-    message = run_async(story)
-    assert message["type"] == "run.log_grew" and message["run"] == run.pk
+    moved, grew = run_async(story)
+    assert moved == {"type": "run.clock_moved", "run": run.pk,
+                     "clock": {"status": "running_manual", "started_at": None, "sim_time": LATE_AT}}
+    assert grew["type"] == "run.log_grew" and grew["run"] == run.pk
 
 
 def delete(run, email_id: str) -> None:

@@ -1,0 +1,54 @@
+"""A real browser on a real server: an open inbox keeps its times current with no event firing.
+
+The run's timeline holds only its t=0 preload (mail that arrived 5 min before the start), so
+the clock alone changes the page: the shell's simulated clock and each row's "N min ago". At
+speed 4 a simulated minute is 15 wall seconds; the clock is first moved by hand to 09:00:48 and
+started there, so the minute turns 3 wall seconds after the start. Over the websocket the server
+pushes when the minute turns; without one, the page polls with the due time it was given.
+"""
+
+from __future__ import annotations
+
+import json
+import urllib.request
+
+import pytest
+
+from tests.live.test_clock_push import api, quiet_scenario
+
+pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
+
+STARTS_AT = 48.0
+TURN_BOUND_S = 20  # 3 s to the turn, plus a render on a busy two-core machine
+
+
+def scenario_events(base_url: str, run_id: int) -> list[dict]:
+    """The run's log as the control API gives it (the browser's loop forbids ORM calls here)."""
+    with urllib.request.urlopen(f"{base_url}/api/runs/{run_id}/events/", timeout=30) as response:
+        return [e for e in json.load(response) if e["kind"] == "scenario"]
+
+
+@pytest.mark.parametrize("transport", ["websocket", "polling"])
+def test_the_shell_clock_and_relative_times_advance_by_themselves(live_site, browser, transport):
+    run = api(live_site, "/api/runs/", {"scenario_json": quiet_scenario(), "speed_factor": 4})
+    api(live_site, f"/api/runs/{run['id']}/advance/", {"time": STARTS_AT})
+    api(live_site, f"/api/runs/{run['id']}/start/")
+    context = browser.new_context(viewport={"width": 1100, "height": 420})
+    if transport == "polling":
+        context.add_init_script("window.WebSocket = undefined;")
+    page = context.new_page()
+    page.goto(f"{live_site}/r/{run['token']}/micromail/?folder=inbox")
+    page.evaluate("window.loadedOnce = true")  # gone if the page reloads
+    clock, row = page.locator("#sim-clock"), page.locator("#message-list time.when").first
+    shown = clock.inner_text(), row.inner_text()
+    assert shown[0].endswith("09:00") and shown[1] == "5 min ago"
+
+    page.wait_for_function(
+        """([clock, ago]) => document.getElementById("sim-clock").innerText !== clock &&
+             document.querySelector("#message-list time.when").innerText !== ago""",
+        arg=list(shown), timeout=TURN_BOUND_S * 1000,
+    )
+    assert clock.inner_text().endswith("09:01") and row.inner_text() == "6 min ago"
+    assert clock.get_attribute("datetime").endswith("T09:01")
+    assert page.evaluate("window.loadedOnce") is True, "the page reloaded"
+    assert [e["type"] for e in scenario_events(live_site, run["id"])] == ["preload_emails"]
