@@ -17,7 +17,8 @@ REPO = settings.BASE_DIR
 
 @contextlib.contextmanager
 def celery_worker():
-    env = dict(os.environ, DATABASE_URL=current_database_url(), SENTINEL_TICKER="celery")
+    env = dict(os.environ, DATABASE_URL=current_database_url(), SENTINEL_TICKER="celery",
+               DJANGO_SETTINGS_MODULE=settings.SETTINGS_MODULE)  # tests.settings: with tally
     (REPO / "var").mkdir(exist_ok=True)
     log = open(REPO / "var" / "celery-test.log", "ab")
     process = subprocess.Popen(

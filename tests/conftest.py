@@ -24,11 +24,10 @@ def pytest_configure(config):
         database["CONN_MAX_AGE"] = 0
 
 
-@pytest.fixture(scope="session", autouse=True)
+@pytest.fixture(scope="session")
 def tally_environment():
-    registry.register(TALLY)
-    yield TALLY
-    registry.unregister(TALLY.name)
+    """The test-only `tally` environment (installed by tests/settings.py)."""
+    return registry.get_environment(TALLY.name)
 
 
 @pytest.fixture(autouse=True)

@@ -310,7 +310,7 @@ BROKEN_SCENARIOS = [
     (
         "event-type-unknown",
         _set("events.1.type", "pong"),
-        ["events[1].type", "'pong'", "allowed: ping"],
+        ["events[1].type", "'pong'", "allowed: level, ping, preload"],
     ),
     (
         "event-payload-field-missing",
@@ -440,7 +440,7 @@ def test_dev_events_are_still_checked(pingenv):
     data = everything_preload(event_timeline_end=9999)
     data["events"][1]["type"] = "pong"
 
-    with pytest.raises(ScenarioError, match=r"events\[1\]\.type.*allowed: ping"):
+    with pytest.raises(ScenarioError, match=r"events\[1\]\.type.*allowed: level, ping, preload"):
         parse_dev_scenario(data)
 
 

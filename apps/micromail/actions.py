@@ -16,9 +16,11 @@ import uuid
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
 from typing import Any, Literal
+from urllib.parse import urlencode
 
 from pydantic import Field
 
+from apps.micromail.query import MailboxQuery
 from apps.micromail.state import (
     FOLDERS,
     Email,
@@ -28,7 +30,7 @@ from apps.micromail.state import (
     with_state,
     without_email,
 )
-from events.registry import Action, ActionRejected, LoggedEvent
+from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
 # Deliberately simple (what a client checks before sending), not RFC 5322.
@@ -183,6 +185,51 @@ def reduce_save_draft(mail: Mail, event: LoggedEvent) -> Mail:
     return with_emails(mail, [(draft, EmailState(folder="drafts", is_read=True))])
 
 
+# --- where a person does it in the client (Action.page) ------------------------------------------
+# Forms and buttons are marked `data-action="<action>"` in the templates; the generic tests carry
+# out every scenario's solution through them (tests/environments/).
+
+
+def message_screen(mail: Mail, email_id: str) -> str:
+    """The mailbox with the message open, in its own folder: `?folder=<folder>&email=<id>`."""
+    existing_email(mail, email_id)
+    return MailboxQuery(folder=mail.folder_of(email_id)).opening(email_id)
+
+
+def open_page(mail: Mail, payload: dict) -> PageStep:
+    """Opening the message is the action (declared as an implicit action of the mailbox page)."""
+    return PageStep(message_screen(mail, payload["email_id"]))
+
+
+def reading_pane(*fields: str) -> Callable[[Mail, dict], PageStep]:
+    """The open message's reading-pane form for the action, with `fields` of the payload."""
+
+    def page(mail: Mail, payload: dict) -> PageStep:
+        form = {name: str(payload[name]) for name in fields}
+        return PageStep(message_screen(mail, payload["email_id"]), form)
+
+    return page
+
+
+def bulk_mark_read_page(mail: Mail, payload: dict) -> PageStep:
+    """The message list's "Mark read" with the message's row checked. Not the reading pane:
+    opening a message there already marks it read, so the pane never offers "Mark read"."""
+    email_id = payload["email_id"]
+    existing_email(mail, email_id)
+    return PageStep(
+        MailboxQuery(folder=mail.folder_of(email_id)).querystring(), {"ids": [email_id]}
+    )
+
+
+def compose_page(mail: Mail, payload: dict) -> PageStep:
+    """The compose form (a new message, or the draft it replaces) with the fields typed in."""
+    draft_id = payload.get("draft_id")
+    mode = {"mode": "draft", "email": draft_id} if draft_id else {"mode": "new"}
+    form = {name: ", ".join(payload.get(name) or ()) for name in ("to", "cc", "bcc")}
+    form.update(subject=payload.get("subject") or "", body=payload.get("body") or "")
+    return PageStep(f"compose?{urlencode(mode)}", form)
+
+
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         "open_email": Action(
@@ -190,35 +237,44 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             decide_on_email,
             setting(is_read=True),
             help="Open a message; like any mail client this marks it read.",
+            page=open_page,
         ),
-        "mark_read": Action(EmailId, decide_on_email, setting(is_read=True)),
-        "mark_unread": Action(EmailId, decide_on_email, setting(is_read=False)),
-        "flag": Action(EmailId, decide_on_email, setting(is_flagged=True)),
-        "unflag": Action(EmailId, decide_on_email, setting(is_flagged=False)),
-        "pin": Action(EmailId, decide_on_email, setting(is_pinned=True)),
-        "unpin": Action(EmailId, decide_on_email, setting(is_pinned=False)),
+        "mark_read": Action(
+            EmailId, decide_on_email, setting(is_read=True), page=bulk_mark_read_page
+        ),
+        "mark_unread": Action(
+            EmailId, decide_on_email, setting(is_read=False), page=reading_pane()
+        ),
+        "flag": Action(EmailId, decide_on_email, setting(is_flagged=True), page=reading_pane()),
+        "unflag": Action(EmailId, decide_on_email, setting(is_flagged=False), page=reading_pane()),
+        "pin": Action(EmailId, decide_on_email, setting(is_pinned=True), page=reading_pane()),
+        "unpin": Action(EmailId, decide_on_email, setting(is_pinned=False), page=reading_pane()),
         "move": Action(
             Move,
             decide_on_email,
             reduce_move,
+            page=reading_pane("folder"),
         ),
         "delete": Action(
             EmailId,
             decide_delete,
             reduce_delete,
             help="Move to Deleted Items; from Deleted Items or Drafts, delete permanently.",
+            page=reading_pane(),
         ),
         "send": Action(
             Compose,
             decide_send,
             reduce_send,
             help="Send a message from the self user (to is required; bcc is kept).",
+            page=compose_page,
         ),
         "save_draft": Action(
             Compose,
             decide_save_draft,
             reduce_save_draft,
             help="Save a draft, or update the draft given by draft_id.",
+            page=compose_page,
         ),
     }
 )

@@ -1,53 +1,65 @@
-"""`tally`: a test-only environment (one event type, one action, one eval table).
+"""`tally`: a test-only environment, installed by tests/settings.py (never in production).
 
-It exists so the engine can be tested end to end without any real environment: scenario
-events `ping {n}` add to a tally, the agent action `poke {n}` adds to it too, and the eval
-table `entries(source, n, at)` lists both.
+It exists so the engine and the generic environment tests (tests/environments/) run end to end
+on something far simpler than a real environment, while touching every part of the interface:
+
+- scenario events `ping {n}` add to the tally; `preload {n, level_waypoints?}` is a ping the
+  task starts with (the core measures the baselines right after it) and may lay out the level's
+  waypoints `[[t, v], …]`; `level {value}` adds a level waypoint at the event's own time;
+- the agent action `poke {n}` adds to the tally too, through the page's Poke form;
+- the `level` moves between waypoints with the clock (a function of state and `now`);
+- eval tables: `entries(source, n, at)` lists pings and pokes, `levels(value)` holds the level
+  at `now`.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+import sqlite3
+from typing import Annotated
 
-from events.registry import Action, Environment, EventType, LoggedEvent, timeless
+from pydantic import Field
+
+from apps.tally.actions import ACTIONS, Count
+from apps.tally.state import TallyState, with_entry, with_level_points
+from events.registry import Environment, EventType, LoggedEvent, timeless
 from events.schemas import Payload
 from events.tables import Table
 
-
-class Count(Payload):
-    n: int
+__all__ = ["TALLY", "TallyState", "tally_scenario"]
 
 
-@dataclass(frozen=True)
-class TallyState:
-    entries: tuple[tuple[str, int, float], ...] = ()
+class Preload(Count):
+    level_waypoints: list[Annotated[list[float], Field(min_length=2, max_length=2)]] = Field(
+        default_factory=list, description="[[time, value], …]: where the level goes, when"
+    )
 
-    @property
-    def total(self) -> int:
-        return sum(n for _, n, _ in self.entries)
+
+class Level(Payload):
+    value: float
 
 
 def reduce_ping(state: TallyState, event: LoggedEvent) -> TallyState:
-    return replace(state, entries=state.entries + (("ping", event.payload["n"], event.at),))
+    return with_entry(state, "ping", event.payload["n"], event.at)
 
 
-def reduce_poke(state: TallyState, event: LoggedEvent) -> TallyState:
-    return replace(state, entries=state.entries + (("poke", event.payload["n"], event.at),))
+def reduce_preload(state: TallyState, event: LoggedEvent) -> TallyState:
+    """A ping, plus the level's waypoints (each by the waypoint insertion rule)."""
+    state = reduce_ping(state, event)
+    return with_level_points(state, event.payload.get("level_waypoints", ()))
 
 
-def decide_poke(state: TallyState, payload: dict) -> dict:
-    from events.registry import ActionRejected
-
-    if payload["n"] <= 0:
-        raise ActionRejected("n must be positive")
-    return payload
+def reduce_level(state: TallyState, event: LoggedEvent) -> TallyState:
+    """A level waypoint at the event's own time: the level heads (or jumps) there."""
+    return with_level_points(state, [(event.at, event.payload["value"])])
 
 
 ENTRIES = Table("entries", ("source TEXT", "n INTEGER", "at REAL"))
+LEVELS = Table("levels", ("value REAL",))
 
 
-def materialize(state: TallyState, now: float, conn) -> None:
+def materialize(state: TallyState, now: float, conn: sqlite3.Connection) -> None:
     ENTRIES.write(conn, state.entries)
+    LEVELS.write(conn, [(state.level_at(now),)])
 
 
 TALLY = Environment(
@@ -55,16 +67,25 @@ TALLY = Environment(
     title="Tally (test environment)",
     initial_state=lambda catalog: TallyState(),
     event_types={
-        # A preload is a ping the task starts with: the core measures the baselines after it.
-        "preload": EventType(schema=Count, reduce=reduce_ping, preload=True),
-        "ping": EventType(schema=Count, reduce=reduce_ping),
+        "preload": EventType(
+            schema=Preload,
+            reduce=reduce_preload,
+            help="The tally the task starts with; baselines are measured after it.",
+            preload=True,
+        ),
+        "ping": EventType(schema=Count, reduce=reduce_ping, help="Add n to the tally."),
+        "level": EventType(
+            schema=Level, reduce=reduce_level, help="A level waypoint at the event's time."
+        ),
     },
-    actions={"poke": Action(schema=Count, decide=decide_poke, reduce=reduce_poke)},
+    actions=ACTIONS,
     baselines={
         "total": timeless(lambda state: state.total),
         "pings": timeless(lambda state: len(state.entries)),
+        "level": lambda state, now: state.level_at(now),
     },
     materialize=materialize,
+    urlconf="apps.tally.urls",
 )
 
 
