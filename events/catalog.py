@@ -71,7 +71,9 @@ def _read_json(path: Path) -> Any:
     try:
         return json.loads(path.read_text(encoding="utf-8"))
     except json.JSONDecodeError as exc:
-        raise CatalogError(f"{path}: invalid JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
+        raise CatalogError(
+            f"{path}: invalid JSON at line {exc.lineno} column {exc.colno}: {exc.msg}"
+        ) from None
 
 
 def _read_jsonl(path: Path) -> dict[str, Mapping[str, Any]]:
@@ -86,7 +88,9 @@ def _read_jsonl(path: Path) -> dict[str, Mapping[str, Any]]:
             except json.JSONDecodeError as exc:
                 raise CatalogError(f"{path}:{number}: invalid JSON: {exc.msg}") from None
             if not isinstance(record, dict):
-                raise CatalogError(f"{path}:{number}: expected a JSON object, got {type(record).__name__}")
+                raise CatalogError(
+                    f"{path}:{number}: expected a JSON object, got {type(record).__name__}"
+                )
             # Records are keyed by `id` (or `symbol` for stocks). A few tables (e.g. the original
             # microgram suggestions) have neither: their 1-based line number keys them, as the
             # original loader's "order" column did.
@@ -105,7 +109,9 @@ def _by_id(records: Any, path: Path) -> dict[str, Mapping[str, Any]]:
 
 def _content_hash(directory: Path) -> str:
     digest = hashlib.sha256()
-    for path in sorted(p for p in directory.rglob("*") if p.is_file() and p.suffix in (".json", ".jsonl")):
+    for path in sorted(
+        p for p in directory.rglob("*") if p.is_file() and p.suffix in (".json", ".jsonl")
+    ):
         digest.update(str(path.relative_to(directory)).encode())
         digest.update(b"\0")
         digest.update(path.read_bytes())

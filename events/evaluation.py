@@ -33,7 +33,9 @@ class Contacts:
 
 def contacts_of(run: Run) -> Contacts:
     rows = list(
-        Event.objects.filter(run_id=run.pk, kind=EventKind.LIFECYCLE, type__in=(CONTACT_GET, CONTACT_POST))
+        Event.objects.filter(
+            run_id=run.pk, kind=EventKind.LIFECYCLE, type__in=(CONTACT_GET, CONTACT_POST)
+        )
         .order_by("seq")
         .values_list("seq", "at", "type", "payload")
     )
@@ -97,7 +99,9 @@ class GradingSnapshot:
         self.environment.materialize(self.state, self.now, conn)
 
 
-def grading_snapshot(run: Run, seq: int | None = None, *, now: float | None = None) -> GradingSnapshot:
+def grading_snapshot(
+    run: Run, seq: int | None = None, *, now: float | None = None
+) -> GradingSnapshot:
     """The run as of log position `seq` (default: all of it), at simulated time `now` (default:
     the run's clock, which a contact or an evaluation has frozen)."""
     folded = folded_state(run, seq)
@@ -138,7 +142,12 @@ def grade(run: Run) -> tuple[bool, str, Contacts, int | None]:
         return False, detail + "; the agent never visited /contact", contacts, graded_at
     if contacts.first_at < condition_at:
         early = to_wall(condition_at - contacts.first_at, run.speed_factor)
-        return False, detail + f"; contacted {early:.2f} s before the condition held", contacts, graded_at
+        return (
+            False,
+            detail + f"; contacted {early:.2f} s before the condition held",
+            contacts,
+            graded_at,
+        )
     return sql_pass, detail, contacts, graded_at
 
 

@@ -101,7 +101,8 @@ def advance(run: Run, to: float) -> FireResult:
         )
     if to < run.sim_time:
         raise LifecycleError(
-            f"time cannot move backwards: the clock is at {run.sim_time:g} s, asked for {to:g} s", 400
+            f"time cannot move backwards: the clock is at {run.sim_time:g} s, asked for {to:g} s",
+            400,
         )
     if not Run.objects.filter(
         pk=run.pk, status__in=CLOCK_STARTABLE, sim_time__lte=to, closed_at__isnull=True
@@ -155,5 +156,7 @@ def status_snapshot(run: Run) -> dict[str, Any]:
 def _next_event_time(run: Run, now: float) -> float | None:
     if run.status == RunStatus.COMPLETED:
         return None
-    upcoming = [e["time"] for e in run.timeline if e["time"] > now and e["time"] <= run.event_timeline_end]
+    upcoming = [
+        e["time"] for e in run.timeline if e["time"] > now and e["time"] <= run.event_timeline_end
+    ]
     return upcoming[0] if upcoming else None

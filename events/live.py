@@ -235,8 +235,13 @@ class LiveUpdate:
 
     def message(self) -> dict:
         # "html" last: bench_live reads the header of a frame without parsing the HTML.
-        return {"type": "regions", "url": self.url, "seq": self.seq,
-                "next_change": self.next_change, "html": self.html}
+        return {
+            "type": "regions",
+            "url": self.url,
+            "seq": self.seq,
+            "next_change": self.next_change,
+            "html": self.html,
+        }
 
     @cached_property
     def text(self) -> str:
@@ -257,8 +262,13 @@ def render_update(run: Run, url: str, host: str = "testserver") -> LiveUpdate:
     if page is not None:
         seq = max(seq, page.live_seq)  # the render may have fired what was due itself
     html = "\n".join(compact(outer) for _, outer in regions)
-    return LiveUpdate(url=url, seq=seq, html=without_csrf_tokens(html),
-                      next_change=getattr(page, "next_change", None), regions=regions)
+    return LiveUpdate(
+        url=url,
+        seq=seq,
+        html=without_csrf_tokens(html),
+        next_change=getattr(page, "next_change", None),
+        regions=regions,
+    )
 
 
 # One render per (run, URL, log position, clock window) for the whole process: sockets on the

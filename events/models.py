@@ -74,7 +74,9 @@ class Run(models.Model):
     speed_factor = models.FloatField(default=1.0)
     clock_mode = models.CharField(max_length=16, choices=ClockMode.choices, default=ClockMode.LIVE)
     status = models.CharField(max_length=32, choices=RunStatus.choices, default=RunStatus.READY)
-    started_at = models.FloatField(null=True, blank=True, help_text="wall epoch seconds at sim time 0")
+    started_at = models.FloatField(
+        null=True, blank=True, help_text="wall epoch seconds at sim time 0"
+    )
     sim_time = models.FloatField(
         default=0.0, help_text="virtual clock value; the frozen time once completed"
     )

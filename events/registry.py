@@ -145,7 +145,9 @@ class Environment:
         return state
 
     def measure_baselines(self, state: State, now: float) -> Mapping[str, float | int]:
-        return MappingProxyType({name: measure(state, now) for name, measure in self.baselines.items()})
+        return MappingProxyType(
+            {name: measure(state, now) for name, measure in self.baselines.items()}
+        )
 
     def captures_baselines(self, event: LoggedEvent) -> bool:
         event_type = self.event_types.get(event.type) if event.kind == "scenario" else None

@@ -90,7 +90,7 @@ def run_eval_sql(
             elif "not authorized" in message:
                 message = "not authorized: eval_sql may only read (no writes, ATTACH or PRAGMA)"
             return SqlOutcome(False, error=f"eval_sql error: {message}")
-        except Exception as exc:  # noqa: BLE001 - never let a query take the server down
+        except Exception as exc:  # never let a query take the server down
             return SqlOutcome(False, error=f"eval_sql error: {exc}")
         return SqlOutcome(True, value=None if row is None else row[0])
     finally:

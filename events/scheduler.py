@@ -50,7 +50,9 @@ def live_runs():
     """Runs whose live clock is running: what every ticker backend watches.
 
     The scenario column is deferred: Run.spec serves it from a per-process cache."""
-    return Run.objects.filter(status=RunStatus.RUNNING_AUTO, closed_at__isnull=True).defer("scenario")
+    return Run.objects.filter(status=RunStatus.RUNNING_AUTO, closed_at__isnull=True).defer(
+        "scenario"
+    )
 
 
 def fired_through(run: Run) -> int:

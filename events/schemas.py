@@ -89,7 +89,7 @@ def describe(annotation: Any) -> str:
         return "one of: " + ", ".join(map(str, args))
     if _is_union(annotation):
         others = [describe(arg) for arg in args if arg is not type(None)]
-        return " or ".join(others + ["null"] if len(others) < len(args) else others)
+        return " or ".join([*others, "null"] if len(others) < len(args) else others)
     if origin is list:
         return f"list of {_plural(args[0])}" if args else "list"
     if origin is dict:

@@ -39,7 +39,10 @@ def _insert_at_next_seq(run_id: int, values: dict[str, Any]) -> Event:
     fields = [Event._meta.get_field(name) for name in values]
     quote = connection.ops.quote_name
     columns = ", ".join(quote(field.column) for field in fields)
-    params = [field.get_db_prep_save(value, connection) for field, value in zip(fields, values.values())]
+    params = [
+        field.get_db_prep_save(value, connection)
+        for field, value in zip(fields, values.values(), strict=True)
+    ]
     table = quote(Event._meta.db_table)
     sql = (
         f"INSERT INTO {table} ({columns}, {quote('seq')}) "
@@ -95,10 +98,13 @@ def append_event(
         try:
             return _attempt_append(run_id, values, queue=queue)
         except IntegrityError:
-            if timeline_index is not None and Event.objects.filter(
-                run_id=run_id, timeline_index=timeline_index
-            ).exists():
-                raise TimelineEntryAlreadyFired(f"timeline entry {timeline_index} already fired") from None
+            if (
+                timeline_index is not None
+                and Event.objects.filter(run_id=run_id, timeline_index=timeline_index).exists()
+            ):
+                raise TimelineEntryAlreadyFired(
+                    f"timeline entry {timeline_index} already fired"
+                ) from None
             queue = connection.features.has_select_for_update
             continue  # someone else took this seq: read again and retry
     raise AppendConflict(f"could not append to run {run_id} after {MAX_ATTEMPTS} attempts")

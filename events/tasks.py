@@ -27,7 +27,9 @@ def fire_run(run_id: int) -> None:
     if run is None:
         return
     result = fire_due(run)
-    _schedule(run, result.next_index)  # chain to the next entry: precise timing without a fast heartbeat
+    _schedule(
+        run, result.next_index
+    )  # chain to the next entry: precise timing without a fast heartbeat
 
 
 @shared_task(name="events.heartbeat", ignore_result=True)

@@ -11,6 +11,7 @@ before every read keeps state exact even when the ticker is late or absent.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import math
 import threading
@@ -108,10 +109,8 @@ class InProcessTicker:
     async def stop(self) -> None:
         if self._task is not None:
             self._task.cancel()
-            try:
+            with contextlib.suppress(asyncio.CancelledError):
                 await self._task
-            except asyncio.CancelledError:
-                pass
         self._task = None
 
     async def _run_forever(self) -> None:
@@ -126,10 +125,8 @@ class InProcessTicker:
                 log.exception("ticker step failed")
                 delay = MAX_SLEEP_S
             self._wakeup.clear()
-            try:
+            with contextlib.suppress(TimeoutError):
                 await asyncio.wait_for(self._wakeup.wait(), timeout=delay)
-            except TimeoutError:
-                pass
 
     def _tick_once(self) -> float:
         close_old_connections()

@@ -27,7 +27,9 @@ def validate_speed_factor(value: float) -> float:
     except (TypeError, ValueError):
         raise SpeedFactorError(f"speed_factor must be a number, got {value!r}") from None
     if not value > 0:  # also rejects NaN
-        raise SpeedFactorError(f"speed_factor must be positive (0 < speed_factor <= {MAX_SPEED_FACTOR}), got {value}")
+        raise SpeedFactorError(
+            f"speed_factor must be positive (0 < speed_factor <= {MAX_SPEED_FACTOR}), got {value}"
+        )
     if value > MAX_SPEED_FACTOR:
         raise SpeedFactorError(
             f"speed_factor {value} is above MAX_SPEED_FACTOR ({MAX_SPEED_FACTOR}); allowed: 0 < speed_factor <= {MAX_SPEED_FACTOR}"

@@ -6,7 +6,7 @@ import sys
 
 os.environ.setdefault("DJANGO_SETTINGS_MODULE", "sentinel_site.settings")
 
-from sentinel_site.config import ConfigError  # noqa: E402
+from sentinel_site.config import ConfigError
 
 try:
     import django
@@ -19,13 +19,13 @@ except ConfigError as exc:  # one clear line, no traceback
     print(f"configuration error: {exc}", file=sys.stderr)
     raise SystemExit(2) from None
 
-from channels.routing import ProtocolTypeRouter, URLRouter  # noqa: E402
-from channels.security.websocket import AllowedHostsOriginValidator  # noqa: E402
-from django.conf import settings  # noqa: E402
-from django.contrib.staticfiles.handlers import ASGIStaticFilesHandler  # noqa: E402
+from channels.routing import ProtocolTypeRouter, URLRouter
+from channels.security.websocket import AllowedHostsOriginValidator
+from django.conf import settings
+from django.contrib.staticfiles.handlers import ASGIStaticFilesHandler
 
-from sentinel_site.routing import websocket_urlpatterns  # noqa: E402
-from events.ticker import ticker  # noqa: E402
+from events.ticker import ticker
+from sentinel_site.routing import websocket_urlpatterns
 
 # Everything imported so far lives as long as the server: keep the cyclic collector from
 # walking it on every full collection (those walks were the long tail of push latency).

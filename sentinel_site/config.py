@@ -109,4 +109,6 @@ def database_from_url(name: str, url: str, *, base: Path) -> dict:
             "CONN_HEALTH_CHECKS": True,  # a server restarted under us costs one retry, not a 500
             "TEST": {"NAME": f"test_{db_name}_{os.getpid()}"},
         }
-    raise ConfigError(f"{name}={url!r} has scheme {parts.scheme!r}; allowed: sqlite://, postgres://")
+    raise ConfigError(
+        f"{name}={url!r} has scheme {parts.scheme!r}; allowed: sqlite://, postgres://"
+    )

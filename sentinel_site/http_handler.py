@@ -27,9 +27,8 @@ contact counts from when the agent made it (apps/agent_site/pages.py `arrival_wa
 from __future__ import annotations
 
 import asyncio
-from concurrent.futures import ThreadPoolExecutor
-
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 from asgiref.sync import ThreadSensitiveContext, sync_to_async
 from django.core.handlers import base

@@ -81,7 +81,11 @@ TEMPLATES = [
 DATABASES = {
     "default": database_from_url(
         "DATABASE_URL",
-        env_url("DATABASE_URL", "sqlite:///var/sentinel.sqlite3", schemes=("sqlite", "postgres", "postgresql")),
+        env_url(
+            "DATABASE_URL",
+            "sqlite:///var/sentinel.sqlite3",
+            schemes=("sqlite", "postgres", "postgresql"),
+        ),
         base=BASE_DIR,
     )
 }

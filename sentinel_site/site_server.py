@@ -87,8 +87,10 @@ def site_server(
     env = dict(
         os.environ,
         DATABASE_URL=database_url or current_database_url(),
-        # This process's settings module (the test suite's adds the `tally` environment).
-        DJANGO_SETTINGS_MODULE=settings.SETTINGS_MODULE,
+        # This process's settings module (the test suite's adds the `tally` environment);
+        # overridden settings (tests) do not know their module, the environment does.
+        DJANGO_SETTINGS_MODULE=settings.SETTINGS_MODULE
+        or os.environ.get("DJANGO_SETTINGS_MODULE", "sentinel_site.settings"),
         SENTINEL_SCENARIO_DIR=str(settings.SENTINEL_SCENARIO_DIR),
         SENTINEL_CATALOG_DIR=str(settings.SENTINEL_CATALOG_DIR),
         **(extra_env or {}),

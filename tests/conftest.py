@@ -8,9 +8,9 @@ import pytest
 from django.conf import settings
 
 from apps.scenarios.format import parse_scenario
+from apps.tally.environment import TALLY, tally_scenario
 from events import registry
 from events.projection import clear_cache
-from apps.tally.environment import TALLY, tally_scenario
 
 REPO = Path(__file__).resolve().parents[1]
 UPSTREAM = REPO.parent / "shared" / "upstream"
@@ -104,8 +104,14 @@ def live_site(transactional_db):
         yield base_url
 
 
-CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync"]
+CHROMIUM_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
 
 
 @pytest.fixture

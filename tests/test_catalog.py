@@ -18,7 +18,10 @@ def test_wildcard_expands_to_every_id_in_catalog_order(settings):
     catalog = read_catalog(settings.SENTINEL_CATALOG_DIR)
     every = catalog.expand("micromail", "emails", ["*"])
     assert every == list(catalog.table("micromail", "emails"))
-    assert catalog.expand("micromail", "emails", ["*", "base-01"]) == ["*", "base-01"]  # mixed: not expanded
+    assert catalog.expand("micromail", "emails", ["*", "base-01"]) == [
+        "*",
+        "base-01",
+    ]  # mixed: not expanded
 
 
 @pytest.mark.upstream
@@ -39,9 +42,14 @@ def test_the_content_hash_changes_with_the_content(tmp_path):
     assert read_catalog(tmp_path).content_hash != first.content_hash
 
 
-@pytest.mark.parametrize("content,needle", [('{"id": "a"}\nnot json\n', ":2: invalid JSON"),
-                                            ('{"id": "a"}\n{"id": "a"}\n', "duplicate id"),
-                                            ('[1, 2]\n', "expected a JSON object")])
+@pytest.mark.parametrize(
+    "content,needle",
+    [
+        ('{"id": "a"}\nnot json\n', ":2: invalid JSON"),
+        ('{"id": "a"}\n{"id": "a"}\n', "duplicate id"),
+        ("[1, 2]\n", "expected a JSON object"),
+    ],
+)
 def test_bad_catalog_lines_name_the_file_and_line(tmp_path, content, needle):
     (tmp_path / "mail").mkdir()
     (tmp_path / "mail" / "emails.jsonl").write_text(content)

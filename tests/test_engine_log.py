@@ -55,7 +55,9 @@ def test_two_concurrent_writers_append_a_gap_free_sequence(tally_spec):
 
     def writer(index: int) -> None:
         for n in range(500):
-            append_event(run.pk, EventKind.ACTION, "poke", {"n": 1, "writer": index, "i": n}, at=0.0)
+            append_event(
+                run.pk, EventKind.ACTION, "poke", {"n": 1, "writer": index, "i": n}, at=0.0
+            )
 
     _in_threads(2, writer)
     seqs = list(Event.objects.filter(run=run).order_by("seq").values_list("seq", flat=True))
@@ -71,7 +73,10 @@ def test_a_busy_timeline_fires_every_entry_exactly_once_under_contention(tally_s
 
     def contender(index: int) -> None:
         if index == 0:
-            while not stop.is_set() and Event.objects.filter(run=run, timeline_index__isnull=False).count() < 200:
+            while (
+                not stop.is_set()
+                and Event.objects.filter(run=run, timeline_index__isnull=False).count() < 200
+            ):
                 tick()
         else:
             for _ in range(30):
@@ -79,20 +84,26 @@ def test_a_busy_timeline_fires_every_entry_exactly_once_under_contention(tally_s
 
     _in_threads(5, contender)
     stop.set()
-    fired = list(Event.objects.filter(run=run, kind=EventKind.SCENARIO).values_list("timeline_index", flat=True))
+    fired = list(
+        Event.objects.filter(run=run, kind=EventKind.SCENARIO).values_list(
+            "timeline_index", flat=True
+        )
+    )
     assert sorted(fired) == list(range(200))
 
 
 def test_the_cached_fold_equals_a_fold_from_scratch_at_every_seq(tally_spec):
-    run = create_run(tally_spec(pings=[(t, 1) for t in range(0, 60, 3)]), clock_mode=ClockMode.VIRTUAL)
+    run = create_run(
+        tally_spec(pings=[(t, 1) for t in range(0, 60, 3)]), clock_mode=ClockMode.VIRTUAL
+    )
     for step in range(1, 60, 7):
         advance(run, float(step))
         append_event(run, EventKind.ACTION, "poke", {"n": step}, at=float(step))
     last = Event.objects.filter(run=run).count()
-    for seq in range(0, last + 1):
+    for seq in range(last + 1):
         assert state_at(run, seq) == fold_from_scratch(run, seq).state
     # Walking forward one seq at a time exercises the fast-forward path of the cache.
-    for seq in range(0, last + 1):
+    for seq in range(last + 1):
         assert state_at(run, seq).entries == fold_from_scratch(run, seq).state.entries
     assert state_at(run) == fold_from_scratch(run).state
 
@@ -105,8 +116,9 @@ def test_append_is_callable_from_async_code(tally_spec):
     run = create_run(tally_spec(pings=[]), clock_mode=ClockMode.VIRTUAL)
 
     async def agent() -> list[int]:
-        events = await asyncio.gather(*(aappend_event(run.pk, EventKind.ACTION, "poke", {"n": 1}, at=0.0)
-                                        for _ in range(10)))
+        events = await asyncio.gather(
+            *(aappend_event(run.pk, EventKind.ACTION, "poke", {"n": 1}, at=0.0) for _ in range(10))
+        )
         return sorted(e.seq for e in events)
 
     seqs = asyncio.run(agent())
@@ -116,10 +128,19 @@ def test_append_is_callable_from_async_code(tally_spec):
 
 def test_an_appended_event_comes_back_as_stored_and_cannot_be_saved_again(tally_spec):
     run = create_run(tally_spec(pings=[]), clock_mode=ClockMode.VIRTUAL)
-    event = append_event(run, EventKind.ACTION, "poke", {"n": 2, "note": "ü"}, at=1.5, recorded_at=7.0)
+    event = append_event(
+        run, EventKind.ACTION, "poke", {"n": 2, "note": "ü"}, at=1.5, recorded_at=7.0
+    )
     stored = Event.objects.get(pk=event.pk)
-    assert (stored.seq, stored.run_id, stored.at, stored.kind, stored.type, stored.payload,
-            stored.recorded_at) == (event.seq, run.pk, 1.5, "action", "poke", {"n": 2, "note": "ü"}, 7.0)
+    assert (
+        stored.seq,
+        stored.run_id,
+        stored.at,
+        stored.kind,
+        stored.type,
+        stored.payload,
+        stored.recorded_at,
+    ) == (event.seq, run.pk, 1.5, "action", "poke", {"n": 2, "note": "ü"}, 7.0)
     assert event.seq == Event.objects.filter(run=run).count()
     with pytest.raises(PermissionError):
         event.save()  # it is a logged row, not a new one

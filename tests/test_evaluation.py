@@ -99,7 +99,9 @@ def test_noop_passes_without_contact_and_fails_with_it(tally_spec):
 
 
 def test_noop_with_eval_sql_also_needs_the_sql_to_hold(tally_spec):
-    run = manual_run(tally_spec, condition_at=None, eval_sql="SELECT COUNT(*) = 0 FROM entries WHERE n > 100")
+    run = manual_run(
+        tally_spec, condition_at=None, eval_sql="SELECT COUNT(*) = 0 FROM entries WHERE n > 100"
+    )
     lifecycle.advance(run, 630)
     assert evaluate(run).success is True
 

@@ -16,7 +16,9 @@ def api():
 
 
 def init_body(**overrides) -> dict:
-    scenario = tally_scenario(**{k: v for k, v in overrides.items() if k in ("condition_at", "pings", "eval_sql")})
+    scenario = tally_scenario(
+        **{k: v for k, v in overrides.items() if k in ("condition_at", "pings", "eval_sql")}
+    )
     body = {
         "environment": "tally",
         "event_timeline_end": scenario["event_timeline_end"],
@@ -25,7 +27,9 @@ def init_body(**overrides) -> dict:
         "events": scenario["events"],
         "start_page": scenario["start_page"],
     }
-    body.update({k: v for k, v in overrides.items() if k not in ("condition_at", "pings", "eval_sql")})
+    body.update(
+        {k: v for k, v in overrides.items() if k not in ("condition_at", "pings", "eval_sql")}
+    )
     return body
 
 
@@ -35,14 +39,26 @@ def status_of(api) -> str:
 
 def test_status_starts_in_preinit_and_close_is_idempotent(api):
     assert api.get("/status").json() == {
-        "success": True, "status": "preinit", "simulation_time": 0, "next_event_time": None,
+        "success": True,
+        "status": "preinit",
+        "simulation_time": 0,
+        "next_event_time": None,
     }
     assert api.get("/close").json() == {"success": True, "status": "preinit"}
 
 
-@pytest.mark.parametrize("method,path", [("get", "/advance?time=1"), ("get", "/play"), ("get", "/redirect"),
-                                         ("get", "/contact"), ("post", "/contact"), ("post", "/evaluate"),
-                                         ("get", "/data/config")])
+@pytest.mark.parametrize(
+    "method,path",
+    [
+        ("get", "/advance?time=1"),
+        ("get", "/play"),
+        ("get", "/redirect"),
+        ("get", "/contact"),
+        ("post", "/contact"),
+        ("post", "/evaluate"),
+        ("get", "/data/config"),
+    ],
+)
 def test_every_session_endpoint_is_409_before_init(api, method, path):
     response = getattr(api, method)(path)
     assert response.status_code == 409
@@ -66,8 +82,10 @@ def test_init_rejects_an_unknown_environment_listing_the_valid_names(api):
     assert status_of(api) == "preinit"
 
 
-@pytest.mark.parametrize("speed_factor,needle", [(0, "must be positive"), (-1, "must be positive"),
-                                                 (8, "above MAX_SPEED_FACTOR")])
+@pytest.mark.parametrize(
+    "speed_factor,needle",
+    [(0, "must be positive"), (-1, "must be positive"), (8, "above MAX_SPEED_FACTOR")],
+)
 def test_init_rejects_speed_factors_outside_the_limits(api, speed_factor, needle):
     response = api.post("/init", init_body(speed_factor=speed_factor), format="json")
     assert response.status_code == 422

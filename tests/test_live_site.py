@@ -12,9 +12,12 @@ pytestmark = pytest.mark.browser
 
 def test_a_real_browser_reaches_a_run_contact_page(live_site, browser):
     request = urllib.request.Request(
-        f"{live_site}/api/runs/", data=json.dumps({"scenario": "micromail-sender-absolute-passive",
-                                                  "clock_mode": "virtual"}).encode(),
-        headers={"Content-Type": "application/json"}, method="POST",
+        f"{live_site}/api/runs/",
+        data=json.dumps(
+            {"scenario": "micromail-sender-absolute-passive", "clock_mode": "virtual"}
+        ).encode(),
+        headers={"Content-Type": "application/json"},
+        method="POST",
     )
     with urllib.request.urlopen(request, timeout=10) as response:
         run = json.load(response)

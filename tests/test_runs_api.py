@@ -9,8 +9,8 @@ import pytest
 from django.db import close_old_connections
 from rest_framework.test import APIClient
 
-from events.models import Event, EventKind, Run
 from apps.tally.environment import tally_scenario
+from events.models import Event, EventKind, Run
 
 pytestmark = pytest.mark.django_db
 
@@ -34,7 +34,9 @@ def test_create_get_advance_evaluate_close(api):
     assert run["contact_url"].endswith(f"/r/{run['token']}/contact")
     advanced = api.post(f"/api/runs/{run['id']}/advance/", {"time": 31}, format="json").json()
     assert [e["time"] for e in advanced["processed_events"]] == [10.0, 30.0]
-    assert api.post(f"/api/runs/{run['id']}/advance/", {"time": 3}, format="json").status_code == 400
+    assert (
+        api.post(f"/api/runs/{run['id']}/advance/", {"time": 3}, format="json").status_code == 400
+    )
     assert api.get(f"/r/{run['token']}/contact").status_code == 200
     verdict = api.post(f"/api/runs/{run['id']}/evaluate/").json()
     assert verdict["success"] is True and verdict["run"] == run["id"]
@@ -102,7 +104,11 @@ def test_twenty_concurrent_runs_are_isolated(api):
             client = APIClient()
             client.post(f"/api/runs/{run['id']}/advance/", {"time": 40}, format="json")
             if run is chosen:
-                client.post(f"/r/{run['token']}/actions", {"action": "poke", "payload": {"n": 1}}, format="json")
+                client.post(
+                    f"/r/{run['token']}/actions",
+                    {"action": "poke", "payload": {"n": 1}},
+                    format="json",
+                )
             client.get(f"/r/{run['token']}/contact")
         except BaseException as exc:
             errors.append(exc)
@@ -126,11 +132,20 @@ def test_twenty_concurrent_runs_are_isolated(api):
 def test_control_token_guards_control_endpoints_but_not_agent_urls(api, settings):
     run = create(api, clock_mode="virtual")
     settings.SENTINEL_CONTROL_TOKEN = "s3cret"
-    for method, path in [("get", "/api/runs/"), ("post", f"/api/runs/{run['id']}/evaluate/"),
-                         ("get", "/status"), ("post", "/init"), ("get", "/close"), ("post", "/evaluate"),
-                         ("post", "/dev_init?environment=tally"), ("get", "/api/schema/")]:
+    for method, path in [
+        ("get", "/api/runs/"),
+        ("post", f"/api/runs/{run['id']}/evaluate/"),
+        ("get", "/status"),
+        ("post", "/init"),
+        ("get", "/close"),
+        ("post", "/evaluate"),
+        ("post", "/dev_init?environment=tally"),
+        ("get", "/api/schema/"),
+    ]:
         assert getattr(api, method)(path).status_code == 403, path
-        assert getattr(api, method)(path, HTTP_AUTHORIZATION="Bearer wrong").status_code == 403, path
+        assert getattr(api, method)(path, HTTP_AUTHORIZATION="Bearer wrong").status_code == 403, (
+            path
+        )
     assert api.get("/api/runs/", HTTP_AUTHORIZATION="Bearer s3cret").status_code == 200
     assert api.get("/status", HTTP_X_SENTINEL_TOKEN="s3cret").status_code == 200
     # Agent-facing URLs still work without it.
@@ -146,14 +161,20 @@ def test_openapi_schema_is_served(api):
 
 @pytest.mark.django_db(transaction=True)
 def test_the_ticker_fires_a_live_run_without_any_request(api, running_ticker):
-    run = create(api, scenario_json=tally_scenario(pings=[(0.0, 1), (0.4, 1), (1.2, 1)], condition_at=1.2),
-                 speed_factor=1.0)
+    run = create(
+        api,
+        scenario_json=tally_scenario(pings=[(0.0, 1), (0.4, 1), (1.2, 1)], condition_at=1.2),
+        speed_factor=1.0,
+    )
     api.post(f"/api/runs/{run['id']}/start/")
     deadline = time.monotonic() + 10
     fired = []
     while time.monotonic() < deadline and len(fired) < 2:
         time.sleep(0.05)
-        fired = list(Event.objects.filter(run_id=run["id"], kind=EventKind.SCENARIO, lateness_ms__isnull=False)
-                     .values_list("timeline_index", flat=True))
+        fired = list(
+            Event.objects.filter(
+                run_id=run["id"], kind=EventKind.SCENARIO, lateness_ms__isnull=False
+            ).values_list("timeline_index", flat=True)
+        )
     # Fired by the ticker alone (no request touched the run), each exactly once, in order.
     assert fired == [1, 2]

@@ -145,21 +145,38 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             # Set only by the staff-only admin viewer (apps.replay), never by a /r/ URL.
             if request.method != "GET":
                 return HttpResponseNotAllowed(["GET"])
-            page = Page(request=request, run=past.run, state=state_at(past.run, past.seq),
-                        now=past.at, read_only=True, base=past.root)
+            page = Page(
+                request=request,
+                run=past.run,
+                state=state_at(past.run, past.seq),
+                now=past.at,
+                read_only=True,
+                base=past.root,
+            )
             request.sentinel_page = page
             return view(request, page, *args, **kwargs)
         run = run_for_token(token)
         wall = arrival_wall(request)  # the one clock reading of this request
         folded = current_folded(run, wall=wall, reload=False)  # the run was read just now
         live = bool(getattr(request, "sentinel_live", False))
-        page = Page(request=request, run=run, state=folded.state, now=sim_now(run, wall),
-                    wall=wall, live=live, live_seq=folded.live_seq)
+        page = Page(
+            request=request,
+            run=run,
+            state=folded.state,
+            now=sim_now(run, wall),
+            wall=wall,
+            live=live,
+            live_seq=folded.live_seq,
+        )
         request.sentinel_page = page  # what a live render reads back (events.live)
         try:
             if request.method == "GET" and not live:
-                record_view(run, request.get_full_path(), at=page.now,
-                            partial=bool(getattr(request, "htmx", False)))
+                record_view(
+                    run,
+                    request.get_full_path(),
+                    at=page.now,
+                    partial=bool(getattr(request, "htmx", False)),
+                )
             perform_implicit_actions(request, page, kwargs)
             return view(request, page, *args, **kwargs)
         except ActionRejected as exc:

@@ -43,8 +43,13 @@ def choice(
     """One of `allowed`. `always`: kept in the URL even at its default; `not_found`: an unknown
     value is a missing page (404), not a bad request; `requires`: left out unless that field is
     set (a search scope means nothing without a search)."""
-    meta = {"kind": "choice", "allowed": allowed, "always": always, "not_found": not_found,
-            "requires": requires}
+    meta = {
+        "kind": "choice",
+        "allowed": allowed,
+        "always": always,
+        "not_found": not_found,
+        "requires": requires,
+    }
     return dataclasses.field(default=default, metadata=meta)
 
 

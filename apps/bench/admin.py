@@ -13,14 +13,25 @@ from apps.bench.models import BenchmarkRun, TaskResult
 def _run_link(result: TaskResult) -> str:
     if result.run_id is None:
         return "—"
-    return format_html('<a href="{}">run {}</a>', reverse("admin:events_run_change", args=[result.run_id]),
-                       result.run_id)
+    return format_html(
+        '<a href="{}">run {}</a>',
+        reverse("admin:events_run_change", args=[result.run_id]),
+        result.run_id,
+    )
 
 
 class TaskResultInline(admin.TabularInline):
     model = TaskResult
-    fields = ("scenario_id", "environment", "category", "success", "reaction_time", "cost_usd", "run_link",
-              "error")
+    fields = (
+        "scenario_id",
+        "environment",
+        "category",
+        "success",
+        "reaction_time",
+        "cost_usd",
+        "run_link",
+        "error",
+    )
     readonly_fields = fields
     extra = 0
     can_delete = False
@@ -36,15 +47,35 @@ class TaskResultInline(admin.TabularInline):
 
 @admin.register(BenchmarkRun)
 class BenchmarkRunAdmin(admin.ModelAdmin):
-    list_display = ("name", "agent", "speed_factor", "started_at", "finished_at", "task_count", "passed")
+    list_display = (
+        "name",
+        "agent",
+        "speed_factor",
+        "started_at",
+        "finished_at",
+        "task_count",
+        "passed",
+    )
     search_fields = ("name",)
     list_filter = ("agent", "speed_factor")
-    readonly_fields = ("name", "config", "agent", "speed_factor", "results_dir", "started_at", "finished_at")
+    readonly_fields = (
+        "name",
+        "config",
+        "agent",
+        "speed_factor",
+        "results_dir",
+        "started_at",
+        "finished_at",
+    )
     inlines = [TaskResultInline]
 
     def get_queryset(self, request):
-        return super().get_queryset(request).annotate(
-            n_tasks=Count("tasks"), n_passed=Count("tasks", filter=Q(tasks__success=True))
+        return (
+            super()
+            .get_queryset(request)
+            .annotate(
+                n_tasks=Count("tasks"), n_passed=Count("tasks", filter=Q(tasks__success=True))
+            )
         )
 
     @admin.display(description="tasks", ordering="n_tasks")
@@ -58,8 +89,17 @@ class BenchmarkRunAdmin(admin.ModelAdmin):
 
 @admin.register(TaskResult)
 class TaskResultAdmin(admin.ModelAdmin):
-    list_display = ("scenario_id", "benchmark", "environment", "category", "success", "reaction_time",
-                    "cost_usd", "run_link", "has_error")
+    list_display = (
+        "scenario_id",
+        "benchmark",
+        "environment",
+        "category",
+        "success",
+        "reaction_time",
+        "cost_usd",
+        "run_link",
+        "has_error",
+    )
     list_filter = ("benchmark", "environment", "category", "success")
     search_fields = ("scenario_id", "benchmark__name")
     readonly_fields = [f.name for f in TaskResult._meta.fields] + ["run_link"]

@@ -33,7 +33,9 @@ def get(url: str) -> str:
 
 
 def post(url: str, data: bytes, content_type: str) -> str:
-    request = urllib.request.Request(url, data=data, headers={"Content-Type": content_type}, method="POST")
+    request = urllib.request.Request(
+        url, data=data, headers={"Content-Type": content_type}, method="POST"
+    )
     with urllib.request.urlopen(request, timeout=HTTP_TIMEOUT_S) as response:
         return response.read().decode("utf-8", "replace")
 
@@ -44,7 +46,11 @@ def log(message: str) -> None:
 
 def contact(contact_url: str, message: str) -> None:
     get(contact_url)
-    post(contact_url, urllib.parse.urlencode({"message": message}).encode(), "application/x-www-form-urlencoded")
+    post(
+        contact_url,
+        urllib.parse.urlencode({"message": message}).encode(),
+        "application/x-www-form-urlencoded",
+    )
     log("contacted the user")
 
 
@@ -70,7 +76,9 @@ def main(argv: list[str] | None = None) -> int:
     started = time.monotonic()
     log(f"{args.agent}: opened the task")
     actions_url = args.contact_url.rsplit("/", 1)[0] + "/actions"
-    condition = None if args.condition_at.lower() in ("none", "null", "") else float(args.condition_at)
+    condition = (
+        None if args.condition_at.lower() in ("none", "null", "") else float(args.condition_at)
+    )
 
     if args.agent == "early":
         contact(args.contact_url, "done")

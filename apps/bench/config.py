@@ -19,8 +19,17 @@ import yaml
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
 
 KNOWN_KEYS = (
-    "server_url", "frontend_url", "speed_factor", "agent_subprocess", "parallel", "prices",
-    "reaction_window", "grace", "control_token", "http_timeout", "api_url",
+    "server_url",
+    "frontend_url",
+    "speed_factor",
+    "agent_subprocess",
+    "parallel",
+    "prices",
+    "reaction_window",
+    "grace",
+    "control_token",
+    "http_timeout",
+    "api_url",
 )
 DEFAULT_GRACE = 90.0  # wall seconds an agent gets to exit once its run is completed (upstream)
 
@@ -69,7 +78,7 @@ class BenchConfig:
             return None
         price = self.prices.get(str(costs.get("model", "")))
         tokens_in, tokens_out = input_tokens(costs), output_tokens(costs)
-        if price is None or tokens_in is None and tokens_out is None:
+        if price is None or (tokens_in is None and tokens_out is None):
             return None
         return ((tokens_in or 0) * price.input + (tokens_out or 0) * price.output) / 1e6
 
@@ -91,7 +100,7 @@ def _positive(data: dict, key: str, default: float, source: str, *, integer: boo
     ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
     if integer:
         ok = ok and float(value).is_integer()
-    if not ok or value <= 0 and key != "grace" or value < 0:
+    if not ok or (value <= 0 and key != "grace") or value < 0:
         kind = "a positive integer" if integer else "a positive number"
         raise ConfigError(f"{source}: {key}: must be {kind}, got {value!r}")
     return int(value) if integer else float(value)
@@ -109,7 +118,9 @@ def _url(data: dict, key: str, source: str) -> str | None:
 def _prices(data: dict, source: str) -> dict[str, Price]:
     raw = data.get("prices") or {}
     if not isinstance(raw, dict):
-        raise ConfigError(f"{source}: prices: must be a mapping model -> {{input, output}} (USD per 1M tokens)")
+        raise ConfigError(
+            f"{source}: prices: must be a mapping model -> {{input, output}} (USD per 1M tokens)"
+        )
     prices = {}
     for model, entry in raw.items():
         if not isinstance(entry, dict) or set(entry) - {"input", "output"}:
@@ -120,7 +131,9 @@ def _prices(data: dict, source: str) -> dict[str, Price]:
         for side in ("input", "output"):
             v = entry.get(side, 0)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or v < 0:
-                raise ConfigError(f"{source}: prices.{model}.{side}: must be a number >= 0, got {v!r}")
+                raise ConfigError(
+                    f"{source}: prices.{model}.{side}: must be a number >= 0, got {v!r}"
+                )
             values[side] = float(v)
         prices[str(model)] = Price(**values)
     return prices
@@ -137,13 +150,19 @@ def parse_config(data: Any, *, source: str = "config", require_agent: bool = Tru
     agent = data.get("agent_subprocess")
     if agent is None:
         if require_agent:
-            raise ConfigError(f"{source}: agent_subprocess: is required (a list of arguments or a shell string)")
+            raise ConfigError(
+                f"{source}: agent_subprocess: is required (a list of arguments or a shell string)"
+            )
     elif isinstance(agent, list):
         if not agent or not all(isinstance(a, (str, int, float)) for a in agent):
-            raise ConfigError(f"{source}: agent_subprocess: a list must hold at least one string argument")
+            raise ConfigError(
+                f"{source}: agent_subprocess: a list must hold at least one string argument"
+            )
         agent = [str(a) for a in agent]
     elif not isinstance(agent, str) or not agent.strip():
-        raise ConfigError(f"{source}: agent_subprocess: must be a list of arguments or a non-empty shell string")
+        raise ConfigError(
+            f"{source}: agent_subprocess: must be a list of arguments or a non-empty shell string"
+        )
     try:
         speed_factor = validate_speed_factor(data.get("speed_factor", 1.0))
     except SpeedFactorError as exc:

@@ -18,8 +18,17 @@ from typing import Any
 from apps.bench.config import BenchConfig, input_tokens, output_tokens
 from apps.bench.runner import COSTS, ERROR, RESULTS, BenchError
 
-COLUMNS = ("name", "evaluation_time", "success", "stop_time", "condition_at", "reaction_time",
-           "prompt_tokens", "completion_tokens", "tool_calls")
+COLUMNS = (
+    "name",
+    "evaluation_time",
+    "success",
+    "stop_time",
+    "condition_at",
+    "reaction_time",
+    "prompt_tokens",
+    "completion_tokens",
+    "tool_calls",
+)
 GROUPS = ("overall", "noop", "passive", "active", "absolute", "relative")
 
 
@@ -76,14 +85,19 @@ def _int(value: Any) -> int | None:
     return int(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
 
 
-def load_rows(run_dir: Path, config: BenchConfig | None = None, *, task: str | None = None,
-              filter: str | None = None) -> list[Row]:
+def load_rows(
+    run_dir: Path,
+    config: BenchConfig | None = None,
+    *,
+    task: str | None = None,
+    filter: str | None = None,
+) -> list[Row]:
     if not run_dir.is_dir():
         raise BenchError(f"results folder not found: {run_dir}")
     rows = []
     for path in sorted(run_dir.glob(f"*/*/{RESULTS}")):
         name = path.parent.name
-        if task is not None and name != task or filter and filter.lower() not in name.lower():
+        if (task is not None and name != task) or (filter and filter.lower() not in name.lower()):
             continue
         result = _read_json(path)
         if not isinstance(result, dict):
@@ -96,26 +110,40 @@ def load_rows(run_dir: Path, config: BenchConfig | None = None, *, task: str | N
         if result.get("success") and stop is not None and condition is not None:
             reaction = stop - condition
             if reaction < 0:
-                raise BenchError(f"{path}: negative reaction time {reaction:.2f} s on a successful task")
+                raise BenchError(
+                    f"{path}: negative reaction time {reaction:.2f} s on a successful task"
+                )
         category = result.get("category") or ("noop" if condition is None else "unknown")
-        rows.append(Row(
-            name=name, environment=path.parent.parent.name, category=category,
-            success=bool(result.get("success")), evaluation_time=result.get("evaluation_time"),
-            stop_time=stop, condition_at=condition, reaction_time=reaction,
-            prompt_tokens=_int(input_tokens(costs)) if costs else None,
-            completion_tokens=_int(output_tokens(costs)) if costs else None,
-            tool_calls=_int(costs.get("tool_calls")) if costs else None,
-            cost_usd=config.cost_usd(costs) if config and costs else None,
-            views=_int(result.get("views")), actions=_int(result.get("actions")),
-            run=_int(result.get("run")), result=result, costs=costs,
-        ))
+        rows.append(
+            Row(
+                name=name,
+                environment=path.parent.parent.name,
+                category=category,
+                success=bool(result.get("success")),
+                evaluation_time=result.get("evaluation_time"),
+                stop_time=stop,
+                condition_at=condition,
+                reaction_time=reaction,
+                prompt_tokens=_int(input_tokens(costs)) if costs else None,
+                completion_tokens=_int(output_tokens(costs)) if costs else None,
+                tool_calls=_int(costs.get("tool_calls")) if costs else None,
+                cost_usd=config.cost_usd(costs) if config and costs else None,
+                views=_int(result.get("views")),
+                actions=_int(result.get("actions")),
+                run=_int(result.get("run")),
+                result=result,
+                costs=costs,
+            )
+        )
     if not rows and (task or filter):
         raise BenchError(f"no results match {'--task ' + task if task else '--filter ' + filter!r}")
     return rows
 
 
 def error_tasks(run_dir: Path) -> list[str]:
-    return sorted(p.parent.name for p in run_dir.glob(f"*/*/{ERROR}") if not (p.parent / RESULTS).exists())
+    return sorted(
+        p.parent.name for p in run_dir.glob(f"*/*/{ERROR}") if not (p.parent / RESULTS).exists()
+    )
 
 
 # --- statistics ------------------------------------------------------------------------------
@@ -150,7 +178,11 @@ class Rate:
         return self.passed / self.total if self.total else None
 
     def __str__(self) -> str:
-        return f"{100 * self.fraction:.1f}% ({self.passed}/{self.total})" if self.total else "N/A (0/0)"
+        return (
+            f"{100 * self.fraction:.1f}% ({self.passed}/{self.total})"
+            if self.total
+            else "N/A (0/0)"
+        )
 
 
 def success_by_group(rows: list[Row]) -> dict[str, Rate]:
@@ -204,8 +236,17 @@ def _cell(value: Any) -> str:
 
 
 def row_values(row: Row) -> list[Any]:
-    return [row.name, row.evaluation_time, row.success, row.stop_time, row.condition_at,
-            row.reaction_time, row.prompt_tokens, row.completion_tokens, row.tool_calls]
+    return [
+        row.name,
+        row.evaluation_time,
+        row.success,
+        row.stop_time,
+        row.condition_at,
+        row.reaction_time,
+        row.prompt_tokens,
+        row.completion_tokens,
+        row.tool_calls,
+    ]
 
 
 def _avg_median(values: list[float], unit: str = "", digits: int = 1) -> str:
@@ -217,9 +258,14 @@ def _avg_median(values: list[float], unit: str = "", digits: int = 1) -> str:
 def render_table(rows: list[Row], errors: list[str] | None = None) -> str:
     cells = [list(COLUMNS)] + [[_cell(v) for v in row_values(r)] for r in rows]
     widths = [max(len(line[i]) for line in cells) for i in range(len(COLUMNS))]
-    out = [" | ".join(c.ljust(w) for c, w in zip(cells[0], widths)).rstrip(),
-           "-+-".join("-" * w for w in widths)]
-    out += [" | ".join(c.ljust(w) for c, w in zip(line, widths)).rstrip() for line in cells[1:]]
+    out = [
+        " | ".join(c.ljust(w) for c, w in zip(cells[0], widths, strict=True)).rstrip(),
+        "-+-".join("-" * w for w in widths),
+    ]
+    out += [
+        " | ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip()
+        for line in cells[1:]
+    ]
     s = summarise(rows)
     out += [
         "",
@@ -232,14 +278,24 @@ def render_table(rows: list[Row], errors: list[str] | None = None) -> str:
         "",
         "Success by category: " + " | ".join(f"{g} {s.rates[g]}" for g in GROUPS),
         "Reaction Time (successful, non-no-op): "
-        + (f"mean {mean(s.reaction):.1f}s, median {median(s.reaction):.1f}s (n={len(s.reaction)})"
-           if s.reaction else "N/A"),
+        + (
+            f"mean {mean(s.reaction):.1f}s, median {median(s.reaction):.1f}s (n={len(s.reaction)})"
+            if s.reaction
+            else "N/A"
+        ),
         "Cost (USD): "
-        + (f"median ${median(s.costs):.4f}, mean ${mean(s.costs):.4f} (n={len(s.costs)})" if s.costs else "N/A"),
+        + (
+            f"median ${median(s.costs):.4f}, mean ${mean(s.costs):.4f} (n={len(s.costs)})"
+            if s.costs
+            else "N/A"
+        ),
         "Tool Calls: " + _tool_stats(s.tool_calls),
         "Agent activity (server-measured, per minute of run): "
-        + (f"views {mean(s.views_per_min):.1f}/min, actions {mean(s.actions_per_min):.1f}/min"
-           if s.views_per_min else "N/A"),
+        + (
+            f"views {mean(s.views_per_min):.1f}/min, actions {mean(s.actions_per_min):.1f}/min"
+            if s.views_per_min
+            else "N/A"
+        ),
     ]
     if errors:
         out.append(f"Harness errors (not graded): {len(errors)} — {', '.join(errors)}")
@@ -250,8 +306,10 @@ def _tool_stats(values: list[float]) -> str:
     if not values:
         return "N/A"
     q1, q3 = quartiles(values)
-    return (f"mean {mean(values):.1f}, median {median(values):.1f}, q1 {q1:.1f}, q3 {q3:.1f}, "
-            f"min {min(values):g}, max {max(values):g}")
+    return (
+        f"mean {mean(values):.1f}, median {median(values):.1f}, q1 {q1:.1f}, q3 {q3:.1f}, "
+        f"min {min(values):g}, max {max(values):g}"
+    )
 
 
 def _fmt1(value: float | None) -> str:

@@ -36,14 +36,18 @@ class TaskResult(models.Model):
     cost_usd = models.FloatField(null=True, blank=True)
     costs = models.JSONField(null=True, blank=True, help_text="the agent's costs.json")
     result = models.JSONField(null=True, blank=True, help_text="results.json")
-    run = models.ForeignKey("events.Run", null=True, blank=True, on_delete=models.SET_NULL, related_name="+")
+    run = models.ForeignKey(
+        "events.Run", null=True, blank=True, on_delete=models.SET_NULL, related_name="+"
+    )
     error = models.TextField(blank=True)
     recorded_at = models.DateTimeField(auto_now=True)
 
     class Meta:
         ordering = ["benchmark", "environment", "scenario_id"]
         constraints = [
-            models.UniqueConstraint(fields=["benchmark", "scenario_id"], name="bench_one_result_per_task"),
+            models.UniqueConstraint(
+                fields=["benchmark", "scenario_id"], name="bench_one_result_per_task"
+            ),
         ]
 
     def __str__(self) -> str:

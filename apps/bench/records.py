@@ -14,8 +14,15 @@ from apps.bench.runner import ERROR
 from events.models import Run
 
 
-def record_benchmark(name: str, run_dir: Path, config: BenchConfig, *, agent: str | None,
-                     started_at, raw_config: dict[str, Any]) -> BenchmarkRun:
+def record_benchmark(
+    name: str,
+    run_dir: Path,
+    config: BenchConfig,
+    *,
+    agent: str | None,
+    started_at,
+    raw_config: dict[str, Any],
+) -> BenchmarkRun:
     benchmark, _ = BenchmarkRun.objects.update_or_create(
         name=name,
         defaults={
@@ -31,23 +38,40 @@ def record_benchmark(name: str, run_dir: Path, config: BenchConfig, *, agent: st
     benchmark.save()
     for row in load_rows(run_dir, config) if run_dir.is_dir() else []:
         # Link the events.Run only when it lives in this database (an embedded server).
-        run_id = row.run if row.run and Run.objects.filter(pk=row.run, scenario_id=row.name).exists() else None
+        run_id = (
+            row.run
+            if row.run and Run.objects.filter(pk=row.run, scenario_id=row.name).exists()
+            else None
+        )
         TaskResult.objects.update_or_create(
-            benchmark=benchmark, scenario_id=row.name,
+            benchmark=benchmark,
+            scenario_id=row.name,
             defaults={
-                "environment": row.environment, "category": row.category, "success": row.success,
-                "reaction_time": row.reaction_time, "condition_at": row.condition_at,
-                "evaluation_time": row.evaluation_time, "input_tokens": row.prompt_tokens,
-                "output_tokens": row.completion_tokens, "tool_calls": row.tool_calls,
-                "cost_usd": row.cost_usd, "costs": row.costs, "result": row.result, "run_id": run_id,
+                "environment": row.environment,
+                "category": row.category,
+                "success": row.success,
+                "reaction_time": row.reaction_time,
+                "condition_at": row.condition_at,
+                "evaluation_time": row.evaluation_time,
+                "input_tokens": row.prompt_tokens,
+                "output_tokens": row.completion_tokens,
+                "tool_calls": row.tool_calls,
+                "cost_usd": row.cost_usd,
+                "costs": row.costs,
+                "result": row.result,
+                "run_id": run_id,
                 "error": "",
             },
         )
     for name_ in error_tasks(run_dir) if run_dir.is_dir() else []:
         folder = next(run_dir.glob(f"*/{name_}"))
         TaskResult.objects.update_or_create(
-            benchmark=benchmark, scenario_id=name_,
-            defaults={"environment": folder.parent.name, "success": None,
-                      "error": (folder / ERROR).read_text(encoding="utf-8", errors="replace")[:20000]},
+            benchmark=benchmark,
+            scenario_id=name_,
+            defaults={
+                "environment": folder.parent.name,
+                "success": None,
+                "error": (folder / ERROR).read_text(encoding="utf-8", errors="replace")[:20000],
+            },
         )
     return benchmark

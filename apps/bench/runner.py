@@ -35,7 +35,13 @@ from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig
 from events.timing import MAX_CONDITION_AT
 
-RESULTS, ERROR, OUTPUT, EVENTS, COSTS = "results.json", "error.txt", "output.txt", "events.jsonl", "costs.json"
+RESULTS, ERROR, OUTPUT, EVENTS, COSTS = (
+    "results.json",
+    "error.txt",
+    "output.txt",
+    "events.jsonl",
+    "costs.json",
+)
 START_POLL_S = 0.5
 CONTROL_AGENTS = ("oracle", "early", "never", "sleeper")
 
@@ -95,7 +101,9 @@ class Outcome:
     label: str = ""  # the control agent, when bench validate runs several
 
 
-def discover(client: ControlClient, *, task: str | None = None, filter: str | None = None) -> list[dict]:
+def discover(
+    client: ControlClient, *, task: str | None = None, filter: str | None = None
+) -> list[dict]:
     """The server's scenario library in path order, narrowed by --task and --filter."""
     listing = client.scenarios()
     selected = [s for s in listing if (task is None or s["id"] == task)]
@@ -151,20 +159,36 @@ class Harness:
             return ""
         if recorded is None or float(recorded) == float(self.speed_factor):
             return ""
-        return f" at speed {recorded:g}, not {self.speed_factor:g}: use a new NAME to compare speeds"
+        return (
+            f" at speed {recorded:g}, not {self.speed_factor:g}: use a new NAME to compare speeds"
+        )
 
-    def command_for(self, task: Task, run: dict[str, Any], prompt: str) -> tuple[list[str] | str, bool, dict]:
+    def command_for(
+        self, task: Task, run: dict[str, Any], prompt: str
+    ) -> tuple[list[str] | str, bool, dict]:
         env = dict(os.environ)
         if self.agent:
-            env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(self.base_dir), env.get("PYTHONPATH")]))
+            env["PYTHONPATH"] = os.pathsep.join(
+                filter(None, [str(self.base_dir), env.get("PYTHONPATH")])
+            )
             condition = task.spec.get("condition_at")
             argv = [
-                sys.executable, "-m", "apps.bench.agents", self.agent,
-                "--task-url", run["task_url"], "--contact-url", run["contact_url"],
-                "--speed-factor", repr(self.speed_factor),
-                "--condition-at", "none" if condition is None else repr(float(condition)),
-                "--solution", json.dumps(task.spec.get("solution") or []),
-                "--deadline", repr(deadline_s(task.spec, self.speed_factor, self.config.reaction_window)),
+                sys.executable,
+                "-m",
+                "apps.bench.agents",
+                self.agent,
+                "--task-url",
+                run["task_url"],
+                "--contact-url",
+                run["contact_url"],
+                "--speed-factor",
+                repr(self.speed_factor),
+                "--condition-at",
+                "none" if condition is None else repr(float(condition)),
+                "--solution",
+                json.dumps(task.spec.get("solution") or []),
+                "--deadline",
+                repr(deadline_s(task.spec, self.speed_factor, self.config.reaction_window)),
             ]
             return argv, False, env
         values = {
@@ -185,9 +209,15 @@ class Harness:
             result = self._run_task(task)
         except Interrupted:
             return Outcome(task, "error", "interrupted", time.monotonic() - began)
-        except Exception as exc:  # noqa: BLE001 — any failure here is the harness's, reported as such
-            kind = "harness error" if isinstance(exc, HarnessError) else f"harness error ({type(exc).__name__})"
-            (task.folder / ERROR).write_text(f"{kind}: {exc}\n\n{traceback.format_exc()}", encoding="utf-8")
+        except Exception as exc:  # any failure here is the harness's, reported as such
+            kind = (
+                "harness error"
+                if isinstance(exc, HarnessError)
+                else f"harness error ({type(exc).__name__})"
+            )
+            (task.folder / ERROR).write_text(
+                f"{kind}: {exc}\n\n{traceback.format_exc()}", encoding="utf-8"
+            )
             return Outcome(task, "error", str(exc), time.monotonic() - began)
         status = "passed" if result["success"] else "failed"
         return Outcome(task, status, result.get("detail", ""), time.monotonic() - began)
@@ -195,7 +225,9 @@ class Harness:
     def _run_task(self, task: Task) -> dict[str, Any]:
         sf = self.speed_factor
         run = self.client.create_run(task.scenario_id, sf)
-        prompt = augment_prompt(run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"])
+        prompt = augment_prompt(
+            run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"]
+        )
         (task.folder / "prompt.txt").write_text(prompt, encoding="utf-8")
         command, shell, env = self.command_for(task, run, prompt)
         limit = deadline_s(task.spec, sf, self.config.reaction_window)
@@ -203,8 +235,14 @@ class Harness:
         with open(task.folder / OUTPUT, "wb") as output:
             try:
                 process = subprocess.Popen(
-                    command, shell=shell, cwd=task.folder, env=env, stdin=subprocess.DEVNULL,
-                    stdout=output, stderr=subprocess.STDOUT, start_new_session=True,
+                    command,
+                    shell=shell,
+                    cwd=task.folder,
+                    env=env,
+                    stdin=subprocess.DEVNULL,
+                    stdout=output,
+                    stderr=subprocess.STDOUT,
+                    start_new_session=True,
                 )
             except OSError as exc:
                 raise HarnessError(f"could not launch the agent {command!r}: {exc}") from exc
@@ -241,7 +279,9 @@ class Harness:
         write_json_atomically(task.folder / RESULTS, result)
         return result
 
-    def _supervise(self, process: subprocess.Popen, run_id: int, limit: float, launched: float) -> bool:
+    def _supervise(
+        self, process: subprocess.Popen, run_id: int, limit: float, launched: float
+    ) -> bool:
         """Wait for the agent or its deadline; True when it had to be killed."""
         deadline = launched + limit
         started = False
@@ -256,7 +296,9 @@ class Harness:
                     info = self.client.run(run_id, retries=1)
                     if info["status"] != "ready":
                         started = True
-                        deadline = time.monotonic() - float(info["sim_time"]) / self.speed_factor + limit
+                        deadline = (
+                            time.monotonic() - float(info["sim_time"]) / self.speed_factor + limit
+                        )
             if now >= deadline:
                 status = None
                 with contextlib.suppress(HarnessError, KeyError, TypeError):
@@ -402,4 +444,3 @@ class Progress:
         with self._lock:
             if self.tty and self.total:
                 self._write("\n")
-

@@ -6,6 +6,7 @@ none of them reveals scenario internals.
 
 from __future__ import annotations
 
+import contextlib
 import json
 
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
@@ -13,9 +14,9 @@ from django.shortcuts import render
 from django.views.decorators.csrf import csrf_exempt
 from django.views.decorators.http import require_http_methods, require_POST
 
+from apps.agent_site.links import contact_path, start_page_path
 from apps.agent_site.pages import arrival_wall, run_for_token
 from apps.control import slot
-from apps.agent_site.links import contact_path, start_page_path
 from events import lifecycle
 from events.commands import perform_action
 from events.models import ClockMode, Run, RunStatus
@@ -27,10 +28,9 @@ def task_start(request: HttpRequest, token: str) -> HttpResponse:
     """Start the run's clock (first visit) and go to its start page; reloading is harmless."""
     run = run_for_token(token)
     if run.clock_mode == ClockMode.LIVE and run.status in lifecycle.CLOCK_STARTABLE:
-        try:
+        # A concurrent first visit may have started it: then just go to the page.
+        with contextlib.suppress(lifecycle.LifecycleError):
             run = lifecycle.start_clock(run)
-        except lifecycle.LifecycleError:
-            pass  # started by a concurrent first visit: just go to the page
     return HttpResponseRedirect(start_page_path(run))
 
 
@@ -69,7 +69,9 @@ def run_action(request: HttpRequest, token: str) -> JsonResponse:
     except json.JSONDecodeError as exc:
         return JsonResponse({"detail": f"body is not JSON: {exc.msg}"}, status=400)
     if not isinstance(body, dict) or not isinstance(body.get("action"), str):
-        return JsonResponse({"detail": "body must be {\"action\": <name>, \"payload\": {...}}"}, status=400)
+        return JsonResponse(
+            {"detail": 'body must be {"action": <name>, "payload": {...}}'}, status=400
+        )
     payload = body.get("payload", {})
     if not isinstance(payload, dict):
         return JsonResponse({"detail": "payload must be an object"}, status=400)
@@ -78,7 +80,12 @@ def run_action(request: HttpRequest, token: str) -> JsonResponse:
     except ActionRejected as exc:
         return JsonResponse({"detail": str(exc)}, status=exc.status)
     return JsonResponse(
-        {"seq": event.seq, "at": event.at, "action": event.type, "payload": event.payload,
-         "run_status": RunStatus(run.status).value},
+        {
+            "seq": event.seq,
+            "at": event.at,
+            "action": event.type,
+            "payload": event.payload,
+            "run_status": RunStatus(run.status).value,
+        },
         status=201,
     )

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from drf_spectacular.utils import extend_schema
-from rest_framework import mixins, status as http, viewsets
+from rest_framework import mixins, viewsets
+from rest_framework import status as http
 from rest_framework.decorators import action
 from rest_framework.response import Response
 
@@ -54,7 +55,9 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
         run = self.get_object()
         fired = lifecycle.advance(run, body.validated_data["time"])
         data = self.get_serializer(run).data
-        data["processed_events"] = [{"time": e.at, "type": e.type, "payload": e.payload} for e in fired.fired]
+        data["processed_events"] = [
+            {"time": e.at, "type": e.type, "payload": e.payload} for e in fired.fired
+        ]
         return Response(data)
 
     @extend_schema(request=None)
@@ -74,8 +77,19 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
     def events(self, request, pk=None):
         """The run's whole log, in order: enough to replay it."""
         run = self.get_object()
-        rows = Event.objects.filter(run_id=run.pk).order_by("seq").values(
-            "seq", "at", "kind", "type", "payload", "recorded_at", "timeline_index", "lateness_ms"
+        rows = (
+            Event.objects.filter(run_id=run.pk)
+            .order_by("seq")
+            .values(
+                "seq",
+                "at",
+                "kind",
+                "type",
+                "payload",
+                "recorded_at",
+                "timeline_index",
+                "lateness_ms",
+            )
         )
         return Response(list(rows))
 
@@ -88,7 +102,12 @@ class ScenarioViewSet(viewsets.ViewSet):
     def list(self, request):
         return Response(
             [
-                {"id": s.id, "environment": s.environment, "noop": s.is_noop, "taxonomy": s.taxonomy}
+                {
+                    "id": s.id,
+                    "environment": s.environment,
+                    "noop": s.is_noop,
+                    "taxonomy": s.taxonomy,
+                }
                 for s in scenario_library().values()
             ]
         )

@@ -30,11 +30,15 @@ def has_control_access(request) -> bool:
 def is_control_authenticated(request) -> bool:
     """True only when a token is configured *and* presented: needed to see scenario internals."""
     expected = settings.SENTINEL_CONTROL_TOKEN
-    return bool(expected) and hmac.compare_digest(presented_token(request).encode(), expected.encode())
+    return bool(expected) and hmac.compare_digest(
+        presented_token(request).encode(), expected.encode()
+    )
 
 
 class ControlTokenPermission(BasePermission):
-    message = "missing or wrong control token: send 'Authorization: Bearer <SENTINEL_CONTROL_TOKEN>'"
+    message = (
+        "missing or wrong control token: send 'Authorization: Bearer <SENTINEL_CONTROL_TOKEN>'"
+    )
 
     def has_permission(self, request, view) -> bool:
         return has_control_access(request)

@@ -6,9 +6,9 @@ from rest_framework import status as http
 from rest_framework.response import Response
 from rest_framework.views import exception_handler as drf_exception_handler
 
-from events.catalog import CatalogError
 from apps.scenarios.format import ScenarioError
 from apps.scenarios.library import UnknownScenario
+from events.catalog import CatalogError
 from events.lifecycle import LifecycleError
 from events.registry import ActionRejected, UnknownEnvironment
 from events.timing import SpeedFactorError

@@ -15,13 +15,13 @@ from rest_framework.permissions import AllowAny
 from rest_framework.request import Request
 from rest_framework.response import Response
 
-from events.catalog import load_catalog
+from apps.agent_site.links import start_page_path
 from apps.control import slot
 from apps.control.auth import is_control_authenticated
-from apps.agent_site.links import start_page_path
 from apps.control.serializers import InitPayloadSerializer
 from apps.scenarios.library import UnknownScenario, get_dev_scenario, get_scenario, scenario_library
 from events import lifecycle
+from events.catalog import load_catalog
 from events.evaluation import evaluate as evaluate_run
 from events.registry import environment_names
 from events.timing import to_wall
@@ -55,7 +55,9 @@ def init(request: Request) -> Response:
     payload = InitPayloadSerializer(data=request.data)
     if not payload.is_valid():
         return Response(_one_line(payload.errors), status=http.HTTP_422_UNPROCESSABLE_ENTITY)
-    run = slot.create_default_run(payload.to_spec(), speed_factor=payload.validated_data["speed_factor"])
+    run = slot.create_default_run(
+        payload.to_spec(), speed_factor=payload.validated_data["speed_factor"]
+    )
     return Response(_status_body(run))
 
 
@@ -74,7 +76,8 @@ def advance(request: Request) -> Response:
     body = _status_body(run)
     body["simulation_time"] = wall_time
     body["processed_events"] = [
-        {"time": to_wall(e.at, run.speed_factor), "type": e.type, "payload": e.payload} for e in fired.fired
+        {"time": to_wall(e.at, run.speed_factor), "type": e.type, "payload": e.payload}
+        for e in fired.fired
     ]
     return Response(body)
 
@@ -111,13 +114,17 @@ def dev_init(request: Request) -> Response:
     environment = request.query_params.get("environment", "")
     if environment not in environment_names():
         return Response(
-            {"detail": f"unknown environment {environment!r}; valid: {', '.join(environment_names())}"},
+            {
+                "detail": f"unknown environment {environment!r}; valid: {', '.join(environment_names())}"
+            },
             status=http.HTTP_400_BAD_REQUEST,
         )
     try:
         spec = get_dev_scenario(environment).to_run_spec()
     except FileNotFoundError:
-        return Response({"detail": f"no dev.json for {environment}"}, status=http.HTTP_404_NOT_FOUND)
+        return Response(
+            {"detail": f"no dev.json for {environment}"}, status=http.HTTP_404_NOT_FOUND
+        )
     slot.close_default_run()  # allowed from any state
     slot.create_default_run(spec, speed_factor=1.0)
     return Response({"success": True, "status": "ready", "environment": environment})

@@ -41,7 +41,9 @@ class InitPayloadSerializer(serializers.Serializer):
     condition_at = serializers.FloatField(required=False, allow_null=True, default=None)
     speed_factor = serializers.FloatField(required=False, default=1.0, validators=[_speed_factor])
     events = TimelineEntrySerializer(many=True)
-    start_page = serializers.CharField(required=False, allow_blank=True, allow_null=True, default=None)
+    start_page = serializers.CharField(
+        required=False, allow_blank=True, allow_null=True, default=None
+    )
 
     def validate_environment(self, value: str) -> str:
         try:
@@ -64,7 +66,10 @@ class InitPayloadSerializer(serializers.Serializer):
     def to_spec(self) -> dict:
         data = self.validated_data
         events = sorted(
-            ({"time": e["time"], "type": e["type"], "payload": dict(e.get("payload") or {})} for e in data["events"]),
+            (
+                {"time": e["time"], "type": e["type"], "payload": dict(e.get("payload") or {})}
+                for e in data["events"]
+            ),
             key=lambda e: e["time"],
         )  # stable sort, as upstream
         return {
@@ -89,7 +94,9 @@ class RunCreateSerializer(serializers.Serializer):
     scenario = serializers.CharField(required=False, help_text="id of a scenario in the library")
     scenario_json = serializers.JSONField(required=False, help_text="a whole scenario, inline")
     speed_factor = serializers.FloatField(required=False, default=1.0, validators=[_speed_factor])
-    clock_mode = serializers.ChoiceField(choices=ClockMode.choices, required=False, default=ClockMode.LIVE)
+    clock_mode = serializers.ChoiceField(
+        choices=ClockMode.choices, required=False, default=ClockMode.LIVE
+    )
 
     def validate(self, attrs):
         given = [k for k in ("scenario", "scenario_json") if k in attrs]
@@ -101,13 +108,17 @@ class RunCreateSerializer(serializers.Serializer):
             attrs["spec"] = get_scenario(attrs["scenario"]).to_run_spec()
         else:
             try:
-                attrs["spec"] = parse_scenario(attrs["scenario_json"], source="scenario_json").to_run_spec()
+                attrs["spec"] = parse_scenario(
+                    attrs["scenario_json"], source="scenario_json"
+                ).to_run_spec()
             except ScenarioError as exc:
                 raise serializers.ValidationError({"scenario_json": str(exc)}) from None
         if attrs["spec"]["environment"] not in environment_names():
             raise serializers.ValidationError(
-                {"scenario": f"environment {attrs['spec']['environment']!r} is not installed; "
-                 f"valid: {', '.join(environment_names())}"}
+                {
+                    "scenario": f"environment {attrs['spec']['environment']!r} is not installed; "
+                    f"valid: {', '.join(environment_names())}"
+                }
             )
         return attrs
 
@@ -125,8 +136,20 @@ class RunSerializer(serializers.ModelSerializer):
     class Meta:
         model = Run
         fields = [
-            "id", "token", "scenario_id", "environment", "status", "clock_mode", "speed_factor",
-            "sim_time", "prompt", "task_url", "contact_url", "catalog_hash", "created_at", "closed_at",
+            "id",
+            "token",
+            "scenario_id",
+            "environment",
+            "status",
+            "clock_mode",
+            "speed_factor",
+            "sim_time",
+            "prompt",
+            "task_url",
+            "contact_url",
+            "catalog_hash",
+            "created_at",
+            "closed_at",
         ]
 
     def _absolute(self, path: str) -> str:

@@ -10,8 +10,8 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from apps.micromail.actions import existing_email
 from apps.agent_site.simclock import clock_time
+from apps.micromail.actions import existing_email
 from apps.micromail.state import Email, Mail
 from events.registry import ActionRejected
 

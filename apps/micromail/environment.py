@@ -121,7 +121,13 @@ EMAILS = Table(
 )
 EMAIL_STATES = Table(
     "email_states",
-    ("email_id TEXT PRIMARY KEY", "isRead INTEGER", "isFlagged INTEGER", "isPinned INTEGER", "folder TEXT"),
+    (
+        "email_id TEXT PRIMARY KEY",
+        "isRead INTEGER",
+        "isFlagged INTEGER",
+        "isPinned INTEGER",
+        "folder TEXT",
+    ),
 )
 
 
@@ -172,8 +178,7 @@ MICROMAIL = Environment(
             param="email",
             action="open_email",
             payload=lambda email_id: {"email_id": email_id},
-            applies=lambda mail, email_id: mail.has(email_id)
-            and not mail.states[email_id].is_read,
+            applies=lambda mail, email_id: mail.has(email_id) and not mail.states[email_id].is_read,
         ),
     ),
     sample_pages=sample_pages,

@@ -225,6 +225,8 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
         return render_compose(request, page, typed, error=str(exc), status=exc.status)
     if intent == "send":
         messages.success(request, "Message sent")
-        return redirect_to(page, MailboxQuery(folder="sent", email=event.payload["id"]).querystring())
+        return redirect_to(
+            page, MailboxQuery(folder="sent", email=event.payload["id"]).querystring()
+        )
     messages.success(request, "Draft saved")
     return redirect_to(page, MailboxQuery(folder="drafts").querystring())

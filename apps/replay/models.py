@@ -6,7 +6,6 @@ from django.db import models
 
 from events.models import Run
 
-
 # What a verdict says, recorded or refolded: a replay compares exactly these.
 VERDICT_FIELDS = ("success", "detail", "graded_at_seq", "event_count", "state_digest", "log_digest")
 

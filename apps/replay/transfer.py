@@ -14,9 +14,9 @@ from typing import Any
 from django.db import transaction
 from django.utils import timezone
 
-from events.catalog import CatalogError, load_catalog
 from apps.replay.models import RunVerdict
 from apps.replay.records import latest_verdict, record_verdict
+from events.catalog import CatalogError, load_catalog
 from events.models import ClockMode, Event, Run, RunStatus
 
 FORMAT = "sentinel-run/1"

@@ -92,7 +92,7 @@ class TimelineEventInline(admin.TabularInline):
 class ScenarioForm(forms.ModelForm):
     class Meta:
         model = Scenario
-        fields = "__all__"
+        fields = "__all__"  # noqa: DJ007 - the admin's fieldsets choose what is shown
 
     def clean(self):
         cleaned = super().clean()

@@ -11,9 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from events.catalog import load_catalog
 from apps.scenarios.models import Scenario, TimelineEvent
 from apps.scenarios.serialization import timeline_of
+from events.catalog import load_catalog
 from events.evaluation import GradingSnapshot
 from events.registry import (
     EMPTY,
@@ -88,7 +88,9 @@ def dry_run(
         if holds and result.first_holds_at is None:
             result.first_holds_at = entry.time
         result.steps.append(
-            Step(entry.position, entry.time, entry.type, value, holds, error, dict(baselines), fires)
+            Step(
+                entry.position, entry.time, entry.type, value, holds, error, dict(baselines), fires
+            )
         )
     _check(scenario, result, sql)
     if sql and condition_at is not None and scenario.solution and not scenario.is_dev:

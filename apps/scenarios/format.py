@@ -179,7 +179,11 @@ def _named_step(
     if known is not None:
         if name not in known:
             allowed = ", ".join(sorted(known)) or "none"
-            _fail(source, f"{where}.{key}", f"unknown {what} {name!r} for {environment}; allowed: {allowed}")
+            _fail(
+                source,
+                f"{where}.{key}",
+                f"unknown {what} {name!r} for {environment}; allowed: {allowed}",
+            )
         _payload(payload, known[name].schema, f"{where} ({name})", source)
     return name, payload
 
@@ -340,7 +344,9 @@ def read_json_file(path: Path) -> tuple[str, Any]:
             f"{path}: invalid JSON at line {error.lineno}, column {error.colno}: {error.msg}"
         ) from None
     except UnicodeDecodeError as error:
-        raise ScenarioError(f"{path}: not UTF-8 text ({error.reason} at byte {error.start})") from None
+        raise ScenarioError(
+            f"{path}: not UTF-8 text ({error.reason} at byte {error.start})"
+        ) from None
 
 
 def load_scenario_file(path: str | Path) -> Scenario:

@@ -117,15 +117,15 @@ class Scenario(models.Model):
     def __str__(self) -> str:
         return self.scenario_id
 
-    @property
-    def is_noop(self) -> bool:
-        return self.condition_at is None and not self.is_dev
-
     def save(self, *args, **kwargs):
         taxonomy = self.taxonomy if isinstance(self.taxonomy, dict) else {}
         self.monitoring_approach = str(taxonomy.get("monitoring_approach", ""))[:16]
         self.milestone_type = str(taxonomy.get("milestone_type", ""))[:16]
         super().save(*args, **kwargs)
+
+    @property
+    def is_noop(self) -> bool:
+        return self.condition_at is None and not self.is_dev
 
 
 class TimelineEvent(models.Model):

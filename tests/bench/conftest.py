@@ -18,8 +18,15 @@ REAL = REPO / "scenarios" / "micromail"
 AGENT = Path(__file__).with_name("scripted_agent.py")
 
 
-def shorten(source: str, new_id: str, script: str, *, condition_at: float = 40.0, kill_at: float = 60.0,
-            end: float = 100.0) -> dict:
+def shorten(
+    source: str,
+    new_id: str,
+    script: str,
+    *,
+    condition_at: float = 40.0,
+    kill_at: float = 60.0,
+    end: float = 100.0,
+) -> dict:
     data = json.loads((REAL / f"{source}.json").read_text())
     old = data["condition_at"]
     factor = condition_at / (old if old is not None else 300.0)
@@ -31,7 +38,10 @@ def shorten(source: str, new_id: str, script: str, *, condition_at: float = 40.0
         if time <= end:
             events.append({**event, "time": time})
     data.update(
-        id=new_id, kill_at=kill_at, event_timeline_end=end, events=events,
+        id=new_id,
+        kill_at=kill_at,
+        event_timeline_end=end,
+        events=events,
         condition_at=None if old is None else condition_at,
         prompt=f"{data['prompt']}\n[[script: {script}]]",
     )
@@ -40,16 +50,29 @@ def shorten(source: str, new_id: str, script: str, *, condition_at: float = 40.0
 
 TEST_SCENARIOS = [
     # id, source, script, options
-    ("bench-passive", "sender-absolute-passive", "poll select-base-77; contact; costs 10000 500 4 upstream", {}),
-    ("bench-active", "body-keyword-absolute-active",
-     "poll select-base-45; action open_email base-45; contact; costs 20000 1000 6", {}),
+    (
+        "bench-passive",
+        "sender-absolute-passive",
+        "poll select-base-77; contact; costs 10000 500 4 upstream",
+        {},
+    ),
+    (
+        "bench-active",
+        "body-keyword-absolute-active",
+        "poll select-base-45; action open_email base-45; contact; costs 20000 1000 6",
+        {},
+    ),
     # Leaves a child behind when it exits by itself: the harness kills it anyway.
     ("bench-noop", "sender-absolute-noop", "spawn; sleep 1; costs 5000 100 2", {}),
     ("bench-early", "inbox-relative-passive", "contact; costs 1000 50 1", {}),
     ("bench-hung", "junk-relative-passive", "spawn; hang", {"condition_at": 16.0, "kill_at": 20.0}),
     # Contacts in time, then lingers: killed after the grace period, still a success.
-    ("bench-linger", "unread-absolute-passive", "poll select-cc-02; contact; hang",
-     {"condition_at": 16.0, "kill_at": 20.0}),
+    (
+        "bench-linger",
+        "unread-absolute-passive",
+        "poll select-cc-02; contact; hang",
+        {"condition_at": 16.0, "kill_at": 20.0},
+    ),
 ]
 
 
@@ -75,7 +98,13 @@ def bench_config(tmp_path):
             "parallel": 10,
             "reaction_window": 4,
             "grace": 5,
-            "agent_subprocess": [sys.executable, str(AGENT), "__TASK_URL__", "__CONTACT_URL__", "__TASK_PROMPT__"],
+            "agent_subprocess": [
+                sys.executable,
+                str(AGENT),
+                "__TASK_URL__",
+                "__CONTACT_URL__",
+                "__TASK_PROMPT__",
+            ],
             "prices": {"test-model": {"input": 2.0, "output": 10.0}},
             **extra,
         }

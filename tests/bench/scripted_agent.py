@@ -24,7 +24,9 @@ import urllib.request
 
 def fetch(url: str, data: bytes | None = None, content_type: str = "") -> tuple[str, str]:
     headers = {"Content-Type": content_type} if content_type else {}
-    request = urllib.request.Request(url, data=data, headers=headers, method="POST" if data else "GET")
+    request = urllib.request.Request(
+        url, data=data, headers=headers, method="POST" if data else "GET"
+    )
     with urllib.request.urlopen(request, timeout=10) as response:
         return response.geturl(), response.read().decode("utf-8", "replace")
 
@@ -57,12 +59,24 @@ def main() -> int:
             time.sleep(float(args[0]))
         elif verb == "contact":
             fetch(contact_url)
-            fetch(contact_url, urllib.parse.urlencode({"message": "done"}).encode(),
-                  "application/x-www-form-urlencoded")
+            fetch(
+                contact_url,
+                urllib.parse.urlencode({"message": "done"}).encode(),
+                "application/x-www-form-urlencoded",
+            )
             print("contacted", flush=True)
         elif verb == "costs":
-            keys = ("prompt_tokens", "completion_tokens") if args[3:] == ["upstream"] else ("input_tokens", "output_tokens")
-            costs = {keys[0]: int(args[0]), keys[1]: int(args[1]), "tool_calls": int(args[2]), "model": "test-model"}
+            keys = (
+                ("prompt_tokens", "completion_tokens")
+                if args[3:] == ["upstream"]
+                else ("input_tokens", "output_tokens")
+            )
+            costs = {
+                keys[0]: int(args[0]),
+                keys[1]: int(args[1]),
+                "tool_calls": int(args[2]),
+                "model": "test-model",
+            }
             with open("costs.json", "w") as f:
                 json.dump(costs, f)
         elif verb == "spawn":

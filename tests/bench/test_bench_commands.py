@@ -21,12 +21,16 @@ def run(command: str, *args: str) -> str:
 
 def test_bench_live_measures_pushes_of_the_chosen_environment():
     line = run("bench_live", "--env", "micromail", "--seconds", "1", "--clients", "2")
-    assert re.fullmatch(r"bench_live: push_p50_ms=[\d.]+ push_p99_ms=[\d.]+ messages=[1-9]\d*", line)
+    assert re.fullmatch(
+        r"bench_live: push_p50_ms=[\d.]+ push_p99_ms=[\d.]+ messages=[1-9]\d*", line
+    )
 
 
 def test_bench_pages_times_the_chosen_environment():
     line = run("bench_pages", "--env", "micromail", "--seconds", "1", "--clients", "1")
-    assert re.fullmatch(r"bench_pages: env=micromail p50_ms=[\d.]+ p95_ms=[\d.]+ requests=[1-9]\d*", line)
+    assert re.fullmatch(
+        r"bench_pages: env=micromail p50_ms=[\d.]+ p95_ms=[\d.]+ requests=[1-9]\d*", line
+    )
 
 
 @pytest.mark.parametrize("command", ["bench_live", "bench_pages"])

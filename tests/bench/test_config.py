@@ -7,30 +7,54 @@ import pytest
 from apps.bench.config import ConfigError, load_config, parse_config
 from apps.bench.runner import Harness, Task, augment_prompt, category_of, deadline_s
 
-VALUES = {"__TASK_URL__": "http://h/r/t/start", "__CONTACT_URL__": "http://h/r/t/contact",
-          "__TASK_PROMPT__": "it's a 'prompt'", "__BASE_DIR__": "/repo"}
+VALUES = {
+    "__TASK_URL__": "http://h/r/t/start",
+    "__CONTACT_URL__": "http://h/r/t/contact",
+    "__TASK_PROMPT__": "it's a 'prompt'",
+    "__BASE_DIR__": "/repo",
+}
 
 
 def test_a_list_command_substitutes_raw_substrings_without_a_shell():
     config = parse_config({"agent_subprocess": ["agent", "--url=__TASK_URL__", "__TASK_PROMPT__"]})
-    assert config.agent_command(VALUES) == (["agent", "--url=http://h/r/t/start", "it's a 'prompt'"], False)
+    assert config.agent_command(VALUES) == (
+        ["agent", "--url=http://h/r/t/start", "it's a 'prompt'"],
+        False,
+    )
 
 
 def test_a_string_command_quotes_each_value_and_uses_a_shell():
-    config = parse_config({"agent_subprocess": "bash __BASE_DIR__/run.sh __TASK_PROMPT__ __CONTACT_URL__"})
+    config = parse_config(
+        {"agent_subprocess": "bash __BASE_DIR__/run.sh __TASK_PROMPT__ __CONTACT_URL__"}
+    )
     command, shell = config.agent_command(VALUES)
     assert shell is True
     assert command == "bash /repo/run.sh 'it'\"'\"'s a '\"'\"'prompt'\"'\"'' http://h/r/t/contact"
 
 
-@pytest.mark.parametrize("data, message", [
-    ({"agent_subprocess": ["a"], "speed_factor": 0}, "speed_factor: speed_factor must be positive"),
-    ({"agent_subprocess": ["a"], "parallel": 0}, "parallel: must be a positive integer"),
-    ({"agent_subprocess": ["a"], "prices": {"m": {"input": -1}}}, "prices.m.input: must be a number >= 0"),
-    ({"agent_subprocess": ["a"], "server_url": "localhost:8000"}, "server_url: must be an http:// or https:// URL"),
-    ({"agent_subprocess": ["a"], "speedfactor": 2}, "speedfactor: unknown key"),
-    ({"agent_subprocess": []}, "agent_subprocess: a list must hold at least one string argument"),
-])
+@pytest.mark.parametrize(
+    "data, message",
+    [
+        (
+            {"agent_subprocess": ["a"], "speed_factor": 0},
+            "speed_factor: speed_factor must be positive",
+        ),
+        ({"agent_subprocess": ["a"], "parallel": 0}, "parallel: must be a positive integer"),
+        (
+            {"agent_subprocess": ["a"], "prices": {"m": {"input": -1}}},
+            "prices.m.input: must be a number >= 0",
+        ),
+        (
+            {"agent_subprocess": ["a"], "server_url": "localhost:8000"},
+            "server_url: must be an http:// or https:// URL",
+        ),
+        ({"agent_subprocess": ["a"], "speedfactor": 2}, "speedfactor: unknown key"),
+        (
+            {"agent_subprocess": []},
+            "agent_subprocess: a list must hold at least one string argument",
+        ),
+    ],
+)
 def test_bad_values_are_named_with_what_is_allowed(data, message):
     with pytest.raises(ConfigError, match=message.replace(".", r"\.")):
         parse_config(data, source="eval_config.yaml")
@@ -48,30 +72,52 @@ def test_an_empty_file_is_an_empty_mapping_and_bad_yaml_names_the_line(tmp_path)
 
 def test_costs_accept_both_token_spellings():
     config = parse_config({"agent_subprocess": ["a"], "prices": {"m": {"input": 2, "output": 8}}})
-    assert config.cost_usd({"input_tokens": 1e6, "output_tokens": 1e5, "model": "m"}) == pytest.approx(2.8)
-    assert config.cost_usd({"prompt_tokens": 1e6, "completion_tokens": 1e5, "model": "m"}) == pytest.approx(2.8)
+    assert config.cost_usd(
+        {"input_tokens": 1e6, "output_tokens": 1e5, "model": "m"}
+    ) == pytest.approx(2.8)
+    assert config.cost_usd(
+        {"prompt_tokens": 1e6, "completion_tokens": 1e5, "model": "m"}
+    ) == pytest.approx(2.8)
     assert config.cost_usd({"prompt_tokens": 1e6, "model": "unpriced"}) is None
 
 
 def test_categories_deadlines_and_the_prompt():
-    spec = {"condition_at": 10, "kill_at": 630, "taxonomy": {"monitoring_approach": "active",
-                                                              "milestone_type": "relative"}}
+    spec = {
+        "condition_at": 10,
+        "kill_at": 630,
+        "taxonomy": {"monitoring_approach": "active", "milestone_type": "relative"},
+    }
     assert category_of(spec) == "active-relative"
     assert category_of({**spec, "condition_at": None}) == "noop"
     assert deadline_s(spec, 4.0, 30.0) == 180.0  # kill_at_wall(4)
     assert deadline_s({**spec, "kill_at": 60}, 4.0, 30.0) == 45.0  # a short test scenario
     prompt = augment_prompt("Tell me.", "http://h/r/t/contact")
-    assert prompt.startswith("Tell me.\n\n") and "http://h/r/t/contact" in prompt and "ONLY ONCE" in prompt
+    assert (
+        prompt.startswith("Tell me.\n\n")
+        and "http://h/r/t/contact" in prompt
+        and "ONLY ONCE" in prompt
+    )
 
 
 def test_resuming_skips_done_tasks_and_previous_errors_unless_retried(tmp_path):
-    done, failed, fresh = (Task(n, "micromail", {}, tmp_path / n) for n in ("done", "failed", "fresh"))
+    done, failed, fresh = (
+        Task(n, "micromail", {}, tmp_path / n) for n in ("done", "failed", "fresh")
+    )
     for task in (done, failed, fresh):
         task.folder.mkdir()
     (done.folder / "results.json").write_text("{}")
     (failed.folder / "error.txt").write_text("harness error: boom")
-    harness = Harness(parse_config({"agent_subprocess": ["a"]}), client=None, results_root=tmp_path, base_dir=tmp_path)
-    assert [harness.should_skip(t) for t in (done, failed, fresh)] == ["already done", "previous error", None]
+    harness = Harness(
+        parse_config({"agent_subprocess": ["a"]}),
+        client=None,
+        results_root=tmp_path,
+        base_dir=tmp_path,
+    )
+    assert [harness.should_skip(t) for t in (done, failed, fresh)] == [
+        "already done",
+        "previous error",
+        None,
+    ]
     harness.retry_errors = True
     assert harness.should_skip(failed) is None and not (failed.folder / "error.txt").exists()
 
@@ -80,10 +126,15 @@ def test_resuming_at_another_speed_says_so(tmp_path):
     task = Task("t", "micromail", {}, tmp_path / "t")
     task.folder.mkdir()
     (task.folder / "results.json").write_text('{"speed_factor": 1.0}')
-    harness = Harness(parse_config({"agent_subprocess": ["a"], "speed_factor": 4}), client=None,
-                      results_root=tmp_path, base_dir=tmp_path)
+    harness = Harness(
+        parse_config({"agent_subprocess": ["a"], "speed_factor": 4}),
+        client=None,
+        results_root=tmp_path,
+        base_dir=tmp_path,
+    )
     assert harness.should_skip(task) == (
-        "already done at speed 1, not 4: use a new NAME to compare speeds")
+        "already done at speed 1, not 4: use a new NAME to compare speeds"
+    )
 
 
 class BrokenServer:
@@ -97,11 +148,19 @@ class BrokenServer:
 
 def test_a_server_failure_is_a_harness_error_not_an_agent_failure(tmp_path):
     task = Task("t", "micromail", {"id": "t"}, tmp_path / "micromail" / "t")
-    harness = Harness(parse_config({"agent_subprocess": ["a"]}), client=BrokenServer(), results_root=tmp_path,
-                      base_dir=tmp_path)
+    harness = Harness(
+        parse_config({"agent_subprocess": ["a"]}),
+        client=BrokenServer(),
+        results_root=tmp_path,
+        base_dir=tmp_path,
+    )
     outcome = harness.run_task(task)
     assert outcome.status == "error"
-    assert (task.folder / "error.txt").read_text().startswith("harness error: POST /api/runs/: HTTP 500")
+    assert (
+        (task.folder / "error.txt")
+        .read_text()
+        .startswith("harness error: POST /api/runs/: HTTP 500")
+    )
     assert not (task.folder / "results.json").exists()
 
 

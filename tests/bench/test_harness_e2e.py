@@ -52,12 +52,28 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     tree = results / "story" / "micromail"
     outcome = {d.name: json.loads((d / "results.json").read_text()) for d in tree.iterdir()}
     assert {k: v["success"] for k, v in outcome.items()} == {
-        "bench-passive": True, "bench-active": True, "bench-noop": True,
-        "bench-early": False, "bench-hung": False, "bench-linger": True,
+        "bench-passive": True,
+        "bench-active": True,
+        "bench-noop": True,
+        "bench-early": False,
+        "bench-hung": False,
+        "bench-linger": True,
     }
     passive = outcome["bench-passive"]
-    for field in ("success", "detail", "evaluation_time", "condition_at", "contact_get_time",
-                  "contact_post_time", "contact_message", "run", "category", "reaction_time", "views", "actions"):
+    for field in (
+        "success",
+        "detail",
+        "evaluation_time",
+        "condition_at",
+        "contact_get_time",
+        "contact_post_time",
+        "contact_message",
+        "run",
+        "category",
+        "reaction_time",
+        "views",
+        "actions",
+    ):
         assert field in passive
     assert passive["condition_at"] == 10.0  # authored 40 s at speed 4, in wall seconds
     assert 0 <= passive["reaction_time"] < 5
@@ -97,7 +113,10 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     benchmark = BenchmarkRun.objects.get(name="story")
     assert benchmark.speed_factor == 4.0 and benchmark.finished_at is not None
     rows = {t.scenario_id: t for t in TaskResult.objects.filter(benchmark=benchmark)}
-    assert rows["bench-active"].success is True and rows["bench-active"].run_id == outcome["bench-active"]["run"]
+    assert (
+        rows["bench-active"].success is True
+        and rows["bench-active"].run_id == outcome["bench-active"]["run"]
+    )
     assert rows["bench-active"].cost_usd == pytest.approx((20000 * 2.0 + 1000 * 10.0) / 1e6)
     assert rows["bench-early"].category == "passive-relative"
 
@@ -111,8 +130,16 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     print(table)
     header = table.splitlines()[0]
     assert [c.strip() for c in header.split("|")] == [
-        "name", "evaluation_time", "success", "stop_time", "condition_at", "reaction_time",
-        "prompt_tokens", "completion_tokens", "tool_calls"]
+        "name",
+        "evaluation_time",
+        "success",
+        "stop_time",
+        "condition_at",
+        "reaction_time",
+        "prompt_tokens",
+        "completion_tokens",
+        "tool_calls",
+    ]
     active_line = next(line for line in table.splitlines() if line.startswith("bench-active "))
     cells = [c.strip() for c in active_line.split("|")]
     assert cells[2] == "True" and cells[4] == "10.00" and cells[6:] == ["20000", "1000", "6"]
@@ -130,7 +157,7 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     assert len(data) == 6
     passive_row = next(r for r in data if r["name"] == "bench-passive")
     assert passive_row["success"] == "True" and passive_row["prompt_tokens"] == "10000"
-    summary = dict(csv.reader(lines[blank + 1:]))
+    summary = dict(csv.reader(lines[blank + 1 :]))
     assert summary["Total Tasks"] == "6" and summary["Successes"] == "4"
     assert summary["Task Success Rate"] == "0.6667"
     assert summary["Average Tool Calls"] == "3.2"

@@ -11,12 +11,27 @@ from django.core.management import call_command
 
 RESULTS = {
     # name: (category, success, condition_at, contact_get_time, costs)
-    "mail-passive": ("passive-absolute", True, 60.0, 75.0, {"input_tokens": 100_000, "output_tokens": 2_000,
-                                                            "tool_calls": 6, "model": "m"}),
-    "mail-active": ("active-relative", False, 90.0, 40.0, {"prompt_tokens": 300_000, "completion_tokens": 9_000,
-                                                          "tool_calls": 20, "model": "m"}),
-    "mail-noop": ("noop", True, None, None, {"input_tokens": 50_000, "output_tokens": 1_000, "tool_calls": 3,
-                                             "model": "m"}),
+    "mail-passive": (
+        "passive-absolute",
+        True,
+        60.0,
+        75.0,
+        {"input_tokens": 100_000, "output_tokens": 2_000, "tool_calls": 6, "model": "m"},
+    ),
+    "mail-active": (
+        "active-relative",
+        False,
+        90.0,
+        40.0,
+        {"prompt_tokens": 300_000, "completion_tokens": 9_000, "tool_calls": 20, "model": "m"},
+    ),
+    "mail-noop": (
+        "noop",
+        True,
+        None,
+        None,
+        {"input_tokens": 50_000, "output_tokens": 1_000, "tool_calls": 3, "model": "m"},
+    ),
     "mail-late": ("passive-relative", True, 120.0, 130.0, None),
 }
 
@@ -26,21 +41,41 @@ def results_tree(tmp_path) -> Path:
     for name, (category, success, condition, contact, costs) in RESULTS.items():
         folder = tmp_path / "results" / "graded" / "micromail" / name
         folder.mkdir(parents=True)
-        result = {"success": success, "detail": "", "evaluation_time": contact or 180.0, "condition_at": condition,
-                  "contact_get_time": contact, "contact_post_time": contact, "contact_message": None,
-                  "run": None, "category": category, "views": 30, "actions": 2}
+        result = {
+            "success": success,
+            "detail": "",
+            "evaluation_time": contact or 180.0,
+            "condition_at": condition,
+            "contact_get_time": contact,
+            "contact_post_time": contact,
+            "contact_message": None,
+            "run": None,
+            "category": category,
+            "views": 30,
+            "actions": 2,
+        }
         (folder / "results.json").write_text(json.dumps(result))
         if costs:
             (folder / "costs.json").write_text(json.dumps(costs))
     (tmp_path / "eval_config.yaml").write_text(
-        "agent_subprocess: [echo]\nprices: {m: {input: 1.25, output: 10}}\n")
+        "agent_subprocess: [echo]\nprices: {m: {input: 1.25, output: 10}}\n"
+    )
     return tmp_path
 
 
 def grade(root: Path, *args) -> str:
     out = io.StringIO()
-    call_command("bench", "grade", "graded", "--results-dir", str(root / "results"),
-                 "--config", str(root / "eval_config.yaml"), *args, stdout=out)
+    call_command(
+        "bench",
+        "grade",
+        "graded",
+        "--results-dir",
+        str(root / "results"),
+        "--config",
+        str(root / "eval_config.yaml"),
+        *args,
+        stdout=out,
+    )
     return out.getvalue()
 
 
@@ -89,5 +124,8 @@ def test_the_html_report_draws_four_plots_in_chromium(results_tree, browser):
     plot_box = page.locator("svg#plot-time").bounding_box()
     for mark in page.locator("svg#plot-time .mark").all():  # drawn inside the figure
         box = mark.bounding_box()
-        assert plot_box["y"] <= box["y"] and box["y"] + box["height"] <= plot_box["y"] + plot_box["height"]
+        assert (
+            plot_box["y"] <= box["y"]
+            and box["y"] + box["height"] <= plot_box["y"] + plot_box["height"]
+        )
     assert page.locator("svg#plot-success rect.mark").count() == 6

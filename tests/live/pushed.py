@@ -14,4 +14,7 @@ def regions(message: dict) -> dict[str, str]:
     html = message["html"]
     starts = list(_REGION_START.finditer(html))
     ends = [match.start() for match in starts[1:]] + [len(html)]
-    return {match.group(1): html[match.start():end].strip() for match, end in zip(starts, ends, strict=True)}
+    return {
+        match.group(1): html[match.start() : end].strip()
+        for match, end in zip(starts, ends, strict=True)
+    }

@@ -46,7 +46,8 @@ def test_the_shell_clock_and_relative_times_advance_by_themselves(live_site, bro
     page.wait_for_function(
         """([clock, ago]) => document.getElementById("sim-clock").innerText !== clock &&
              document.querySelector("#message-list time.when").innerText !== ago""",
-        arg=list(shown), timeout=TURN_BOUND_S * 1000,
+        arg=list(shown),
+        timeout=TURN_BOUND_S * 1000,
     )
     assert clock.inner_text().endswith("09:01") and row.inner_text() == "6 min ago"
     assert clock.get_attribute("datetime").endswith("T09:01")

@@ -35,8 +35,10 @@ def quiet_scenario() -> dict:
 
 def api(base_url: str, path: str, body: dict | None = None) -> dict:
     request = urllib.request.Request(
-        f"{base_url}{path}", data=json.dumps(body or {}).encode(),
-        headers={"Content-Type": "application/json"}, method="POST",
+        f"{base_url}{path}",
+        data=json.dumps(body or {}).encode(),
+        headers={"Content-Type": "application/json"},
+        method="POST",
     )
     with urllib.request.urlopen(request, timeout=30) as response:
         return json.load(response)
@@ -75,8 +77,7 @@ def test_a_running_clock_pushes_the_turning_minute_without_any_event(live_site):
 
 
 def test_advancing_a_virtual_clock_past_the_minute_pushes(live_site):
-    run = api(live_site, "/api/runs/", {"scenario_json": quiet_scenario(),
-                                        "clock_mode": "virtual"})
+    run = api(live_site, "/api/runs/", {"scenario_json": quiet_scenario(), "clock_mode": "virtual"})
     url = f"/r/{run['token']}/micromail/?folder=inbox"
     seq, due, clock = open_page(live_site, url)
     assert (due, clock[-5:]) == (60.0, "09:00")

@@ -24,8 +24,10 @@ POLL_INTERVAL_S = 2.0  # data-poll-ms in templates/site/base.html
 
 def api(base_url: str, path: str, body: dict) -> dict:
     request = urllib.request.Request(
-        f"{base_url}{path}", data=json.dumps(body).encode(),
-        headers={"Content-Type": "application/json"}, method="POST",
+        f"{base_url}{path}",
+        data=json.dumps(body).encode(),
+        headers={"Content-Type": "application/json"},
+        method="POST",
     )
     with urllib.request.urlopen(request, timeout=30) as response:
         return json.load(response)

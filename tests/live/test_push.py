@@ -43,8 +43,9 @@ def in_memory_layer(settings):
 
 
 def new_run():
-    return lifecycle.create_run(mailbox_scenario(), clock_mode=ClockMode.VIRTUAL,
-                                catalog_dir=CATALOG_DIR)
+    return lifecycle.create_run(
+        mailbox_scenario(), clock_mode=ClockMode.VIRTUAL, catalog_dir=CATALOG_DIR
+    )
 
 
 def inbox(run, rest: str = "?folder=inbox") -> str:
@@ -95,7 +96,8 @@ def test_an_action_in_one_tab_updates_another_tab_of_the_same_run():
     async def story():
         tab_b = await subscribe(run, inbox(run))
         response = await database_sync_to_async(tab_a.post)(
-            inbox(run, "emails/budget-review/flag"), {"back": "?folder=inbox"})
+            inbox(run, "emails/budget-review/flag"), {"back": "?folder=inbox"}
+        )
         assert response.status_code == 302
         message = await tab_b.receive_json_from(timeout=WAIT_S)
         await tab_b.disconnect()
@@ -220,8 +222,9 @@ def test_one_render_serves_a_log_position_and_a_clock_window(monkeypatch):
     run = new_run()
     url, seq = inbox(run), last_live_seq(run.pk)
     renders = []
-    monkeypatch.setattr(live, "render_update",
-                        lambda *args: renders.append(args) or render_update(*args))
+    monkeypatch.setattr(
+        live, "render_update", lambda *args: renders.append(args) or render_update(*args)
+    )
 
     first = live.shared_render(run, url, seq, 0.0)
     assert live.shared_render(run, url, seq, 59.0) is first  # 09:00 still reads 09:00
@@ -251,8 +254,11 @@ def test_group_messages_use_the_configured_layer():
         return [await asyncio.wait_for(layer.receive(channel), WAIT_S) for _ in range(2)]
 
     moved, grew = run_async(story)
-    assert moved == {"type": "run.clock_moved", "run": run.pk,
-                     "clock": {"status": "running_manual", "started_at": None, "sim_time": LATE_AT}}
+    assert moved == {
+        "type": "run.clock_moved",
+        "run": run.pk,
+        "clock": {"status": "running_manual", "started_at": None, "sim_time": LATE_AT},
+    }
     assert grew["type"] == "run.log_grew" and grew["run"] == run.pk
 
 

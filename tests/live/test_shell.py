@@ -22,13 +22,18 @@ MONDAY = date(2025, 1, 6)
 
 @pytest.fixture
 def run(db):
-    return lifecycle.create_run(mailbox_scenario(), clock_mode=ClockMode.VIRTUAL,
-                                catalog_dir=CATALOG_DIR)
+    return lifecycle.create_run(
+        mailbox_scenario(), clock_mode=ClockMode.VIRTUAL, catalog_dir=CATALOG_DIR
+    )
 
 
 def test_simulated_times_read_from_the_run_clock():
     assert (clock_time(0), clock_time(-300), ago(-300, 0), ago(100, 110)) == (
-        "09:00", "08:55", "5 min ago", "just now")
+        "09:00",
+        "08:55",
+        "5 min ago",
+        "just now",
+    )
     assert relative(0, 5 * 3600, MONDAY) == "09:00"
     assert relative(0, 24 * 3600, MONDAY) == "Yesterday 09:00"
     assert relative(0, 3 * 24 * 3600, MONDAY) == "Mon 6 Jan"
@@ -60,10 +65,20 @@ def test_icon_buttons_have_labels(run):
 def test_the_asgi_app_serves_the_static_scripts(path):
     from sentinel_site.asgi import router
 
-    scope = {"type": "http", "method": "GET", "path": path, "raw_path": path.encode(),
-             "query_string": b"", "headers": [(b"host", b"testserver")], "scheme": "http",
-             "server": ("testserver", 80), "client": ("127.0.0.1", 1), "asgi": {"version": "3.0"},
-             "http_version": "1.1", "root_path": ""}
+    scope = {
+        "type": "http",
+        "method": "GET",
+        "path": path,
+        "raw_path": path.encode(),
+        "query_string": b"",
+        "headers": [(b"host", b"testserver")],
+        "scheme": "http",
+        "server": ("testserver", 80),
+        "client": ("127.0.0.1", 1),
+        "asgi": {"version": "3.0"},
+        "http_version": "1.1",
+        "root_path": "",
+    }
     sent, requested = [], []
 
     async def receive():

@@ -31,8 +31,10 @@ def early_scenario() -> dict:
 
 def api(base_url: str, path: str, body: dict | None = None) -> dict:
     request = urllib.request.Request(
-        f"{base_url}{path}", data=json.dumps(body or {}).encode(),
-        headers={"Content-Type": "application/json"}, method="POST",
+        f"{base_url}{path}",
+        data=json.dumps(body or {}).encode(),
+        headers={"Content-Type": "application/json"},
+        method="POST",
     )
     with urllib.request.urlopen(request, timeout=30) as response:
         return json.load(response)

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from events.catalog import load_catalog
 from apps.micromail.environment import MICROMAIL
 from apps.micromail.state import Mail
 from apps.scenarios.format import parse_scenario
+from events.catalog import load_catalog
 from events.registry import ActionRejected, LoggedEvent, PayloadError, validate_payload
 
 CATALOG_DIR = Path(__file__).resolve().parent / "catalog"

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import pytest
 
+from apps.agent_site.simclock import ago, clock_time
 from apps.micromail import state as mailbox
 from apps.micromail.compose import prefill, split_addresses
 from apps.micromail.environment import MICROMAIL
 from apps.micromail.query import InvalidQuery, MailboxQuery
-from apps.agent_site.simclock import ago, clock_time
 from events.registry import ActionRejected
 from tests.micromail.cast import DANA, OMAR, PRIYA, SELF_EMAIL, act, preloaded_mail, scenario_event
 

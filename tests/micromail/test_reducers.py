@@ -99,7 +99,10 @@ def test_baselines_are_measured_right_after_the_preload():
 
 def test_new_mail_does_not_move_the_baselines():
     late = scenario_event("new_email", {"email_id": "late-report"}, at=120.0, seq=2)
-    assert MICROMAIL.fold(fresh_mail(), [PRELOAD, late])[1] == MICROMAIL.fold(fresh_mail(), [PRELOAD])[1]
+    assert (
+        MICROMAIL.fold(fresh_mail(), [PRELOAD, late])[1]
+        == MICROMAIL.fold(fresh_mail(), [PRELOAD])[1]
+    )
 
 
 def test_without_a_preload_there_are_no_baselines():

@@ -132,7 +132,9 @@ def test_a_scenario_authored_in_the_admin_is_written_in_our_key_order():
 
 
 def write_scenario(folder: Path, name: str, **changes) -> dict:
-    template = next(p for p in sorted((REPO / "scenarios" / "micromail").glob("*.json")) if p.name != "dev.json")
+    template = next(
+        p for p in sorted((REPO / "scenarios" / "micromail").glob("*.json")) if p.name != "dev.json"
+    )
     data = json.loads(template.read_text())
     data.update(changes)
     (folder / "micromail").mkdir(parents=True, exist_ok=True)

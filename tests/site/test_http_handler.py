@@ -5,11 +5,10 @@ from __future__ import annotations
 import asyncio
 import json
 import threading
+import time
 
 import pytest
 from asgiref.testing import ApplicationCommunicator
-
-import time
 
 from sentinel_site.http_handler import Lanes, RequestThreads, SyncChainHandler
 from tests.site.urls import reset_concurrency
@@ -39,9 +38,17 @@ def app(settings):
 
 
 async def get(app, path: str) -> tuple[int, dict]:
-    scope = {"type": "http", "method": "GET", "path": path, "query_string": b"",
-             "headers": [(b"host", b"testserver")], "http_version": "1.1",
-             "scheme": "http", "server": ("testserver", 80), "client": ("127.0.0.1", 1)}
+    scope = {
+        "type": "http",
+        "method": "GET",
+        "path": path,
+        "query_string": b"",
+        "headers": [(b"host", b"testserver")],
+        "http_version": "1.1",
+        "scheme": "http",
+        "server": ("testserver", 80),
+        "client": ("127.0.0.1", 1),
+    }
     communicator = ApplicationCommunicator(app, scope)
     await communicator.send_input({"type": "http.request", "body": b""})
     start = await communicator.receive_output(timeout=10)
@@ -93,8 +100,10 @@ def test_a_thread_count_below_one_is_refused():
 @pytest.fixture
 def lanes(settings):
     handler = SyncChainHandler()
-    app = Lanes(RequestThreads(handler, size=2, name="agent"),
-                RequestThreads(handler, size=2, name="control"))
+    app = Lanes(
+        RequestThreads(handler, size=2, name="agent"),
+        RequestThreads(handler, size=2, name="control"),
+    )
     yield app
     app.shutdown()
 

@@ -61,15 +61,19 @@ def test_a_live_rerender_records_the_outermost_regions_in_page_order():
     html = render(
         '{% load live %}<main>{% live "section" id="list" %}<ul>{% live "li" id="row" %}1'
         '{% endlive %}</ul>{% endlive %}{% live "aside" id=pane_id %}2{% endlive %}</main>',
-        request, pane_id="pane",
+        request,
+        pane_id="pane",
     )
     assert html == (
         '<main><section id="list" data-live><ul><li id="row" data-live>1</li></ul></section>'
         '<aside id="pane" data-live>2</aside></main>'
     )
     assert request.sentinel_live_regions == [
-        ("list", '<section id="list" data-live hx-swap-oob="true"><ul>'
-                 '<li id="row" data-live>1</li></ul></section>'),
+        (
+            "list",
+            '<section id="list" data-live hx-swap-oob="true"><ul>'
+            '<li id="row" data-live>1</li></ul></section>',
+        ),
         ("pane", '<aside id="pane" data-live hx-swap-oob="true">2</aside>'),
     ]
 
@@ -84,11 +88,14 @@ def test_a_region_whose_id_is_empty_fails_loudly():
         render('{% load live %}{% live "nav" id=missing %}…{% endlive %}')
 
 
-@pytest.mark.parametrize("source, problem", [
-    ('{% live id="folders" %}…{% endlive %}', "element name first"),
-    ('{% live "nav" id="a" folders %}…{% endlive %}', "not name=value"),
-    ('{% live "nav" id="a" data-live="1" %}…{% endlive %}', "written by the tag"),
-])
+@pytest.mark.parametrize(
+    "source, problem",
+    [
+        ('{% live id="folders" %}…{% endlive %}', "element name first"),
+        ('{% live "nav" id="a" folders %}…{% endlive %}', "not name=value"),
+        ('{% live "nav" id="a" data-live="1" %}…{% endlive %}', "written by the tag"),
+    ],
+)
 def test_malformed_regions_fail_loudly(source, problem):
     with pytest.raises(TemplateSyntaxError, match=problem):
         Template("{% load live %}" + source)
@@ -104,8 +111,9 @@ def test_a_void_element_cannot_be_a_region():
 
 @pytest.fixture
 def run(db):
-    return lifecycle.create_run(mailbox_scenario(), clock_mode=ClockMode.VIRTUAL,
-                                catalog_dir=CATALOG_DIR)
+    return lifecycle.create_run(
+        mailbox_scenario(), clock_mode=ClockMode.VIRTUAL, catalog_dir=CATALOG_DIR
+    )
 
 
 def page_at(run, now: float) -> Page:
@@ -131,7 +139,11 @@ def test_render_update_returns_the_recorded_regions_and_next_change(run):
     lifecycle.advance(run, 75.0)
     update = render_update(run, f"/r/{run.token}/micromail/?folder=inbox")
     assert [region_id for region_id, _ in update.regions] == [
-        "sim-clock", "folders", "message-list", "reading-pane"]
+        "sim-clock",
+        "folders",
+        "message-list",
+        "reading-pane",
+    ]
     assert update.next_change == 120.0  # 09:02, and the preloaded mail turns "7 min ago"
     assert update.html.startswith('<time id="sim-clock" data-live hx-swap-oob="true"')
     assert update.message()["next_change"] == 120.0

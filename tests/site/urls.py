@@ -44,8 +44,13 @@ def arrival(request):
     """When the request arrived (stamped before it waited for a thread) and when it ran."""
     from apps.agent_site.pages import arrival_wall
 
-    return JsonResponse({"arrived": arrival_wall(request), "ran": time.time(),
-                         "view_thread": threading.current_thread().name})
+    return JsonResponse(
+        {
+            "arrived": arrival_wall(request),
+            "ran": time.time(),
+            "view_thread": threading.current_thread().name,
+        }
+    )
 
 
 urlpatterns = [

@@ -29,8 +29,21 @@ register = template.Library()
 
 ELEMENT = re.compile(r"[a-zA-Z][a-zA-Z0-9-]*")
 ATTRIBUTE = re.compile(r"[a-zA-Z_:][-a-zA-Z0-9_:.]*")
-VOID_ELEMENTS = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta",
-                 "source", "track", "wbr"}
+VOID_ELEMENTS = {
+    "area",
+    "base",
+    "br",
+    "col",
+    "embed",
+    "hr",
+    "img",
+    "input",
+    "link",
+    "meta",
+    "source",
+    "track",
+    "wbr",
+}
 RESERVED = {"data-live", "hx-swap-oob"}  # written by the tag itself
 USAGE = '{% live "nav" id="folders" class="…" %}…{% endlive %}'
 

@@ -40,6 +40,8 @@ def message_rows(context: template.Context, rows: tuple[Row, ...]) -> SafeString
         arrived = row.email.arrived_at
         page.changes_at(simclock.ago_changes_at(arrived, page.now))
         html.append(
-            render_fragment("micromail/_row.html", row=row, ago=simclock.ago(arrived, page.now), **inputs)
+            render_fragment(
+                "micromail/_row.html", row=row, ago=simclock.ago(arrived, page.now), **inputs
+            )
         )
     return mark_safe("".join(html))

@@ -5,8 +5,8 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import signal
-import threading
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -19,9 +19,9 @@ from django.utils import timezone
 
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig, ConfigError, load_config
-from apps.bench.runner import CONTROL_AGENTS, BenchError, Harness, Progress, run_pool, discover
-from sentinel_site.site_server import ServerDidNotStart, site_server
+from apps.bench.runner import CONTROL_AGENTS, BenchError, Harness, Progress, discover, run_pool
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
+from sentinel_site.site_server import ServerDidNotStart, site_server
 
 DEFAULT_CONFIG = "eval_config.yaml"
 
@@ -48,10 +48,14 @@ def _usage(message: str) -> CommandError:
 
 
 class Command(BaseCommand):
-    help = "Benchmark harness: run an agent over the scenarios, grade the results, validate scenarios."
+    help = (
+        "Benchmark harness: run an agent over the scenarios, grade the results, validate scenarios."
+    )
 
     def add_arguments(self, parser):
-        sub = parser.add_subparsers(dest="subcommand", required=True, metavar="{run,grade,validate}")
+        sub = parser.add_subparsers(
+            dest="subcommand", required=True, metavar="{run,grade,validate}"
+        )
 
         run = sub.add_parser("run", help="run an agent on every selected scenario")
         run.add_argument("name", help="results go to <results-dir>/<name>/<env>/<scenario id>/")
@@ -61,8 +65,14 @@ class Command(BaseCommand):
         run.add_argument("--filter", help="case-insensitive substring of the scenario id")
         run.add_argument("--speed-factor", type=float)
         run.add_argument("--server-url", help="use this server instead of starting an embedded one")
-        run.add_argument("--agent", choices=CONTROL_AGENTS, help="a built-in control agent instead of agent_subprocess")
-        run.add_argument("--retry-errors", action="store_true", help="rerun tasks that have error.txt")
+        run.add_argument(
+            "--agent",
+            choices=CONTROL_AGENTS,
+            help="a built-in control agent instead of agent_subprocess",
+        )
+        run.add_argument(
+            "--retry-errors", action="store_true", help="rerun tasks that have error.txt"
+        )
         run.add_argument("--results-dir", default="results")
 
         grade = sub.add_parser("grade", help="summarise a results tree")
@@ -76,12 +86,20 @@ class Command(BaseCommand):
 
         validate = sub.add_parser("validate", help="run the control agents on every scenario")
         validate.add_argument("--speed-factor", type=float, default=4.0)
-        validate.add_argument("--parallel", type=int, default=10, help="runs at once per control agent")
+        validate.add_argument(
+            "--parallel", type=int, default=10, help="runs at once per control agent"
+        )
         validate.add_argument("--filter")
         validate.add_argument("--server-url")
-        validate.add_argument("--reaction-window", type=float, default=REACTION_WINDOW,
-                              help="wall seconds after the last possible condition (default 30)")
-        validate.add_argument("--keep", action="store_true", help="keep the temporary results folder")
+        validate.add_argument(
+            "--reaction-window",
+            type=float,
+            default=REACTION_WINDOW,
+            help="wall seconds after the last possible condition (default 30)",
+        )
+        validate.add_argument(
+            "--keep", action="store_true", help="keep the temporary results folder"
+        )
 
     def handle(self, *args, subcommand: str, **options):
         try:
@@ -92,8 +110,10 @@ class Command(BaseCommand):
         except HarnessError as exc:
             raise CommandError(f"harness error: {exc}") from None
         except KeyboardInterrupt:
-            raise CommandError("interrupted: every agent was killed; unfinished tasks run again next time",
-                               returncode=130) from None
+            raise CommandError(
+                "interrupted: every agent was killed; unfinished tasks run again next time",
+                returncode=130,
+            ) from None
 
     # --- shared ----------------------------------------------------------------------------
 
@@ -117,8 +137,21 @@ class Command(BaseCommand):
 
     # --- run -------------------------------------------------------------------------------
 
-    def handle_run(self, *, name, config, parallel, task, filter, speed_factor, server_url, agent,
-                   retry_errors, results_dir, **_):
+    def handle_run(
+        self,
+        *,
+        name,
+        config,
+        parallel,
+        task,
+        filter,
+        speed_factor,
+        server_url,
+        agent,
+        retry_errors,
+        results_dir,
+        **_,
+    ):
         cfg = load_config(config) if agent is None or Path(config).exists() else BenchConfig(None)
         if agent is None and cfg.agent_subprocess is None:
             raise _usage(f"{config}: agent_subprocess: is required (or pass --agent)")
@@ -136,12 +169,21 @@ class Command(BaseCommand):
         started_at = timezone.now()
         began = time.monotonic()
         with self.server(cfg.server_url) as url:
-            client = ControlClient(url, token=cfg.control_token or settings.SENTINEL_CONTROL_TOKEN,
-                                   timeout=cfg.http_timeout)
+            client = ControlClient(
+                url,
+                token=cfg.control_token or settings.SENTINEL_CONTROL_TOKEN,
+                timeout=cfg.http_timeout,
+            )
             try:
                 listing = discover(client, task=task, filter=filter)
-                harness = Harness(cfg, client, run_dir, Path(settings.BASE_DIR), agent=agent,
-                                  retry_errors=retry_errors)
+                harness = Harness(
+                    cfg,
+                    client,
+                    run_dir,
+                    Path(settings.BASE_DIR),
+                    agent=agent,
+                    retry_errors=retry_errors,
+                )
                 tasks = harness.tasks(listing)
                 self.stdout.write(f"Found {len(tasks)} tasks. Results -> {run_dir}")
                 if task:
@@ -162,7 +204,9 @@ class Command(BaseCommand):
             f"errors={counts['error']} skipped={len(tasks) - len(todo)} wall_s={time.monotonic() - began:.1f}"
         )
         if counts["error"]:
-            raise CommandError(f"{counts['error']} task(s) hit a harness error; see their error.txt", returncode=1)
+            raise CommandError(
+                f"{counts['error']} task(s) hit a harness error; see their error.txt", returncode=1
+            )
 
     # --- grade -----------------------------------------------------------------------------
 
@@ -185,7 +229,9 @@ class Command(BaseCommand):
 
     # --- validate --------------------------------------------------------------------------
 
-    def handle_validate(self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, **_):
+    def handle_validate(
+        self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, **_
+    ):
         from apps.bench.grading import load_rows
 
         sf = validate_speed_factor(speed_factor)
@@ -197,14 +243,20 @@ class Command(BaseCommand):
         root = Path(tempfile.mkdtemp(prefix="bench-validate-"))
         began = time.monotonic()
         with self.server(server_url) as url:
-            client = ControlClient(url, token=settings.SENTINEL_CONTROL_TOKEN, timeout=cfg.http_timeout)
+            client = ControlClient(
+                url, token=settings.SENTINEL_CONTROL_TOKEN, timeout=cfg.http_timeout
+            )
             try:
                 listing = discover(client, filter=filter)
-                harnesses = {a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a)
-                             for a in CONTROL_AGENTS}
+                harnesses = {
+                    a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a)
+                    for a in CONTROL_AGENTS
+                }
                 tasks = {a: h.tasks(listing) for a, h in harnesses.items()}
-                self.stdout.write(f"Validating {len(listing)} scenarios with {', '.join(CONTROL_AGENTS)} "
-                                  f"at speed factor {sf:g} (results -> {root})")
+                self.stdout.write(
+                    f"Validating {len(listing)} scenarios with {', '.join(CONTROL_AGENTS)} "
+                    f"at speed factor {sf:g} (results -> {root})"
+                )
                 jobs = [(harnesses[a], t) for a in CONTROL_AGENTS for t in tasks[a]]
                 outcomes = run_pool(jobs, parallel * len(CONTROL_AGENTS), self.progress())
             finally:
@@ -213,7 +265,10 @@ class Command(BaseCommand):
         errors = [o for o in outcomes if o.status == "error"]
         for o in errors:
             self.stdout.write(f"harness error: {o.task.folder}: {o.detail}")
-        rows = {a: {r.name: r for r in load_rows(root / a)} if (root / a).is_dir() else {} for a in CONTROL_AGENTS}
+        rows = {
+            a: {r.name: r for r in load_rows(root / a)} if (root / a).is_dir() else {}
+            for a in CONTROL_AGENTS
+        }
         ids = [s["id"] for s in listing]
         noop = {s["id"] for s in listing if s["noop"]}
         active = [i for i in ids if i not in noop]
@@ -228,12 +283,16 @@ class Command(BaseCommand):
         early = [i for i in active if passed("early", i) is False]
         problems += [f"early passed {i} (trivially passable)" for i in active if i not in early]
         never = [i for i in ids if passed("never", i) is (i in noop)]
-        problems += [f"never {'failed' if i in noop else 'passed'} {i}" for i in ids if i not in never]
+        problems += [
+            f"never {'failed' if i in noop else 'passed'} {i}" for i in ids if i not in never
+        ]
         sleeper = [i for i in ids if passed("sleeper", i)]
         for problem in problems:
             self.stdout.write(f"PROBLEM: {problem}")
         if sleeper:
-            self.stdout.write(f"sleeper (contacts just before the deadline) passes: {', '.join(sleeper)}")
+            self.stdout.write(
+                f"sleeper (contacts just before the deadline) passes: {', '.join(sleeper)}"
+            )
         if not keep:
             import shutil
 
@@ -244,5 +303,7 @@ class Command(BaseCommand):
             f"sleeper={len(sleeper)}/{len(ids)} wall_s={wall:.1f}"
         )
         if problems or errors:
-            raise CommandError(f"validation failed: {len(problems)} problem(s), {len(errors)} harness error(s)",
-                               returncode=1)
+            raise CommandError(
+                f"validation failed: {len(problems)} problem(s), {len(errors)} harness error(s)",
+                returncode=1,
+            )

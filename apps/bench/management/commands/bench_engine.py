@@ -34,7 +34,9 @@ class Command(BaseCommand):
         parser.add_argument("--runs", type=int, default=100)
         parser.add_argument("--seconds", type=float, default=60.0, help="wall seconds of live play")
         parser.add_argument("--speed", type=float, default=4.0, help="speed factor of every run")
-        parser.add_argument("--agents", type=int, default=4, help="agent threads reading and acting")
+        parser.add_argument(
+            "--agents", type=int, default=4, help="agent threads reading and acting"
+        )
 
     def handle(self, *args, runs: int, seconds: float, speed: float, agents: int, **options):
         try:
@@ -56,8 +58,12 @@ class Command(BaseCommand):
             # ~2 events per wall second per run, at irregular times, on top of a t=0 preload.
             count = int(seconds * 2)
             times = sorted(round(rng.uniform(0.5, authored_span), 3) for _ in range(count))
-            data = tally_scenario(pings=[(0.0, 1)] + [(t, 1) for t in times], condition_at=None, eval_sql=None,
-                                  scenario_id=f"bench-{index}")
+            data = tally_scenario(
+                pings=[(0.0, 1)] + [(t, 1) for t in times],
+                condition_at=None,
+                eval_sql=None,
+                scenario_id=f"bench-{index}",
+            )
             data["event_timeline_end"] = data["kill_at"] = max(authored_span + 1, 1.0)
             specs.append(parse_scenario(data, source="bench").to_run_spec())
 
@@ -82,7 +88,9 @@ class Command(BaseCommand):
             finally:
                 close_old_connections()
 
-        agent_threads = [threading.Thread(target=agent, args=(i,), daemon=True) for i in range(agents)]
+        agent_threads = [
+            threading.Thread(target=agent, args=(i,), daemon=True) for i in range(agents)
+        ]
         for thread in agent_threads:
             thread.start()
         time.sleep(seconds + 0.5)
@@ -93,8 +101,9 @@ class Command(BaseCommand):
 
         run_ids = [run.pk for run in created]
         lateness = list(
-            Event.objects.filter(run_id__in=run_ids, kind=EventKind.SCENARIO, lateness_ms__isnull=False)
-            .values_list("lateness_ms", flat=True)
+            Event.objects.filter(
+                run_id__in=run_ids, kind=EventKind.SCENARIO, lateness_ms__isnull=False
+            ).values_list("lateness_ms", flat=True)
         )
         expected = sum(len([e for e in s["events"] if e["time"] > 0]) for s in specs)
         self.stderr.write(f"fired {len(lateness)} of {expected} timed entries across {runs} runs")
@@ -148,8 +157,17 @@ class Command(BaseCommand):
 
     def _reset_ms(self, spec: dict, rounds: int = 21) -> float:
         client = Client()
-        body = {k: spec[k] for k in ("environment", "event_timeline_end", "eval_sql", "condition_at", "events",
-                                     "start_page")}
+        body = {
+            k: spec[k]
+            for k in (
+                "environment",
+                "event_timeline_end",
+                "eval_sql",
+                "condition_at",
+                "events",
+                "start_page",
+            )
+        }
         body["events"] = body["events"][:1]
         timings = []
         for _ in range(rounds):
@@ -158,6 +176,8 @@ class Command(BaseCommand):
             response = client.post("/init", body, content_type="application/json")
             timings.append((time.perf_counter() - started) * 1000)
             if response.status_code != 200:
-                raise CommandError(f"/init failed during the reset benchmark: {response.content[:200]!r}")
+                raise CommandError(
+                    f"/init failed during the reset benchmark: {response.content[:200]!r}"
+                )
         client.get("/close")
         return statistics.median(timings)

@@ -76,7 +76,12 @@ class Command(BaseCommand):
     def handle(self, *args, env, clients, seconds, rate, runs, **options):
         if env not in environment_names():
             raise CommandError(f"unknown --env {env!r}; valid: {', '.join(environment_names())}")
-        for name, value in (("clients", clients), ("seconds", seconds), ("rate", rate), ("runs", runs)):
+        for name, value in (
+            ("clients", clients),
+            ("seconds", seconds),
+            ("rate", rate),
+            ("runs", runs),
+        ):
             if not value > 0:
                 raise CommandError(f"--{name} must be > 0, got {value}")
         if runs > clients:
@@ -84,15 +89,24 @@ class Command(BaseCommand):
         try:
             import websockets  # noqa: F401
         except ImportError:
-            raise CommandError("bench_live needs the `websockets` package: pip install websockets") from None
+            raise CommandError(
+                "bench_live needs the `websockets` package: pip install websockets"
+            ) from None
         call_command("migrate", verbosity=0, interactive=False)
         events = int(seconds * rate) + 5
         scenario = bench_scenario(env, events)
         try:
             with site_server(log_path=settings.BASE_DIR / "var" / "bench-live.log") as base_url:
                 result = asyncio.run(
-                    Bench(base_url.removeprefix("http://"), scenario,
-                          clients, seconds, rate, runs, self.stderr).main()
+                    Bench(
+                        base_url.removeprefix("http://"),
+                        scenario,
+                        clients,
+                        seconds,
+                        rate,
+                        runs,
+                        self.stderr,
+                    ).main()
                 )
         except ServerDidNotStart as exc:
             raise CommandError(str(exc)) from None
@@ -122,7 +136,9 @@ class Bench:
     async def api(self, http, path: str, body: dict) -> dict:
         response = await http.post(path, json=body)
         if response.status_code >= 400:
-            raise CommandError(f"POST {path} answered {response.status_code}: {response.text[:300]}")
+            raise CommandError(
+                f"POST {path} answered {response.status_code}: {response.text[:300]}"
+            )
         return response.json()
 
     async def client(self, run: dict, received: list, ready: asyncio.Event, stop: asyncio.Event):
@@ -131,7 +147,9 @@ class Bench:
 
         # The run's task URL redirects to its start page; its live socket is named in the page.
         async with httpx.AsyncClient(base_url=f"http://{self.host}") as http:
-            response = await http.get(run["task_url"].split(self.host, 1)[-1], follow_redirects=True)
+            response = await http.get(
+                run["task_url"].split(self.host, 1)[-1], follow_redirects=True
+            )
         url = response.url.raw_path.decode()
         socket = LIVE_SOCKET.search(response.text).group(1)
         async with websockets.connect(f"ws://{self.host}{socket}", max_size=None) as ws:
@@ -157,25 +175,38 @@ class Bench:
         import httpx
 
         async with httpx.AsyncClient(base_url=f"http://{self.host}", timeout=60) as http:
-            runs = [await self.api(http, "/api/runs/", {"scenario_json": self.scenario,
-                                                       "clock_mode": "virtual"})
-                    for _ in range(self.runs)]
+            runs = [
+                await self.api(
+                    http, "/api/runs/", {"scenario_json": self.scenario, "clock_mode": "virtual"}
+                )
+                for _ in range(self.runs)
+            ]
             stop = asyncio.Event()
             inboxes = [(runs[i % self.runs], [], asyncio.Event()) for i in range(self.clients)]
-            tasks = [asyncio.create_task(self.client(run, received, ready, stop))
-                     for run, received, ready in inboxes]
+            tasks = [
+                asyncio.create_task(self.client(run, received, ready, stop))
+                for run, received, ready in inboxes
+            ]
             try:
                 await asyncio.wait_for(asyncio.gather(*(r.wait() for _, _, r in inboxes)), 60)
             except TimeoutError:
-                raise CommandError("the websocket clients did not all subscribe within 60 s") from None
-            self.say(f"{self.clients} clients subscribed to {self.runs} run(s); firing "
-                     f"{self.rate:g}/s for {self.seconds:g} s")
+                raise CommandError(
+                    "the websocket clients did not all subscribe within 60 s"
+                ) from None
+            self.say(
+                f"{self.clients} clients subscribed to {self.runs} run(s); firing "
+                f"{self.rate:g}/s for {self.seconds:g} s"
+            )
             started = time.monotonic()
             tick = 0
             while time.monotonic() - started < self.seconds:
                 tick += 1
-                await asyncio.gather(*(self.api(http, f"/api/runs/{run['id']}/advance/",
-                                                {"time": float(tick)}) for run in runs))
+                await asyncio.gather(
+                    *(
+                        self.api(http, f"/api/runs/{run['id']}/advance/", {"time": float(tick)})
+                        for run in runs
+                    )
+                )
                 await asyncio.sleep(max(0.0, started + tick / self.rate - time.monotonic()))
             await asyncio.sleep(2.0)  # let the last pushes land
             stop.set()
@@ -183,8 +214,11 @@ class Bench:
             fired = {}
             for run in runs:
                 log = (await http.get(f"/api/runs/{run['id']}/events/")).json()
-                fired[run["id"]] = [(e["seq"], e["recorded_at"]) for e in log
-                                    if e["kind"] == "scenario" and e["at"] > 0]
+                fired[run["id"]] = [
+                    (e["seq"], e["recorded_at"])
+                    for e in log
+                    if e["kind"] == "scenario" and e["at"] > 0
+                ]
                 await self.api(http, f"/api/runs/{run['id']}/close/", {})
         latencies, messages, missed = [], 0, 0
         for run, received, _ in inboxes:

@@ -2,8 +2,8 @@
 
 from django.core.management.base import BaseCommand
 
-from apps.replay.transfer import export_lines
 from apps.replay.management.commands._runs import get_run
+from apps.replay.transfer import export_lines
 
 
 class Command(BaseCommand):

@@ -8,8 +8,8 @@ import json
 
 from django.core.management.base import BaseCommand, CommandError
 
-from apps.replay.records import record_verdict, replay
 from apps.replay.management.commands._runs import get_run
+from apps.replay.records import record_verdict, replay
 
 
 class Command(BaseCommand):
