@@ -10,35 +10,37 @@ text ("5 min ago"), not as `now`, so a live clock keeps hitting the cache.
 
 from __future__ import annotations
 
+import functools
+
 from django.conf import settings
 from django.template.loader import get_template
 from django.utils.safestring import SafeString
 
-from events.lru import LRU
-
 FRAGMENTS_KEPT = 4096  # about ten full mailboxes of the largest catalog
-
-_rendered: LRU[tuple, SafeString] = LRU(FRAGMENTS_KEPT)
-_counts = {"hits": 0, "misses": 0}  # approximate under threads: for tests and tuning only
 
 
 def render_fragment(template: str, **inputs) -> SafeString:
-    key = (template, tuple(sorted(inputs.items())))
-    if not settings.DEBUG:  # with DEBUG, an edited template shows at once
-        cached = _rendered.get(key)
-        if cached is not None:
-            _counts["hits"] += 1
-            return cached
-    _counts["misses"] += 1
-    html = SafeString(get_template(template).render(inputs))
-    _rendered.put(key, html)
-    return html
+    """`template` rendered with `inputs` as its whole context (each input hashable). Callers
+    pass inputs in the same order each time: the order is part of the key."""
+    if settings.DEBUG:  # an edited template shows at once
+        return _render(template, tuple(inputs.items()))
+    return _cached(template, tuple(inputs.items()))
+
+
+def _render(template: str, inputs: tuple) -> SafeString:
+    return SafeString(get_template(template).render(dict(inputs)))
+
+
+# functools' C implementation: thread-safe, and on the hot path (a row per message) several
+# times cheaper than a Python LRU.
+_cached = functools.lru_cache(maxsize=FRAGMENTS_KEPT)(_render)
 
 
 def cache_info() -> tuple[int, int]:
-    """(hits, misses) since the process started."""
-    return _counts["hits"], _counts["misses"]
+    """(hits, misses) since the process started or the last `clear`."""
+    info = _cached.cache_info()
+    return info.hits, info.misses
 
 
 def clear() -> None:
-    _rendered.clear()
+    _cached.cache_clear()

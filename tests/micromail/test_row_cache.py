@@ -61,9 +61,9 @@ def test_a_page_of_cached_rows_is_byte_identical_to_a_fresh_render(mail_run, mai
     hits, misses = fragments.cache_info()
     warm = [page(browser, mail_url(screen)) for screen in SCREENS]
     assert fragments.cache_info()[1] == misses and fragments.cache_info()[0] > hits  # all cached
-    fragments.clear()
+    fragments.clear()  # also restarts the counts
     fresh = [page(browser, mail_url(screen)) for screen in SCREENS]
-    assert fragments.cache_info()[1] > misses
+    assert fragments.cache_info()[1] > 0
     assert warm == fresh
 
 

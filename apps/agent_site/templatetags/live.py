@@ -108,13 +108,14 @@ class LiveRegionNode(template.Node):
                 request.sentinel_live_depth -= 1
         else:
             inner = self.nodelist.render(context)
-        end = f"{inner}</{element}>"
+        end = f"</{element}>"
         if recording and outermost:
             regions = getattr(request, "sentinel_live_regions", None)
             if regions is None:
                 regions = request.sentinel_live_regions = []
-            regions.append((str(region_id), start_tag(element, values, oob=True) + end))
-        return mark_safe(start_tag(element, values) + end)
+            regions.append((str(region_id), f"{start_tag(element, values, oob=True)}{inner}{end}"))
+        # One copy of what may be most of the page (a region holds the whole message list).
+        return mark_safe(f"{start_tag(element, values)}{inner}{end}")
 
 
 def start_tag(element: str, values: dict, *, oob: bool = False) -> str:
