@@ -35,7 +35,6 @@ INSTALLED_APPS = [
     "drf_spectacular",
     "channels",
     "django_htmx",
-    "lucide",
     "events",
     "apps.scenarios",
     "apps.control",
