@@ -4,6 +4,8 @@ here is `reverse()`d from it."""
 
 from __future__ import annotations
 
+import functools
+
 from django.urls import reverse
 
 from events.models import Run
@@ -13,7 +15,12 @@ HOST_PLACEHOLDER = "HOST_ADDRESS"
 
 def site_root(run: Run) -> str:
     """/r/<token> (no trailing slash)."""
-    return reverse("run-home", kwargs={"token": run.token}).rstrip("/")
+    return _site_root(run.token)
+
+
+@functools.lru_cache(maxsize=4096)  # every page asks several times; reverse() is not free
+def _site_root(token: str) -> str:
+    return reverse("run-home", kwargs={"token": token}).rstrip("/")
 
 
 def environment_root(run: Run) -> str:
@@ -23,7 +30,12 @@ def environment_root(run: Run) -> str:
 
 def live_path(run: Run) -> str:
     """The websocket (and polling) endpoint of the run's live pages (events.consumers)."""
-    return reverse("live-poll", kwargs={"token": run.token})
+    return _live_path(run.token)
+
+
+@functools.lru_cache(maxsize=4096)
+def _live_path(token: str) -> str:
+    return reverse("live-poll", kwargs={"token": token})
 
 
 def start_page_path(run: Run) -> str:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import wraps
+from functools import cached_property, wraps
 from typing import Any
 
 from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllowed
@@ -78,7 +78,7 @@ class Page:
         """Websocket path pushing this page's live regions (see events.consumers)."""
         return links.live_path(self.run)
 
-    @property
+    @cached_property
     def root(self) -> str:
         """URL prefix of this run's pages for the environment: /r/<token>/<env>."""
         return self.base or links.environment_root(self.run)
