@@ -147,6 +147,19 @@ class AppendOnlyQuerySet(models.QuerySet):
         raise PermissionError("events are append-only: a logged event is never deleted")
 
 
+# Every field of a logged event but its run: what an export, the API and a replay carry.
+EVENT_FIELDS = (
+    "seq",
+    "at",
+    "kind",
+    "type",
+    "payload",
+    "recorded_at",
+    "timeline_index",
+    "lateness_ms",
+)
+
+
 class Event(models.Model):
     """One row of a run's log. Never updated, never deleted while its run exists."""
 

@@ -2,25 +2,19 @@
 
 from __future__ import annotations
 
-import json
-import urllib.request
-
 import pytest
+
+from tests import control_api
 
 pytestmark = pytest.mark.browser
 
 
 def test_a_real_browser_reaches_a_run_contact_page(live_site, browser):
-    request = urllib.request.Request(
-        f"{live_site}/api/runs/",
-        data=json.dumps(
-            {"scenario": "micromail-sender-absolute-passive", "clock_mode": "virtual"}
-        ).encode(),
-        headers={"Content-Type": "application/json"},
-        method="POST",
+    run = control_api.post(
+        live_site,
+        "/api/runs/",
+        {"scenario": "micromail-sender-absolute-passive", "clock_mode": "virtual"},
     )
-    with urllib.request.urlopen(request, timeout=10) as response:
-        run = json.load(response)
     page = browser.new_page()
     page.goto(f"{live_site}/r/{run['token']}/contact")
     assert page.title() == "Contact"

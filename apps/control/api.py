@@ -12,7 +12,7 @@ from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, Run
 from apps.scenarios.library import scenario_library
 from events import lifecycle
 from events.evaluation import evaluate
-from events.models import Event, Run
+from events.models import EVENT_FIELDS, Event, Run
 
 
 class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.GenericViewSet):
@@ -77,20 +77,7 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
     def events(self, request, pk=None):
         """The run's whole log, in order: enough to replay it."""
         run = self.get_object()
-        rows = (
-            Event.objects.filter(run_id=run.pk)
-            .order_by("seq")
-            .values(
-                "seq",
-                "at",
-                "kind",
-                "type",
-                "payload",
-                "recorded_at",
-                "timeline_index",
-                "lateness_ms",
-            )
-        )
+        rows = Event.objects.filter(run_id=run.pk).order_by("seq").values(*EVENT_FIELDS)
         return Response(list(rows))
 
 

@@ -17,19 +17,9 @@ from django.utils import timezone
 from apps.replay.models import RunVerdict
 from apps.replay.records import latest_verdict, record_verdict
 from events.catalog import CatalogError, load_catalog
-from events.models import ClockMode, Event, Run, RunStatus
+from events.models import EVENT_FIELDS, ClockMode, Event, Run, RunStatus
 
 FORMAT = "sentinel-run/1"
-EVENT_FIELDS = (
-    "seq",
-    "at",
-    "kind",
-    "type",
-    "payload",
-    "recorded_at",
-    "timeline_index",
-    "lateness_ms",
-)
 
 
 class TransferError(ValueError):

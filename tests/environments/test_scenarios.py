@@ -64,14 +64,19 @@ def test_eval_sql_is_false_just_before_condition_at_and_true_from_it(case, start
     assert eval_sql_holds(run) is True
 
 
-@pytest.mark.parametrize("case", params(noop=False))
-def test_the_solution_carried_out_through_the_pages_and_a_contact_pass(case, start):
-    scenario, run = start(case)
-    lifecycle.advance(run, scenario.condition_at)
+def solve_and_contact(run, scenario) -> None:
+    """What a person does: the solution through the pages, then the contact page."""
     client = browser()
     for step in scenario.solution:
         perform_through_pages(client, run, step)
     contact(client, run)
+
+
+@pytest.mark.parametrize("case", params(noop=False))
+def test_the_solution_carried_out_through_the_pages_and_a_contact_pass(case, start):
+    scenario, run = start(case)
+    lifecycle.advance(run, scenario.condition_at)
+    solve_and_contact(run, scenario)
     verdict = evaluate(run)
     assert verdict.success is True, verdict.detail
 
@@ -97,9 +102,6 @@ def test_a_noop_passes_when_the_agent_never_contacts(case, start):
 def test_a_noop_fails_when_the_agent_contacts(case, start):
     scenario, run = start(case)
     lifecycle.advance(run, scenario.kill_at)
-    client = browser()
-    for step in scenario.solution:
-        perform_through_pages(client, run, step)
-    contact(client, run)
+    solve_and_contact(run, scenario)
     verdict = evaluate(run)
     assert verdict.success is False, verdict.detail

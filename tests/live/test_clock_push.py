@@ -17,6 +17,7 @@ from django.conf import settings
 from websockets.sync.client import connect
 
 from events.live import last_live_seq
+from tests import control_api
 from tests.live.pushed import regions
 
 pytestmark = pytest.mark.django_db(transaction=True)
@@ -33,15 +34,7 @@ def quiet_scenario() -> dict:
     return scenario
 
 
-def api(base_url: str, path: str, body: dict | None = None) -> dict:
-    request = urllib.request.Request(
-        f"{base_url}{path}",
-        data=json.dumps(body or {}).encode(),
-        headers={"Content-Type": "application/json"},
-        method="POST",
-    )
-    with urllib.request.urlopen(request, timeout=30) as response:
-        return json.load(response)
+api = control_api.post
 
 
 def open_page(base_url: str, url: str) -> tuple[int, float, str]:

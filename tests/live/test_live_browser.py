@@ -6,11 +6,11 @@ created and advanced through the multi-run API, exactly as a harness would drive
 
 from __future__ import annotations
 
-import json
 import time
-import urllib.request
 
 import pytest
+
+from tests import control_api
 
 pytestmark = pytest.mark.browser
 
@@ -22,15 +22,7 @@ PUSH_BOUND_S = 1.0  # the issue's bound for a pushed update
 POLL_INTERVAL_S = 2.0  # data-poll-ms in templates/site/base.html
 
 
-def api(base_url: str, path: str, body: dict) -> dict:
-    request = urllib.request.Request(
-        f"{base_url}{path}",
-        data=json.dumps(body).encode(),
-        headers={"Content-Type": "application/json"},
-        method="POST",
-    )
-    with urllib.request.urlopen(request, timeout=30) as response:
-        return json.load(response)
+api = control_api.post
 
 
 def open_inbox(live_site, browser, *, init_script: str | None = None):

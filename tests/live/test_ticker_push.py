@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import json
 import time
-import urllib.request
 
 import pytest
 from django.conf import settings
 from websockets.sync.client import connect
+
+from tests import control_api
 
 SCENARIO = settings.BASE_DIR / "scenarios" / "micromail" / "sender-absolute-passive.json"
 FIRST_NEW = "base-36"  # the first new_email after the preload, brought forward below
@@ -29,15 +30,7 @@ def early_scenario() -> dict:
     return scenario
 
 
-def api(base_url: str, path: str, body: dict | None = None) -> dict:
-    request = urllib.request.Request(
-        f"{base_url}{path}",
-        data=json.dumps(body or {}).encode(),
-        headers={"Content-Type": "application/json"},
-        method="POST",
-    )
-    with urllib.request.urlopen(request, timeout=30) as response:
-        return json.load(response)
+api = control_api.post
 
 
 @pytest.mark.django_db(transaction=True)

@@ -11,13 +11,13 @@ Elements are found by role, label and text, so the test survives layout changes.
 
 from __future__ import annotations
 
-import json
 import re
 import time
-import urllib.request
 
 import pytest
 from playwright.sync_api import Page, expect
+
+from tests import control_api
 
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py, so it imports that fixture and overrides the name here.
@@ -73,15 +73,7 @@ def scenario() -> dict:
     }
 
 
-def api(base_url: str, method: str, path: str, body: dict | None = None):
-    request = urllib.request.Request(
-        base_url + path,
-        data=None if body is None else json.dumps(body).encode(),
-        headers={"Content-Type": "application/json"},
-        method=method,
-    )
-    with urllib.request.urlopen(request, timeout=10) as response:
-        return json.load(response)
+api = control_api.call
 
 
 def inbox_link(page: Page):

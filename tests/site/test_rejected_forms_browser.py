@@ -12,12 +12,12 @@ Elements are found by role, label and text, so the tests survive layout changes.
 
 from __future__ import annotations
 
-import json
 import re
-import urllib.request
 
 import pytest
 from playwright.sync_api import Browser, Page, expect
+
+from tests import control_api
 
 pytestmark = pytest.mark.browser
 
@@ -45,14 +45,9 @@ def scenario() -> dict:
 
 
 def start_run(base_url: str) -> dict:
-    request = urllib.request.Request(
-        base_url + "/api/runs/",
-        data=json.dumps({"scenario_json": scenario(), "clock_mode": "live"}).encode(),
-        headers={"Content-Type": "application/json"},
-        method="POST",
+    return control_api.post(
+        base_url, "/api/runs/", {"scenario_json": scenario(), "clock_mode": "live"}
     )
-    with urllib.request.urlopen(request, timeout=10) as response:
-        return json.load(response)
 
 
 def open_new_message(browser: Browser, base_url: str, *, javascript: bool = True) -> Page:
