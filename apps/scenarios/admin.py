@@ -20,6 +20,7 @@ from apps.scenarios.models import Scenario, TimelineEvent
 from apps.scenarios.serialization import parsed_scenario, run_spec, scenario_text, timeline_of
 from events import lifecycle
 from events.registry import UnknownEnvironment, get_environment
+from events.schemas import schema_fields
 
 
 class NoopFilter(admin.SimpleListFilter):
@@ -37,6 +38,21 @@ class NoopFilter(admin.SimpleListFilter):
         return queryset
 
 
+def payload_help(event_types) -> str:
+    """What each event type does and the payload it takes, for the author editing a timeline."""
+    return " · ".join(
+        f"{name}: {event_type.help or 'no description'} — payload "
+        + (
+            ", ".join(
+                f"{field.name} ({field.description}{'' if field.required else ', optional'})"
+                for field in schema_fields(event_type.schema)
+            )
+            or "{}"
+        )
+        for name, event_type in sorted(event_types.items())
+    )
+
+
 class TimelineEventForm(forms.ModelForm):
     environment: str | None = None  # set per request by TimelineEventInline.get_formset
 
@@ -47,17 +63,16 @@ class TimelineEventForm(forms.ModelForm):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         try:
-            types = (
-                sorted(get_environment(self.environment).event_types) if self.environment else []
-            )
+            event_types = get_environment(self.environment).event_types if self.environment else {}
         except UnknownEnvironment:
-            types = []
-        if types:
+            event_types = {}
+        if event_types:
             current = self.initial.get("type") or (self.instance.type if self.instance.pk else "")
-            choices = [(t, t) for t in types]
-            if current and current not in types:
+            choices = [(name, name) for name in sorted(event_types)]
+            if current and current not in event_types:
                 choices.append((current, f"{current} (not registered)"))
             self.fields["type"] = forms.ChoiceField(choices=choices)
+            self.fields["payload"].help_text = payload_help(event_types)
 
     def clean_time(self):
         time = self.cleaned_data["time"]

@@ -112,3 +112,10 @@ def test_the_admin_is_staff_only(scenarios, client):
     for url in ("/admin/scenarios/scenario/", f"/admin/scenarios/scenario/{scenario.pk}/dry-run/"):
         response = client.get(url)
         assert response.status_code == 302 and "/admin/login/" in response["Location"]
+
+
+def test_the_timeline_editor_says_what_each_event_type_takes(scenarios, admin_client):
+    scenario = Scenario.objects.get(path=INBOX)
+    html = admin_client.get(f"/admin/scenarios/scenario/{scenario.pk}/change/").content.decode()
+    assert "preload_emails: Mail already in the mailbox at the start" in html
+    assert "email_ids (list of strings)" in html and "email_id (string)" in html
