@@ -41,6 +41,7 @@ INSTALLED_APPS = [
     "apps.agent_site",
     "apps.bench",
     "apps.replay",
+    "apps.media",  # generated images shared by the environments (not an environment itself)
     # Environments: one line each. The core never imports them; each app registers its
     # Environment with the core registry when Django starts (AppConfig.ready).
     "apps.micromail",

@@ -13,6 +13,7 @@ urlpatterns = [
     path("favicon.ico", RedirectView.as_view(url=static("site/favicon.svg"), permanent=True)),
     path("admin/", admin.site.urls),
     path("api/", include(api_urlpatterns)),
+    path("media/", include("apps.media.urls")),  # generated avatars, logos, pictures (no run)
     path(RUN_PREFIX, include(run_urlpatterns)),
     path(RUN_PREFIX, include("apps.agent_site.urls")),  # the run's home, live pages' polling
     # Each environment's pages, under its run: /r/<token>/<environment>/…

@@ -1,0 +1,84 @@
+"""Generated images in templates: `{% load media %}` then
+
+    {% avatar name size=32 %}             a face; decorative (alt="") unless label="…"
+    {% logo name size=40 %}               a company / team mark
+    {% banner seed %}                     a wide cover (CSS makes it 100% wide)
+    {% picture seed subject="landscape" width=480 height=320 label="…" %}
+
+Each renders one <img> with its width and height set (no layout shift while it loads). The
+label only ever goes into the alt attribute, escaped. Optional `class="…"` adds classes.
+"""
+
+from __future__ import annotations
+
+from django import template
+from django.utils.html import format_html
+from django.utils.safestring import SafeString
+
+from apps.media import links, pictures
+
+register = template.Library()
+
+
+def _img(
+    kind: str, src: str, width: object, height: object, label: str, classes: str
+) -> SafeString:
+    return format_html(
+        '<img class="{}" src="{}" alt="{}" width="{}" height="{}">',
+        f"{kind} {classes}".strip(),
+        src,
+        label,
+        _pixels(width, "width"),
+        _pixels(height, "height"),
+    )
+
+
+def _pixels(value: object, name: str) -> int:
+    try:
+        pixels = int(value)  # type: ignore[call-overload]
+    except (TypeError, ValueError):
+        pixels = 0
+    if pixels <= 0:
+        raise template.TemplateSyntaxError(
+            f"media tag {name} must be a positive number of pixels, got {value!r}"
+        )
+    return pixels
+
+
+@register.simple_tag
+def avatar(name: str, size: int = 32, label: str = "", **options: str) -> SafeString:
+    """The face of the person called `name` (the same face in every environment)."""
+    return _img("avatar", links.avatar_url(name), size, size, label, options.get("class", ""))
+
+
+@register.simple_tag
+def logo(name: str, size: int = 40, label: str = "", **options: str) -> SafeString:
+    """The mark of the company, team or brand called `name`."""
+    return _img("logo", links.logo_url(name), size, size, label, options.get("class", ""))
+
+
+@register.simple_tag
+def banner(
+    seed: str, width: int = 1200, height: int = 300, label: str = "", **options: str
+) -> SafeString:
+    """A cover banner (4:1 drawing; it covers any box it is given)."""
+    return _img("banner", links.banner_url(seed), width, height, label, options.get("class", ""))
+
+
+@register.simple_tag
+def picture(
+    seed: str,
+    subject: str = "landscape",
+    width: int = 480,
+    height: int = 320,
+    label: str = "",
+    **options: str,
+) -> SafeString:
+    """A photo-like illustration of `subject` (3:2 drawing; it covers any box it is given)."""
+    if subject not in pictures.SUBJECTS:
+        raise template.TemplateSyntaxError(
+            f"{{% picture %}} subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
+        )
+    return _img(
+        "picture", links.picture_url(seed, subject), width, height, label, options.get("class", "")
+    )

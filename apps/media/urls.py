@@ -1,0 +1,16 @@
+"""/media/…: generated images (mounted by sentinel_site/urls.py)."""
+
+from django.urls import path
+
+from apps.media import views
+
+app_name = "media"
+
+urlpatterns = [
+    path("avatars/<str:slug>.svg", views.drawn, {"kind": "avatars"}, name="avatar"),
+    path("logos/<str:slug>.svg", views.drawn, {"kind": "logos"}, name="logo"),
+    path("banners/<str:slug>.svg", views.drawn, {"kind": "banners"}, name="banner"),
+    path("pictures/<str:subject>/<str:slug>.svg", views.picture, name="picture"),
+    # Anything else under /media/ names a kind we do not draw: a 404 that says so.
+    path("<str:kind>/<str:slug>.svg", views.drawn, name="unknown-kind"),
+]
