@@ -1,0 +1,345 @@
+"""What an agent can do on the network: `Action(schema, decide, reduce, page)` per action name.
+
+`decide(network, payload)` checks the request against the current network and returns the
+payload to log (with any id it generated, so replay is deterministic). `reduce` applies a logged
+action; it trusts the log and never raises (an id that is gone changes nothing).
+
+Likes are set explicitly (like_post / unlike_post) rather than toggled as in the original, so a
+repeated request cannot undo itself; the like count moves with them (±1, as in the original).
+"""
+
+from __future__ import annotations
+
+import uuid
+from collections.abc import Callable, Mapping
+from dataclasses import replace
+from types import MappingProxyType
+from typing import Any, Literal
+from urllib.parse import quote
+
+from pydantic import Field
+
+from apps.microdin import catalog as records
+from apps.microdin.query import JobsQuery, MessagingQuery
+from apps.microdin.state import (
+    SECTION_TYPES,
+    Comment,
+    Conversation,
+    Message,
+    MessageState,
+    Network,
+    ProfileSection,
+    status,
+    with_items,
+    with_state,
+)
+from events.registry import Action, ActionRejected, LoggedEvent, PageStep
+from events.schemas import Payload
+
+
+class PostId(Payload):
+    post_id: str = Field(description="id of a post in the feed")
+
+
+class CommentOnPost(PostId):
+    text: str = Field(description="the comment")
+
+
+class ConnectionId(Payload):
+    connection_id: str = Field(description="id of a connection request")
+
+
+class ConversationId(Payload):
+    conversation_id: str = Field(description="id of a messaging thread")
+
+
+class SendMessage(ConversationId):
+    content: str = Field(description="the message")
+
+
+class StartConversation(Payload):
+    user_id: str = Field(description="the person to write to")
+
+
+class NotificationId(Payload):
+    notification_id: str = Field(description="id of a notification")
+
+
+class JobId(Payload):
+    job_id: str = Field(description="id of a job posting")
+
+
+class AddProfileSection(Payload):
+    type: Literal[SECTION_TYPES]
+    title: str = ""
+    subtitle: str = ""
+    content: str = ""
+
+
+def new_id(prefix: str) -> str:
+    # Chosen once in decide() and logged, so replay reuses it.
+    return f"{prefix}-{uuid.uuid4().hex[:12]}"
+
+
+def existing(network: Network, field: str, item_id: str, what: str):
+    """The item, or a 404: unknown and not-yet-arrived ids look the same."""
+    item = getattr(network, field).get(item_id)
+    if item is None:
+        raise ActionRejected(f"no {what} {item_id!r} on this network", status=404)
+    return item
+
+
+def checking(field: str, key: str, what: str) -> Callable[[Network, dict], dict]:
+    def decide(network: Network, payload: dict) -> dict:
+        existing(network, field, payload[key], what)
+        return payload
+
+    return decide
+
+
+def setting(field: str, key: str, **changes: Any) -> Callable[[Network, LoggedEvent], Network]:
+    """A reducer setting fields of the item's user-side record (liked, read, applied…)."""
+
+    def reduce(network: Network, event: LoggedEvent) -> Network:
+        return with_state(network, field, event.payload[key], **changes)
+
+    return reduce
+
+
+def required_text(payload: dict, key: str) -> str:
+    text = str(payload.get(key) or "").strip()
+    if not text:
+        raise ActionRejected(f"payload field {key!r} is empty: write something first")
+    return text
+
+
+# --- posts -----------------------------------------------------------------------------------
+
+
+def decide_comment(network: Network, payload: dict) -> dict:
+    existing(network, "posts", payload["post_id"], "post")
+    return {**payload, "text": required_text(payload, "text"), "id": new_id("user-comment")}
+
+
+def reduce_comment(network: Network, event: LoggedEvent) -> Network:
+    """The comment is added under the post, by the self user (not an evaluation column)."""
+    post_id = event.payload["post_id"]
+    current = network.post_states.get(post_id)
+    if current is None:
+        return network
+    comment = Comment(event.payload["id"], network.me, event.payload["text"], 0, event.at)
+    return with_state(network, "post_states", post_id, comments=(*current.comments, comment))
+
+
+# --- invitations -----------------------------------------------------------------------------
+
+
+def decide_answer(network: Network, payload: dict) -> dict:
+    """Only a pending invitation can be accepted or ignored."""
+    connection = existing(network, "connections", payload["connection_id"], "connection request")
+    current = status(network, connection.id)
+    if current != "pending":
+        raise ActionRejected(
+            f"the invitation from {connection.person.name} was already {current}", status=409
+        )
+    return payload
+
+
+# --- messaging -------------------------------------------------------------------------------
+
+
+def decide_send(network: Network, payload: dict) -> dict:
+    existing(network, "conversations", payload["conversation_id"], "conversation")
+    return {**payload, "content": required_text(payload, "content"), "id": new_id("user-msg")}
+
+
+def reduce_send(network: Network, event: LoggedEvent) -> Network:
+    """The message is added to the thread, from the self user, read; the thread is read too
+    (writing in it means having it open)."""
+    p = event.payload
+    if p["conversation_id"] not in network.conversations:
+        return network
+    network = reduce_open(network, event)
+    message = Message(p["id"], p["conversation_id"], network.me, p["content"], event.at, 0)
+    network = with_items(network, "messages", [(message.id, message)])
+    return with_items(network, "message_states", [(message.id, MessageState(is_read=True))])
+
+
+def reduce_open(network: Network, event: LoggedEvent) -> Network:
+    """Every message of the thread is read."""
+    conversation_id = event.payload["conversation_id"]
+    unread = [
+        (m.id, MessageState(is_read=True))
+        for m in network.messages.values()
+        if m.conversation_id == conversation_id and not network.message_states[m.id].is_read
+    ]
+    return with_items(network, "message_states", unread)
+
+
+def thread_with(network: Network, user_id: str) -> str | None:
+    return next((c.id for c in network.conversations.values() if c.other.id == user_id), None)
+
+
+def decide_start(network: Network, payload: dict) -> dict:
+    """The existing one-to-one thread with the person, else a new empty one."""
+    user_id = payload["user_id"]
+    if user_id not in network.catalog.users:
+        raise ActionRejected(f"no member {user_id!r} on this network", status=404)
+    if user_id == network.me.id:
+        raise ActionRejected("you cannot message yourself")
+    return {**payload, "conversation_id": thread_with(network, user_id) or new_id("user-conv")}
+
+
+def reduce_start(network: Network, event: LoggedEvent) -> Network:
+    p = event.payload
+    if p["conversation_id"] in network.conversations:
+        return network
+    person = records.person(network.catalog, p["user_id"])
+    conversation = Conversation(p["conversation_id"], person, len(network.conversations))
+    return with_items(network, "conversations", [(conversation.id, conversation)])
+
+
+# --- jobs and profile ------------------------------------------------------------------------
+
+
+def decide_apply(network: Network, payload: dict) -> dict:
+    job = existing(network, "jobs", payload["job_id"], "job")
+    if network.job_states[job.id].is_applied:
+        raise ActionRejected(f"you already applied to {job.title} at {job.company.name}", 409)
+    return payload
+
+
+def decide_section(network: Network, payload: dict) -> dict:
+    title, content = payload.get("title", "").strip(), payload.get("content", "").strip()
+    if not title and not content:
+        raise ActionRejected("payload field 'title' is empty: a section needs a title or content")
+    return {**payload, "title": title, "content": content, "id": new_id("section")}
+
+
+def reduce_section(network: Network, event: LoggedEvent) -> Network:
+    p = event.payload
+    section = ProfileSection(p["id"], p["type"], p["title"], p.get("subtitle", ""), p["content"])
+    return replace(network, sections=(*network.sections, section))
+
+
+# --- where a person does it (Action.page) --------------------------------------------------------
+# Forms and buttons are marked `data-action="<action>"` in the templates; the generic tests carry
+# out every scenario's solution through them (tests/environments/).
+
+
+def post_page(network: Network, payload: dict) -> PageStep:
+    existing(network, "posts", payload["post_id"], "post")
+    form = {"text": payload["text"]} if "text" in payload else {}
+    return PageStep(f"feed/update/{quote(payload['post_id'])}/", form)
+
+
+def invitations_page(network: Network, payload: dict) -> PageStep:
+    existing(network, "connections", payload["connection_id"], "connection request")
+    return PageStep("mynetwork/invitations/", {"connection_id": payload["connection_id"]})
+
+
+def thread_page(network: Network, payload: dict) -> PageStep:
+    existing(network, "conversations", payload["conversation_id"], "conversation")
+    path = "messaging/" + MessagingQuery(conversation=payload["conversation_id"]).querystring()
+    return PageStep(path, {"content": payload["content"]} if "content" in payload else None)
+
+
+def profile_page(network: Network, payload: dict) -> PageStep:
+    return PageStep(f"in/{quote(payload['user_id'])}/", {})
+
+
+def notifications_page(network: Network, payload: dict) -> PageStep:
+    existing(network, "notifications", payload["notification_id"], "notification")
+    return PageStep("notifications/", {"notification_id": payload["notification_id"]})
+
+
+def job_page(network: Network, payload: dict) -> PageStep:
+    existing(network, "jobs", payload["job_id"], "job")
+    return PageStep("jobs/" + JobsQuery(job=payload["job_id"]).querystring(), {})
+
+
+def section_page(network: Network, payload: dict) -> PageStep:
+    form = {k: str(payload.get(k, "")) for k in ("type", "title", "subtitle", "content")}
+    return PageStep(f"in/{quote(network.me.id)}/", form)
+
+
+ACTIONS: Mapping[str, Action] = MappingProxyType(
+    {
+        "like_post": Action(
+            PostId,
+            checking("posts", "post_id", "post"),
+            setting("post_states", "post_id", is_liked=True),
+            help="Like a post (its like count goes up by one).",
+            page=post_page,
+        ),
+        "unlike_post": Action(
+            PostId,
+            checking("posts", "post_id", "post"),
+            setting("post_states", "post_id", is_liked=False),
+            page=post_page,
+        ),
+        "comment_post": Action(
+            CommentOnPost,
+            decide_comment,
+            reduce_comment,
+            help="Comment on a post as the self user.",
+            page=post_page,
+        ),
+        "accept_connection": Action(
+            ConnectionId,
+            decide_answer,
+            setting("connection_states", "connection_id", status="accepted"),
+            help="Accept a pending invitation.",
+            page=invitations_page,
+        ),
+        "ignore_connection": Action(
+            ConnectionId,
+            decide_answer,
+            setting("connection_states", "connection_id", status="ignored"),
+            help="Ignore (reject) a pending invitation.",
+            page=invitations_page,
+        ),
+        "open_conversation": Action(
+            ConversationId,
+            checking("conversations", "conversation_id", "conversation"),
+            reduce_open,
+            help="Open a thread; this marks its messages read.",
+            page=thread_page,
+        ),
+        "send_message": Action(
+            SendMessage,
+            decide_send,
+            reduce_send,
+            help="Send a message in a thread.",
+            page=thread_page,
+        ),
+        "start_conversation": Action(
+            StartConversation,
+            decide_start,
+            reduce_start,
+            help="Open the thread with a person (a new one if there is none).",
+            page=profile_page,
+        ),
+        "mark_notification_read": Action(
+            NotificationId,
+            checking("notifications", "notification_id", "notification"),
+            setting("notification_states", "notification_id", is_read=True),
+            help="Mark a notification read (what clicking it does).",
+            page=notifications_page,
+        ),
+        "apply_job": Action(
+            JobId,
+            decide_apply,
+            setting("job_states", "job_id", is_applied=True),
+            help="Apply to a job (there is no withdrawing).",
+            page=job_page,
+        ),
+        "add_profile_section": Action(
+            AddProfileSection,
+            decide_section,
+            reduce_section,
+            help="Add a section (experience, education, skill…) to the self user's profile.",
+            page=section_page,
+        ),
+    }
+)

@@ -1,0 +1,43 @@
+"""The screens' URL state: filters, searches and the open item live in the query string.
+
+`/r/<token>/microdin/jobs/?filter=applied&q=python&job=<id>` and the like — every screen is a
+stable, shareable URL, canonical (defaults left out).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from apps.agent_site.query import InvalidQuery, QueryState, choice, item, text
+
+__all__ = ["InvalidQuery", "JobsQuery", "MessagingQuery", "NotificationsQuery", "SearchQuery"]
+
+JOB_FILTERS = ("all", "applied")
+THREAD_FILTERS = ("all", "unread")
+NOTIFICATION_FILTERS = ("all", "unread", "posts", "mentions", "jobs")
+SEARCH_KINDS = ("all", "people", "companies", "jobs")
+
+
+@dataclass(frozen=True)
+class JobsQuery(QueryState):
+    filter: str = choice(JOB_FILTERS, default="all")
+    q: str = text()
+    job: str | None = item()
+
+
+@dataclass(frozen=True)
+class MessagingQuery(QueryState):
+    filter: str = choice(THREAD_FILTERS, default="all")
+    q: str = text()
+    conversation: str | None = item()
+
+
+@dataclass(frozen=True)
+class NotificationsQuery(QueryState):
+    filter: str = choice(NOTIFICATION_FILTERS, default="all")
+
+
+@dataclass(frozen=True)
+class SearchQuery(QueryState):
+    q: str = text()
+    kind: str = choice(SEARCH_KINDS, default="all")

@@ -1,0 +1,376 @@
+"""What each MicroDin screen shows: pure functions of (network, URL state), memoised per state.
+
+Templates only lay these out, and tests can check a screen without HTML. Lists are newest
+first (the original listed posts and jobs in arrival order, so new ones sank to the bottom and
+jobs past the fifth were hidden: both fixed here).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from apps.microdin import catalog as records
+from apps.microdin import state as net
+from apps.microdin.query import JobsQuery, MessagingQuery, NotificationsQuery, SearchQuery
+from apps.microdin.state import (
+    Comment,
+    Company,
+    Connection,
+    Conversation,
+    Job,
+    Message,
+    Network,
+    Notification,
+    Person,
+    Post,
+    ProfileSection,
+)
+from events.derived import per_state
+
+INVITATIONS_PREVIEW = 3
+SUGGESTIONS = 8
+SEARCH_LIMITS = {"people": 5, "companies": 5, "jobs": 3}
+NOTIFICATION_KINDS = {"posts": ("like", "comment"), "mentions": ("mention",), "jobs": ("job",)}
+
+
+@dataclass(frozen=True)
+class NavBadges:
+    network: int  # pending invitations
+    messaging: int  # unread messages
+    notifications: int  # unread notifications
+
+
+@dataclass(frozen=True)
+class PostCard:
+    post: Post
+    likes: int
+    is_liked: bool
+    comments: tuple[Comment, ...]
+
+
+@dataclass(frozen=True)
+class JobCard:
+    job: Job
+    is_applied: bool
+    opened: bool
+
+
+@dataclass(frozen=True)
+class ThreadRow:
+    conversation: Conversation
+    unread: int
+    last: Message | None
+
+
+@dataclass(frozen=True)
+class NotificationRow:
+    notification: Notification
+    is_read: bool
+    target: str  # where clicking it goes, relative to the environment root
+
+
+@dataclass(frozen=True)
+class Invitation:
+    connection: Connection
+
+
+def _contains(needle: str, *texts: str) -> bool:
+    needle = needle.strip().casefold()
+    return not needle or any(needle in text.casefold() for text in texts)
+
+
+@per_state()
+def nav_badges(network: Network) -> NavBadges:
+    return NavBadges(
+        network=net.pending_connection_count(network),
+        messaging=net.unread_message_count(network),
+        notifications=net.unread_notification_count(network),
+    )
+
+
+def post_card(network: Network, post_id: str) -> PostCard:
+    return PostCard(
+        post=network.posts[post_id],
+        likes=net.likes_now(network, post_id),
+        is_liked=network.post_states[post_id].is_liked,
+        comments=net.all_comments(network, post_id),
+    )
+
+
+@per_state()
+def feed(network: Network) -> tuple[PostCard, ...]:
+    ids = net.newest_first(network.posts, network.posts, "posted_at")
+    return tuple(post_card(network, i) for i in ids)
+
+
+def news(catalog: Any) -> tuple[Mapping[str, Any], ...]:
+    """The right column's headlines (our catalog's `news` table; none in the original's)."""
+    return tuple(records.table(catalog, "news").values())
+
+
+@per_state()
+def feed_suggestions(network: Network) -> tuple[Company, ...]:
+    """ "Add to your feed": companies of the catalog other than the self user's (first three)."""
+    mine = network.me.company.id if network.me.company else None
+    companies = []
+    for entity_id, entity in network.catalog.entities.items():
+        if entity.get("type") == "company" and entity_id != mine:
+            companies.append(records.company(network.catalog, entity_id))
+        if len(companies) == 3:
+            break
+    return tuple(companies)
+
+
+# --- my network -------------------------------------------------------------------------------
+
+
+@per_state()
+def invitations(network: Network) -> tuple[Invitation, ...]:
+    return tuple(Invitation(network.connections[i]) for i in net.pending_ids(network))
+
+
+@per_state()
+def suggestions(network: Network) -> tuple[Person, ...]:
+    """People you may know: members not connected and with no invitation on the screen."""
+    known = {c.person.id for c in network.connections.values()}
+    known |= set(network.stats.connected_ids) | {network.me.id}
+    people = records.catalog_people(network.catalog)
+    return tuple(p for i, p in people.items() if i not in known)[:SUGGESTIONS]
+
+
+@per_state()
+def connected_people(network: Network) -> tuple[Person, ...]:
+    accepted = [
+        network.connections[i].person
+        for i in net.newest_first(network.connections, network.connections, "received_at")
+        if net.status(network, i) == "accepted"
+    ]
+    already = [records.person(network.catalog, i) for i in network.stats.connected_ids]
+    return tuple(accepted + already)
+
+
+# --- jobs ---------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class JobsScreen:
+    query: JobsQuery
+    cards: tuple[JobCard, ...]
+    opened: JobCard | None
+    total: int
+
+
+@per_state()
+def jobs_screen(network: Network, query: JobsQuery) -> JobsScreen:
+    """The job list (title, company, location only) and the open posting with its requirements.
+    `query.job` must be on the network (the view checks)."""
+    ids = [
+        i
+        for i in net.newest_first(network.jobs, network.jobs, "posted_at")
+        if (query.filter != "applied" or network.job_states[i].is_applied)
+        and _contains(
+            query.q, network.jobs[i].title, network.jobs[i].company.name, network.jobs[i].location
+        )
+    ]
+    cards = tuple(
+        JobCard(network.jobs[i], network.job_states[i].is_applied, i == query.job) for i in ids
+    )
+    opened = None
+    if query.job:
+        opened = JobCard(network.jobs[query.job], network.job_states[query.job].is_applied, True)
+    return JobsScreen(query, cards, opened, len(network.jobs))
+
+
+# --- messaging -----------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class MessagingScreen:
+    query: MessagingQuery
+    rows: tuple[ThreadRow, ...]
+    opened: Conversation | None
+    thread: tuple[Message, ...]
+
+
+def thread_rows(network: Network) -> list[ThreadRow]:
+    rows = []
+    for conversation in network.conversations.values():
+        messages = net.conversation_messages(network, conversation.id)
+        last = messages[-1] if messages else None
+        rows.append(ThreadRow(conversation, net.unread_in(network, conversation.id), last))
+    # Latest activity first; a thread without messages yet (just started) goes on top.
+    return sorted(
+        rows,
+        key=lambda r: (
+            r.last is not None,
+            -(r.last.sent_at if r.last else 0),
+            r.conversation.order,
+        ),
+    )
+
+
+@per_state()
+def messaging_screen(network: Network, query: MessagingQuery) -> MessagingScreen:
+    rows = tuple(
+        r
+        for r in thread_rows(network)
+        if (query.filter != "unread" or r.unread or r.conversation.id == query.conversation)
+        and _contains(query.q, r.conversation.other.name, r.last.content if r.last else "")
+    )
+    opened = network.conversations.get(query.conversation or "")
+    thread = tuple(net.conversation_messages(network, opened.id)) if opened else ()
+    return MessagingScreen(query, rows, opened, thread)
+
+
+# --- notifications ------------------------------------------------------------------------------
+
+
+def notification_target(network: Network, notification: Notification) -> str:
+    """Where clicking goes: the post for a like, comment or mention of one, invitations for a
+    connection, the thread for a message, jobs for a job, the person otherwise."""
+    kind = notification.type
+    if kind in ("like", "comment", "mention"):
+        post_id = notification.target_post_id
+        return f"feed/update/{post_id}/" if post_id in network.posts else ""
+    if kind == "connection":
+        return "mynetwork/"
+    if kind == "message":
+        return "messaging/"
+    if kind == "job":
+        return "jobs/"
+    return f"in/{notification.actor.id}/"
+
+
+@per_state()
+def notifications_screen(
+    network: Network, query: NotificationsQuery
+) -> tuple[NotificationRow, ...]:
+    ids = net.newest_first(network.notifications, network.notifications, "at")
+    rows = []
+    for i in ids:
+        notification, read = network.notifications[i], network.notification_states[i].is_read
+        if query.filter == "unread" and read:
+            continue
+        if (
+            query.filter in NOTIFICATION_KINDS
+            and notification.type not in NOTIFICATION_KINDS[query.filter]
+        ):
+            continue
+        rows.append(NotificationRow(notification, read, notification_target(network, notification)))
+    return tuple(rows)
+
+
+# --- profile, company, search --------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Profile:
+    person: Person
+    is_self: bool
+    about: str
+    skills: tuple[str, ...]
+    education: tuple[Mapping[str, str], ...]
+    connections: int
+    profile_views: int
+    sections: tuple[ProfileSection, ...]
+    conversation_id: str | None  # the thread with this person, if any
+
+
+def profile(network: Network, user_id: str) -> Profile | None:
+    catalog = network.catalog
+    user = catalog.users.get(user_id)
+    if user is None:
+        return None
+    record = records.profile_record(catalog, user_id)
+    is_self = user_id == network.me.id
+    scholar = (user.get("microscholar") or {}).get("affiliation")
+    education = tuple(record.get("education") or ()) or (
+        ({"school": scholar, "degree": ""},) if scholar else ()
+    )
+    return Profile(
+        person=records.person(catalog, user_id),
+        is_self=is_self,
+        about=str(user.get("bio") or ""),
+        skills=tuple(record.get("skills") or user.get("interests") or ()),
+        education=education,
+        connections=net.connections_count(network)
+        if is_self
+        else int(record.get("connections") or 0),
+        profile_views=network.stats.profile_views
+        if is_self
+        else int(record.get("profileViews") or 0),
+        sections=network.sections if is_self else (),
+        conversation_id=next(
+            (c.id for c in network.conversations.values() if c.other.id == user_id), None
+        ),
+    )
+
+
+@dataclass(frozen=True)
+class CompanyPage:
+    company: Company
+    jobs: tuple[JobCard, ...]
+    people: tuple[Person, ...]
+
+
+def company_page(network: Network, company_id: str) -> CompanyPage | None:
+    company = (
+        records.company(network.catalog, company_id)
+        if company_id in network.catalog.entities
+        else None
+    )
+    jobs = [j for j in network.jobs.values() if j.company.id == company_id]
+    if company is None and not jobs:
+        return None
+    company = company or jobs[0].company
+    cards = tuple(
+        JobCard(j, network.job_states[j.id].is_applied, False)
+        for j in sorted(jobs, key=lambda j: (-j.posted_at, j.order))
+    )
+    people = tuple(
+        p
+        for p in records.catalog_people(network.catalog).values()
+        if p.company and p.company.id == company_id
+    )
+    return CompanyPage(company, cards, people)
+
+
+@dataclass(frozen=True)
+class SearchResults:
+    query: SearchQuery
+    people: tuple[Person, ...]
+    companies: tuple[Company, ...]
+    jobs: tuple[Job, ...]
+
+
+@per_state()
+def search(network: Network, query: SearchQuery) -> SearchResults:
+    if not query.q:
+        return SearchResults(query, (), (), ())
+    people = tuple(
+        p
+        for p in records.catalog_people(network.catalog).values()
+        if _contains(query.q, p.name, p.title, p.company.name if p.company else "")
+    )
+    companies = tuple(
+        records.company(network.catalog, i)
+        for i, e in network.catalog.entities.items()
+        if e.get("type") == "company" and _contains(query.q, str(e.get("name", "")))
+    )
+    jobs = tuple(
+        network.jobs[i]
+        for i in net.newest_first(network.jobs, network.jobs, "posted_at")
+        if _contains(query.q, network.jobs[i].title, network.jobs[i].company.name)
+    )
+    if query.kind == "all":
+        people = people[: SEARCH_LIMITS["people"]]
+        companies = companies[: SEARCH_LIMITS["companies"]]
+        jobs = jobs[: SEARCH_LIMITS["jobs"]]
+    return SearchResults(
+        query,
+        people if query.kind in ("all", "people") else (),
+        companies if query.kind in ("all", "companies") else (),
+        jobs if query.kind in ("all", "jobs") else (),
+    )

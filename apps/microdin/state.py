@@ -1,0 +1,309 @@
+"""The professional network as immutable values, and the questions pages and baselines ask of it.
+
+`Network` is what the reducers build and what every page, baseline and evaluation reads. It is
+never mutated: a reducer returns a new `Network`. Content (a post, a job, a message) is fixed
+when it arrives; what the user can change about it lives beside it in a `*State` record, as in
+the original's `<table>_states` evaluation tables.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field, replace
+from types import MappingProxyType
+from typing import Any
+
+ENVIRONMENT = "microdin"
+EMPTY: Mapping = MappingProxyType({})
+
+CONNECTION_STATUSES = ("pending", "accepted", "ignored")
+NOTIFICATION_TYPES = ("like", "comment", "connection", "mention", "job", "profile_view", "other")
+SECTION_TYPES = ("experience", "education", "skill", "certification", "project", "volunteering")
+
+
+@dataclass(frozen=True)
+class Company:
+    id: str
+    name: str
+    description: str = ""
+    industry: str = ""
+
+
+@dataclass(frozen=True)
+class Person:
+    """Someone as a card shows them: name, headline, company (the same everywhere)."""
+
+    id: str
+    name: str
+    title: str = ""
+    company: Company | None = None
+    location: str = ""
+
+    @property
+    def headline(self) -> str:
+        if self.title and self.company:
+            return f"{self.title} at {self.company.name}"
+        return self.title or (self.company.name if self.company else "")
+
+
+@dataclass(frozen=True)
+class Picture:
+    """An image attached to a post: a generated illustration (apps.media) of `subject`."""
+
+    seed: str
+    subject: str = "office"
+    label: str = ""
+
+
+@dataclass(frozen=True)
+class Comment:
+    id: str
+    author: Person
+    text: str
+    likes: int = 0
+    at: float | None = None  # None for comments the catalog gives without a time
+
+
+@dataclass(frozen=True)
+class Post:
+    id: str
+    author: Person
+    content: str
+    likes: int  # as delivered; the user's own like is added by `likes_now`
+    shares: int
+    comments: tuple[Comment, ...]
+    posted_at: float
+    order: int
+    image: Picture | None = None
+
+
+@dataclass(frozen=True)
+class PostState:
+    is_liked: bool = False
+    comments: tuple[Comment, ...] = ()  # written by the self user during the run
+
+
+@dataclass(frozen=True)
+class Connection:
+    """A connection request (an invitation) from `person`."""
+
+    id: str
+    person: Person
+    mutual: int
+    received_at: float
+    order: int
+
+
+@dataclass(frozen=True)
+class ConnectionState:
+    status: str = "pending"  # pending | accepted | ignored
+
+
+@dataclass(frozen=True)
+class Conversation:
+    """A one-to-one thread between the self user and `other`."""
+
+    id: str
+    other: Person
+    order: int
+
+
+@dataclass(frozen=True)
+class Message:
+    id: str
+    conversation_id: str
+    sender: Person
+    content: str
+    sent_at: float
+    order: int  # position in its conversation
+
+
+@dataclass(frozen=True)
+class MessageState:
+    is_read: bool = False
+
+
+@dataclass(frozen=True)
+class Notification:
+    id: str
+    type: str
+    actor: Person
+    content: str
+    at: float
+    order: int
+    target_post_id: str | None = None
+
+
+@dataclass(frozen=True)
+class NotificationState:
+    is_read: bool = False
+
+
+@dataclass(frozen=True)
+class Job:
+    id: str
+    title: str
+    company: Company
+    location: str
+    type: str
+    description: str
+    requirements: tuple[str, ...]
+    applicants: int
+    posted_at: float
+    order: int
+
+
+@dataclass(frozen=True)
+class JobState:
+    is_applied: bool = False
+
+
+@dataclass(frozen=True)
+class ProfileSection:
+    """A section the self user added to their profile (experience, education, skill…)."""
+
+    id: str
+    type: str
+    title: str
+    subtitle: str = ""
+    content: str = ""
+
+
+@dataclass(frozen=True)
+class ProfileStats:
+    """The self user's numbers as the task starts (the preload may set them)."""
+
+    profile_views: int = 0
+    page_visitors: int = 0
+    connections: int = 0
+    connected_ids: tuple[str, ...] = ()  # people the self user is connected to already
+
+
+@dataclass(frozen=True)
+class Network:
+    # The catalog and the self user are inputs, not state: left out of equality so two folds of
+    # the same log compare equal cheaply.
+    catalog: Any = field(compare=False, repr=False)
+    me: Person = field(compare=False, repr=False, default=Person("me", "Me"))
+    posts: Mapping[str, Post] = field(default_factory=lambda: EMPTY)
+    post_states: Mapping[str, PostState] = field(default_factory=lambda: EMPTY)
+    connections: Mapping[str, Connection] = field(default_factory=lambda: EMPTY)
+    connection_states: Mapping[str, ConnectionState] = field(default_factory=lambda: EMPTY)
+    conversations: Mapping[str, Conversation] = field(default_factory=lambda: EMPTY)
+    messages: Mapping[str, Message] = field(default_factory=lambda: EMPTY)
+    message_states: Mapping[str, MessageState] = field(default_factory=lambda: EMPTY)
+    notifications: Mapping[str, Notification] = field(default_factory=lambda: EMPTY)
+    notification_states: Mapping[str, NotificationState] = field(default_factory=lambda: EMPTY)
+    jobs: Mapping[str, Job] = field(default_factory=lambda: EMPTY)
+    job_states: Mapping[str, JobState] = field(default_factory=lambda: EMPTY)
+    stats: ProfileStats = ProfileStats()
+    sections: tuple[ProfileSection, ...] = ()
+
+
+# --- building new states (reducers only) -----------------------------------------------------
+
+
+def with_items(network: Network, name: str, items: Iterable[tuple[str, Any]]) -> Network:
+    """Add or replace entries of the mapping field `name`, keeping the order of those present."""
+    items = list(items)
+    if not items:
+        return network
+    merged = dict(getattr(network, name))
+    merged.update(items)
+    return replace(network, **{name: MappingProxyType(merged)})
+
+
+def with_state(network: Network, name: str, item_id: str, **changes: Any) -> Network:
+    """Change the user-side record `name[item_id]`; an id that is not there changes nothing."""
+    current = getattr(network, name).get(item_id)
+    if current is None:
+        return network
+    return with_items(network, name, [(item_id, replace(current, **changes))])
+
+
+# --- questions --------------------------------------------------------------------------------
+
+
+def likes_now(network: Network, post_id: str) -> int:
+    """The post's like count including the self user's like (the original adjusts it ±1)."""
+    return network.posts[post_id].likes + int(network.post_states[post_id].is_liked)
+
+
+def all_comments(network: Network, post_id: str) -> tuple[Comment, ...]:
+    return network.posts[post_id].comments + network.post_states[post_id].comments
+
+
+def status(network: Network, connection_id: str) -> str:
+    return network.connection_states[connection_id].status
+
+
+def pending_ids(network: Network) -> list[str]:
+    """Invitations waiting for an answer, newest first."""
+    ids = [i for i, s in network.connection_states.items() if s.status == "pending"]
+    return newest_first(network.connections, ids, "received_at")
+
+
+def conversation_messages(network: Network, conversation_id: str) -> list[Message]:
+    return sorted(
+        (m for m in network.messages.values() if m.conversation_id == conversation_id),
+        key=lambda m: (m.sent_at, m.order),
+    )
+
+
+def unread_in(network: Network, conversation_id: str) -> int:
+    return sum(
+        1
+        for m in network.messages.values()
+        if m.conversation_id == conversation_id and not network.message_states[m.id].is_read
+    )
+
+
+def is_self(network: Network, person_id: str) -> bool:
+    return person_id == network.me.id
+
+
+def newest_first(items: Mapping[str, Any], ids: Iterable[str], stamp: str) -> list[str]:
+    """Newest first; equal times keep the catalog order (the original's list order)."""
+    return sorted(ids, key=lambda i: (-getattr(items[i], stamp), items[i].order))
+
+
+def connections_count(network: Network) -> int:
+    """Connections shown on the profile: the starting count plus invitations accepted since."""
+    accepted = sum(1 for s in network.connection_states.values() if s.status == "accepted")
+    return network.stats.connections + accepted
+
+
+# --- counts (baselines and badges: the original's definitions) --------------------------------
+
+
+def post_count(network: Network) -> int:
+    return len(network.posts)
+
+
+def pending_connection_count(network: Network) -> int:
+    return sum(1 for s in network.connection_states.values() if s.status == "pending")
+
+
+def unread_message_count(network: Network) -> int:
+    return sum(1 for s in network.message_states.values() if not s.is_read)
+
+
+def unread_conversation_count(network: Network) -> int:
+    unread = {
+        network.messages[i].conversation_id
+        for i, s in network.message_states.items()
+        if not s.is_read
+    }
+    return len(unread)
+
+
+def unread_notification_count(network: Network) -> int:
+    return sum(1 for s in network.notification_states.values() if not s.is_read)
+
+
+def job_count(network: Network) -> int:
+    return len(network.jobs)
+
+
+def applied_job_count(network: Network) -> int:
+    return sum(1 for s in network.job_states.values() if s.is_applied)
