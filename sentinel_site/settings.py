@@ -46,6 +46,7 @@ INSTALLED_APPS = [
     # Environment with the core registry when Django starts (AppConfig.ready).
     "apps.micromail",
     "apps.microdin",
+    "apps.microchat",
 ]
 
 # Django's stock middleware, run as one synchronous chain (see sentinel_site/http_handler.py).

@@ -1,0 +1,360 @@
+"""What an agent can do in the chat: `Action(schema, decide, reduce, page=…)` per action name.
+
+`decide(chat, payload)` checks the request against the current chat and returns the payload to
+log, adding what it decided (which messages an opening marks read, a sent message's id);
+`reduce` applies a logged action, trusts the log and never raises, so replay always succeeds.
+
+Favourite, mute and reactions are set explicitly (pin / unpin, react / unreact), not toggled as
+in the original: a repeated request or two racing tabs cannot flip them back by accident. A
+reaction is the self user's (the original always wrote the literal "user000").
+"""
+
+from __future__ import annotations
+
+import uuid
+from collections.abc import Callable, Mapping
+from dataclasses import replace
+from types import MappingProxyType
+from typing import Literal
+
+from pydantic import Field
+
+from apps.microchat.query import ChatQuery
+from apps.microchat.state import (
+    REACTIONS,
+    Chat,
+    Conversation,
+    Message,
+    with_conversation_state,
+    with_message_replaced,
+    with_messages,
+    with_reaction,
+    with_read,
+    without_message,
+)
+from events.registry import Action, ActionRejected, LoggedEvent, PageStep
+from events.schemas import Payload
+
+MAX_MESSAGE_LENGTH = 4000
+
+
+class ConversationId(Payload):
+    conversation_id: str = Field(description="id of a conversation")
+
+
+class MessageId(Payload):
+    message_id: str = Field(description="id of a message that has arrived")
+
+
+class React(MessageId):
+    # Literal of a tuple means one of its items: state.REACTIONS stays the one list.
+    reaction: Literal[REACTIONS]
+
+
+class Send(ConversationId):
+    content: str
+    reply_to: str | None = Field(None, description="id of the message this answers")
+
+
+class Edit(MessageId):
+    content: str
+
+
+def existing_conversation(chat: Chat, conversation_id: str) -> Conversation:
+    conversation = chat.conversations.get(conversation_id)
+    if conversation is None:
+        raise ActionRejected(f"no conversation {conversation_id!r} in this workspace", 404)
+    return conversation
+
+
+def existing_message(chat: Chat, message_id: str) -> Message:
+    """The message, or a 404: unknown and not-yet-arrived ids look the same."""
+    message = chat.messages.get(message_id)
+    if message is None:
+        raise ActionRejected(f"no message {message_id!r} in any chat", 404)
+    return message
+
+
+def own_message(chat: Chat, message_id: str) -> Message:
+    message = existing_message(chat, message_id)
+    if not message.sent_in_run:
+        raise ActionRejected(f"message {message_id!r} is not one you sent: only yours can change")
+    return message
+
+
+def decide_on_conversation(chat: Chat, payload: dict) -> dict:
+    existing_conversation(chat, payload["conversation_id"])
+    return payload
+
+
+def decide_on_message(chat: Chat, payload: dict) -> dict:
+    existing_message(chat, payload["message_id"])
+    return payload
+
+
+# --- reading --------------------------------------------------------------------------------
+
+
+def decide_open(chat: Chat, payload: dict) -> dict:
+    """Opening marks read what is unread in the chat at that moment (and only that: a message
+    arriving while the chat stays open stays unread until it is opened again). Only an
+    opening that reads something is an action (see `environment.opens_unread`)."""
+    conversation_id = payload["conversation_id"]
+    existing_conversation(chat, conversation_id)
+    unread = [
+        i
+        for i, m in chat.messages.items()
+        if m.conversation_id == conversation_id and not chat.read[i]
+    ]
+    if not unread:
+        # Opening a chat with nothing unread changes nothing, so nothing is logged (the page's
+        # implicit action does not fire either).
+        raise ActionRejected(f"conversation {conversation_id!r} has nothing unread to open", 409)
+    return {**payload, "message_ids": unread}
+
+
+def reduce_open(chat: Chat, event: LoggedEvent) -> Chat:
+    return with_read(chat, event.payload.get("message_ids", ()), True)
+
+
+def decide_mark_unread(chat: Chat, payload: dict) -> dict:
+    """Teams' "Mark as unread": the newest message someone else sent becomes unread."""
+    conversation_id = payload["conversation_id"]
+    existing_conversation(chat, conversation_id)
+    theirs = [
+        i
+        for i, m in chat.messages.items()
+        if m.conversation_id == conversation_id and not m.by_self
+    ]
+    if not theirs:
+        raise ActionRejected(f"conversation {conversation_id!r} has no message to mark unread")
+    newest = max(theirs, key=lambda i: chat.messages[i].sent_at)
+    return {**payload, "message_id": newest}
+
+
+def reduce_mark_unread(chat: Chat, event: LoggedEvent) -> Chat:
+    return with_read(chat, [event.payload["message_id"]], False)
+
+
+def conversation_setting(**changes: bool) -> Callable[[Chat, LoggedEvent], Chat]:
+    def reduce(chat: Chat, event: LoggedEvent) -> Chat:
+        return with_conversation_state(chat, event.payload["conversation_id"], **changes)
+
+    return reduce
+
+
+# --- reactions ------------------------------------------------------------------------------------
+
+
+def reacting(on: bool) -> Callable[[Chat, LoggedEvent], Chat]:
+    def reduce(chat: Chat, event: LoggedEvent) -> Chat:
+        p = event.payload
+        return with_reaction(chat, p["message_id"], p["reaction"], chat.self_id, on)
+
+    return reduce
+
+
+# --- writing ----------------------------------------------------------------------------------------
+
+
+def message_text(payload: dict) -> str:
+    content = payload["content"].strip()
+    if not content:
+        raise ActionRejected("payload field 'content' is empty: type a message first")
+    if len(content) > MAX_MESSAGE_LENGTH:
+        raise ActionRejected(
+            f"payload field 'content' is {len(content)} characters; at most {MAX_MESSAGE_LENGTH}"
+        )
+    return content
+
+
+def decide_send(chat: Chat, payload: dict) -> dict:
+    conversation_id = payload["conversation_id"]
+    existing_conversation(chat, conversation_id)
+    decided = {
+        "conversation_id": conversation_id,
+        "content": message_text(payload),
+        # Chosen once here and logged, so replay reuses it.
+        "id": f"sent-{uuid.uuid4().hex[:12]}",
+    }
+    reply_to = payload.get("reply_to")
+    if reply_to:
+        if existing_message(chat, reply_to).conversation_id != conversation_id:
+            raise ActionRejected(f"message {reply_to!r} is not in conversation {conversation_id!r}")
+        decided["reply_to"] = reply_to
+    return decided
+
+
+def reduce_send(chat: Chat, event: LoggedEvent) -> Chat:
+    p = event.payload
+    if p["conversation_id"] not in chat.conversations:
+        return chat
+    sent = Message(
+        id=p["id"],
+        conversation_id=p["conversation_id"],
+        sender_id=chat.self_id,
+        sender_name=chat.self_name,
+        content=p["content"],
+        sent_at=event.at,
+        reply_to=p.get("reply_to"),
+        by_self=True,
+        sent_in_run=True,
+    )
+    return with_messages(chat, [(sent, True, ())])
+
+
+def decide_edit(chat: Chat, payload: dict) -> dict:
+    own_message(chat, payload["message_id"])
+    return {"message_id": payload["message_id"], "content": message_text(payload)}
+
+
+def reduce_edit(chat: Chat, event: LoggedEvent) -> Chat:
+    message = chat.messages.get(event.payload["message_id"])
+    if message is None:
+        return chat
+    return with_message_replaced(
+        chat, replace(message, content=event.payload["content"], edited=True)
+    )
+
+
+def decide_delete(chat: Chat, payload: dict) -> dict:
+    own_message(chat, payload["message_id"])
+    return payload
+
+
+def reduce_delete(chat: Chat, event: LoggedEvent) -> Chat:
+    return without_message(chat, event.payload["message_id"])
+
+
+# --- where a person does it (Action.page) ------------------------------------------------------------
+# Every form carries the id it acts on as a hidden field and is marked `data-action="<action>"`;
+# the generic tests carry out each scenario's solution through them (tests/environments/).
+
+
+def conversation_path(conversation_id: str, **extra: str) -> str:
+    return ChatQuery(**extra).with_item("conversation", conversation_id)
+
+
+def open_page(chat: Chat, payload: dict) -> PageStep:
+    """Opening the chat is the action (an implicit action of the chat page)."""
+    existing_conversation(chat, payload["conversation_id"])
+    return PageStep(conversation_path(payload["conversation_id"]))
+
+
+def chat_list_form(chat: Chat, payload: dict) -> PageStep:
+    """The star of the chat's row in the chat list."""
+    existing_conversation(chat, payload["conversation_id"])
+    return PageStep("", {"conversation_id": payload["conversation_id"]})
+
+
+def header_form(chat: Chat, payload: dict) -> PageStep:
+    """The open chat's header menu."""
+    existing_conversation(chat, payload["conversation_id"])
+    return PageStep(
+        conversation_path(payload["conversation_id"]),
+        {"conversation_id": payload["conversation_id"]},
+    )
+
+
+def composer(chat: Chat, payload: dict) -> PageStep:
+    """The composer of the open chat (replying: opened from the message's Reply button)."""
+    conversation_id = payload["conversation_id"]
+    existing_conversation(chat, conversation_id)
+    path = (
+        ChatQuery(reply=payload["reply_to"]).with_item("conversation", conversation_id)
+        if payload.get("reply_to")
+        else conversation_path(conversation_id)
+    )
+    return PageStep(path, {"content": payload["content"]})
+
+
+def message_form(*fields: str) -> Callable[[Chat, dict], PageStep]:
+    """The message's own form in its chat, with `fields` of the payload."""
+
+    def page(chat: Chat, payload: dict) -> PageStep:
+        message = existing_message(chat, payload["message_id"])
+        form = {"message_id": payload["message_id"], **{f: str(payload[f]) for f in fields}}
+        return PageStep(conversation_path(message.conversation_id), form)
+
+    return page
+
+
+ACTIONS: Mapping[str, Action] = MappingProxyType(
+    {
+        "open_conversation": Action(
+            ConversationId,
+            decide_open,
+            reduce_open,
+            help="Open a chat; this marks the messages unread in it at that moment read.",
+            page=open_page,
+        ),
+        "mark_unread": Action(
+            ConversationId,
+            decide_mark_unread,
+            reduce_mark_unread,
+            help="Mark a chat unread (its newest message from someone else).",
+            page=header_form,
+        ),
+        "pin": Action(
+            ConversationId,
+            decide_on_conversation,
+            conversation_setting(is_pinned=True),
+            help="Add a chat to Favorites.",
+            page=chat_list_form,
+        ),
+        "unpin": Action(
+            ConversationId,
+            decide_on_conversation,
+            conversation_setting(is_pinned=False),
+            help="Remove a chat from Favorites.",
+            page=chat_list_form,
+        ),
+        "mute": Action(
+            ConversationId,
+            decide_on_conversation,
+            conversation_setting(is_muted=True),
+            page=header_form,
+        ),
+        "unmute": Action(
+            ConversationId,
+            decide_on_conversation,
+            conversation_setting(is_muted=False),
+            page=header_form,
+        ),
+        "react": Action(
+            React,
+            decide_on_message,
+            reacting(True),
+            help=f"Add your reaction ({', '.join(REACTIONS)}) to a message.",
+            page=message_form("reaction"),
+        ),
+        "unreact": Action(
+            React,
+            decide_on_message,
+            reacting(False),
+            help="Take your reaction back.",
+            page=message_form("reaction"),
+        ),
+        "send_message": Action(
+            Send,
+            decide_send,
+            reduce_send,
+            help="Send a message in a chat, optionally replying to one of its messages.",
+            page=composer,
+        ),
+        "edit_message": Action(
+            Edit,
+            decide_edit,
+            reduce_edit,
+            help="Change a message you sent.",
+            page=message_form("content"),
+        ),
+        "delete_message": Action(
+            MessageId,
+            decide_delete,
+            reduce_delete,
+            help="Delete a message you sent.",
+            page=message_form(),
+        ),
+    }
+)

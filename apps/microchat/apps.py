@@ -1,0 +1,8 @@
+from apps.agent_site import environments
+
+
+class MicrochatConfig(environments.EnvironmentConfig):
+    name = "apps.microchat"
+    label = "microchat"
+    verbose_name = "MicroChat"
+    environment = "apps.microchat.environment.MICROCHAT"

@@ -1,0 +1,223 @@
+"""Turning catalog records into state values; reads the original's record shapes and ours.
+
+Tables in `microchat/`: `conversations.jsonl`, `messages.jsonl`, `teams.jsonl`, `calls.jsonl`.
+The original spells fields both ways (`sender_id` / `senderId`, `is_read` / `isRead`) and may
+store `reactions` and `attachments` as JSON strings; both are read. Ours adds, all optional:
+`minutesAgo` (how long before the preload a history message was sent), `replyToId`,
+`attachments` [{name, kind: image|file, size, subject}], `reactions` [{reaction, userIds}] and a
+meeting's `schedule` {day, start, minutes}.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from typing import Any
+
+from apps.microchat.state import (
+    ENVIRONMENT,
+    REACTIONS,
+    Attachment,
+    Call,
+    Channel,
+    Conversation,
+    ConversationState,
+    Message,
+    Reactions,
+    Team,
+)
+
+# The original stored reactions by emoji; ours by name (drawn as icons).
+EMOJI_REACTIONS: Mapping[str, str] = {
+    "👍": "like",
+    "❤️": "heart",
+    "❤": "heart",
+    "😂": "laugh",
+    "😆": "laugh",
+    "🎉": "celebrate",
+    "😢": "sad",
+    "😮": "sad",
+    "😡": "angry",
+    "😠": "angry",
+}
+# Upstream preloaded messages are stamped five minutes before the preload.
+DEFAULT_MINUTES_AGO = 5.0
+
+
+def _field(record: Mapping[str, Any], *names: str, default: Any = None) -> Any:
+    for name in names:
+        if record.get(name) is not None:
+            return record[name]
+    return default
+
+
+def _json_list(value: Any) -> list:
+    if isinstance(value, str):
+        try:
+            value = json.loads(value)
+        except ValueError:
+            return []
+    return value if isinstance(value, list) else []
+
+
+def reaction_name(value: str) -> str:
+    return value if value in REACTIONS else EMOJI_REACTIONS.get(value, value)
+
+
+def catalog_reactions(record: Mapping[str, Any]) -> Reactions:
+    reactions: dict[str, tuple[str, ...]] = {}
+    for entry in _json_list(record.get("reactions")):
+        if not isinstance(entry, dict):
+            continue
+        name = reaction_name(str(_field(entry, "reaction", "emoji", default="")))
+        users = tuple(str(u) for u in _field(entry, "userIds", "user_ids", default=()) or ())
+        if name and users:
+            reactions[name] = reactions.get(name, ()) + users
+    return tuple(reactions.items())
+
+
+def catalog_attachments(record: Mapping[str, Any]) -> tuple[Attachment, ...]:
+    items = []
+    for entry in _json_list(record.get("attachments")):
+        if not isinstance(entry, dict):
+            continue
+        kind = str(_field(entry, "kind", "type", default="file"))
+        items.append(
+            Attachment(
+                name=str(entry.get("name") or "Attachment"),
+                kind="image" if kind.startswith("image") else "file",
+                size=str(entry.get("size") or ""),
+                subject=str(entry.get("subject") or "abstract"),
+            )
+        )
+    if not items and record.get("hasAttachment"):
+        # The original's catalog flags attachments without describing them: show a file row.
+        items.append(Attachment(name="Attachment"))
+    return tuple(items)
+
+
+def catalog_message(
+    catalog: Any, message_id: str, *, at: float, preloaded: bool, self_id: str
+) -> tuple[Message, bool, Reactions] | None:
+    """The message as it arrives at `at` (a preloaded one `minutesAgo` earlier), its read state
+    (the catalog's, as in the original, for new and preloaded messages alike) and reactions;
+    None if the catalog lacks it."""
+    record = catalog.table(ENVIRONMENT, "messages").get(message_id)
+    if record is None:
+        return None
+    sender_id = str(_field(record, "sender_id", "senderId", default=""))
+    sender = catalog.users.get(sender_id) or {}
+    attachments = catalog_attachments(record)
+    minutes_ago = float(_field(record, "minutesAgo", default=DEFAULT_MINUTES_AGO))
+    by_self = sender_id == self_id
+    message = Message(
+        id=message_id,
+        conversation_id=str(_field(record, "conversation_id", "conversationId", default="")),
+        sender_id=sender_id,
+        sender_name=str(sender.get("name") or _field(record, "senderName", default="Unknown")),
+        content=str(record.get("content") or ""),
+        sent_at=at - 60 * minutes_ago if preloaded else at,
+        is_urgent=bool(record.get("isUrgent", False)),
+        mentions_me=bool(record.get("mentionsMe", False)),
+        has_attachment=bool(record.get("hasAttachment", False)) or bool(attachments),
+        attachments=attachments,
+        reply_to=_field(record, "replyToId", "reply_to_id"),
+        by_self=by_self,
+    )
+    is_read = bool(_field(record, "is_read", "isRead", default=by_self))
+    return message, is_read, catalog_reactions(record)
+
+
+def _schedule(record: Mapping[str, Any]) -> tuple[int, str, int] | None:
+    schedule = record.get("schedule")
+    if not isinstance(schedule, dict) or "start" not in schedule:
+        return None
+    return (int(schedule.get("day", 0)), str(schedule["start"]), int(schedule.get("minutes", 30)))
+
+
+def catalog_conversations(
+    catalog: Any, self_id: str
+) -> list[tuple[Conversation, ConversationState]]:
+    """Every conversation of the catalog; a direct chat is named after the other person."""
+    result = []
+    for record in catalog.table(ENVIRONMENT, "conversations").values():
+        participants = tuple(str(p) for p in record.get("participantIds") or ())
+        kind = str(record.get("type") or "group")
+        name = str(record.get("name") or "")
+        if kind == "direct":
+            other = next((p for p in participants if p != self_id), None)
+            person = catalog.users.get(other) if other else None
+            name = str(person.get("name")) if person and person.get("name") else name
+        result.append(
+            (
+                Conversation(
+                    id=str(record["id"]),
+                    type=kind,
+                    name=name or "Untitled chat",
+                    participant_ids=participants,
+                    avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
+                    team_id=_field(record, "teamId", "team_id"),
+                    order=int(record.get("order") or 0),
+                    schedule=_schedule(record),
+                ),
+                ConversationState(
+                    is_pinned=bool(record.get("isPinned", False)),
+                    is_muted=bool(record.get("isMuted", False)),
+                ),
+            )
+        )
+    return result
+
+
+def catalog_teams(catalog: Any) -> list[Team]:
+    teams = []
+    for record in catalog.table(ENVIRONMENT, "teams").values():
+        channels = tuple(
+            Channel(
+                id=str(c["id"]),
+                name=str(c.get("name") or ""),
+                description=str(c.get("description") or ""),
+                unread_count=int(c.get("unreadCount") or 0),
+                is_pinned=bool(c.get("isPinned", False)),
+            )
+            for c in record.get("channels") or ()
+            if isinstance(c, dict) and "id" in c
+        )
+        teams.append(
+            Team(
+                id=str(record["id"]),
+                name=str(record.get("name") or ""),
+                description=str(record.get("description") or ""),
+                member_ids=tuple(str(m) for m in record.get("memberIds") or ()),
+                owner_id=record.get("ownerId"),
+                channels=channels,
+                avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
+                initials=str(record.get("avatarInitials") or ""),
+                order=int(record.get("order") or 0),
+            )
+        )
+    return teams
+
+
+def catalog_call(catalog: Any, call_id: str, *, at: float | None) -> Call | None:
+    """A call from the log; `at` is set for one delivered by a `new_call` event."""
+    record = catalog.table(ENVIRONMENT, "calls").get(call_id)
+    if record is None:
+        return None
+    user_id = _field(record, "userId", "user_id")
+    user = catalog.users.get(user_id) if user_id else None
+    return Call(
+        id=call_id,
+        # The newer original handler names a person's call after the person.
+        name=str(user.get("name")) if user and user.get("name") else str(record.get("name", "")),
+        # The original wrote `callerId`, which its catalog never sets (its UI read `userId`):
+        # the column now names the caller whenever the catalog does either way.
+        caller_id=_field(record, "callerId", "userId"),
+        user_id=user_id,
+        type=str(record.get("type") or "incoming"),
+        missed=bool(record.get("missed", False)),
+        duration=str(record.get("duration") or ""),
+        time_text=str(record.get("time") or ""),
+        at=at,
+        order=int(record.get("order") or 0),
+    )

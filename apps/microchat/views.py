@@ -1,0 +1,228 @@
+"""MicroChat pages: thin views over `page.state`, actions through `page.act`.
+
+Every screen has its own URL (query.py); actions are POST forms that carry the id they act on
+and return to the screen they came from (post/redirect/get). Opening a chat marks it read:
+declared with the environment (`implicit_actions`), not here.
+"""
+
+from __future__ import annotations
+
+from django.contrib import messages
+from django.http import Http404, HttpRequest, HttpResponse
+from django.views.decorators.http import require_GET, require_POST
+
+from apps.agent_site import simclock
+from apps.agent_site.pages import Page, run_page
+from apps.agent_site.rendering import redirect_to, render_screen
+from apps.microchat import screens
+from apps.microchat.actions import existing_conversation, existing_message
+from apps.microchat.calendar import calendar_grid
+from apps.microchat.query import CalendarQuery, CallsQuery, ChatQuery, InvalidQuery, SearchQuery
+from events.registry import ActionRejected
+
+CONVERSATION_ACTIONS = {
+    "pin": "Added to Favorites",
+    "unpin": "Removed from Favorites",
+    "mute": "Chat muted",
+    "unmute": "Chat unmuted",
+    "mark_unread": "Marked as unread",
+}
+MESSAGE_ACTIONS = {
+    "react": "",
+    "unreact": "",
+    "edit_message": "Message edited",
+    "delete_message": "Message deleted",
+}
+
+
+def base_context(page: Page, section: str) -> dict:
+    chat = page.state
+    first = chat.self_name.split()[0] if chat.self_name.split() else chat.self_name
+    return {
+        "section": section,
+        "self_name": chat.self_name,
+        "self_names": (chat.self_name, first),
+        "rail": screens.rail(chat, page.root + "/"),
+    }
+
+
+def bad_query(exc: InvalidQuery) -> HttpResponse:
+    return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
+
+
+@require_GET
+@run_page
+def chat(request: HttpRequest, page: Page) -> HttpResponse:
+    """The chat list, with `conversation=<id>` open (opening has marked it read)."""
+    try:
+        query = ChatQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    root = page.root + "/"
+    opened = None
+    if query.conversation is not None:
+        if not page.state.has_conversation(query.conversation):
+            raise Http404("no such conversation")
+        opened = screens.open_conversation(page.state, query)
+    context = {
+        **base_context(page, "chat"),
+        "query": query,
+        "listing": screens.chat_list(page.state, query, root),
+        "opened": opened,
+        "back": query.querystring(),
+    }
+    return render_screen(request, page, "microchat/chat.html", context)
+
+
+@require_GET
+@run_page
+def search(request: HttpRequest, page: Page) -> HttpResponse:
+    try:
+        query = SearchQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    context = {
+        **base_context(page, "chat"),
+        "search_q": query.q,
+        "results": screens.search(page.state, query.q, page.root + "/"),
+    }
+    return render_screen(request, page, "microchat/search.html", context)
+
+
+@require_GET
+@run_page
+def teams(request: HttpRequest, page: Page) -> HttpResponse:
+    context = {
+        **base_context(page, "teams"),
+        "cards": screens.team_cards(page.state, page.root + "/"),
+    }
+    return render_screen(request, page, "microchat/teams.html", context)
+
+
+@require_GET
+@run_page
+def team(request: HttpRequest, page: Page, team_id: str, channel_id: str = "") -> HttpResponse:
+    found = page.state.teams.get(team_id)
+    if found is None:
+        raise Http404("no such team")
+    channel_id = channel_id or (found.channels[0].id if found.channels else "")
+    channel = next((c for c in found.channels if c.id == channel_id), None)
+    if found.channels and channel is None:
+        raise Http404("no such channel")
+    context = {
+        **base_context(page, "teams"),
+        "cards": screens.team_cards(page.state, page.root + "/"),
+        "detail": screens.team_detail(page.state, found, channel_id),
+        "channel": channel,
+    }
+    return render_screen(request, page, "microchat/team.html", context)
+
+
+@require_GET
+@run_page
+def calendar(request: HttpRequest, page: Page) -> HttpResponse:
+    try:
+        query = CalendarQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    zero = simclock.day_zero(page.run)
+    today = simclock.today(page.now, zero)
+    found = screens.meetings(page.state, zero, page.root + "/")
+    context = {
+        **base_context(page, "calendar"),
+        "query": query,
+        "grid": calendar_grid(query, today, found),
+        "views": [
+            (v, v.title(), query.but(view=v, offset="0").querystring())
+            for v in ("day", "week", "month")
+        ],
+    }
+    return render_screen(request, page, "microchat/calendar.html", context)
+
+
+@require_GET
+@run_page
+def calls(request: HttpRequest, page: Page) -> HttpResponse:
+    try:
+        query = CallsQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    context = {
+        **base_context(page, "calls"),
+        "query": query,
+        "screen": screens.calls_screen(page.state, query),
+    }
+    return render_screen(request, page, "microchat/calls.html", context)
+
+
+@require_GET
+@run_page
+def activity(request: HttpRequest, page: Page) -> HttpResponse:
+    context = {
+        **base_context(page, "activity"),
+        "items": screens.activity(page.state, page.root + "/"),
+    }
+    return render_screen(request, page, "microchat/activity.html", context)
+
+
+def back_to(page: Page, request: HttpRequest, *, close: str | None = None) -> HttpResponse:
+    """Back to the screen the form was on; `close`: leave that chat closed (after marking it
+    unread, or the redirect would open it — and read it — again)."""
+    back = ChatQuery.from_querystring(request.POST.get("back", ""))
+    if back.conversation and (
+        back.conversation == close or not page.state.has_conversation(back.conversation)
+    ):
+        back = back.but(conversation=None, find="", reply="")
+    return redirect_to(page, back.querystring())
+
+
+@require_POST
+@run_page
+def conversation_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
+    """`POST conversations/<action>` with `conversation_id`: pin, unpin, mute, unmute,
+    mark_unread."""
+    if action not in CONVERSATION_ACTIONS:
+        raise ActionRejected(
+            f"unknown chat action {action!r}; allowed: {', '.join(CONVERSATION_ACTIONS)}", 404
+        )
+    conversation_id = request.POST.get("conversation_id", "")
+    existing_conversation(page.state, conversation_id)
+    page.act(action, {"conversation_id": conversation_id})
+    messages.success(request, CONVERSATION_ACTIONS[action])
+    return back_to(page, request, close=conversation_id if action == "mark_unread" else None)
+
+
+@require_POST
+@run_page
+def message_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
+    """`POST messages/<action>` with `message_id` (react/unreact: `reaction`; edit: `content`)."""
+    if action not in MESSAGE_ACTIONS:
+        raise ActionRejected(
+            f"unknown message action {action!r}; allowed: {', '.join(MESSAGE_ACTIONS)}", 404
+        )
+    message_id = request.POST.get("message_id", "")
+    existing_message(page.state, message_id)
+    payload = {"message_id": message_id}
+    if action in ("react", "unreact"):
+        payload["reaction"] = request.POST.get("reaction", "")
+    elif action == "edit_message":
+        payload["content"] = request.POST.get("content", "")
+    page.act(action, payload)
+    if MESSAGE_ACTIONS[action]:
+        messages.success(request, MESSAGE_ACTIONS[action])
+    return back_to(page, request)
+
+
+@require_POST
+@run_page
+def send(request: HttpRequest, page: Page) -> HttpResponse:
+    """`POST send` with `conversation_id`, `content` and optional `reply_to`."""
+    payload = {
+        "conversation_id": request.POST.get("conversation_id", ""),
+        "content": request.POST.get("content", ""),
+    }
+    if request.POST.get("reply_to"):
+        payload["reply_to"] = request.POST["reply_to"]
+    page.act("send_message", payload)
+    query = ChatQuery.from_querystring(request.POST.get("back", "")).but(reply="")
+    return redirect_to(page, query.querystring())
