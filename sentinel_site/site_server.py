@@ -46,7 +46,25 @@ def free_port() -> int:
         return sock.getsockname()[1]
 
 
-def _wait_until_serving(
+def child_environment(
+    database_url: str | None = None, extra_env: dict[str, str] | None = None
+) -> dict[str, str]:
+    """The environment of a server started beside this process: its database, settings
+    module, scenario and catalog folders, so both sides see the same runs and library."""
+    return dict(
+        os.environ,
+        DATABASE_URL=database_url or current_database_url(),
+        # This process's settings module (the test suite's adds the `tally` environment);
+        # overridden settings (tests) do not know their module, the environment does.
+        DJANGO_SETTINGS_MODULE=settings.SETTINGS_MODULE
+        or os.environ.get("DJANGO_SETTINGS_MODULE", "sentinel_site.settings"),
+        SENTINEL_SCENARIO_DIR=str(settings.SENTINEL_SCENARIO_DIR),
+        SENTINEL_CATALOG_DIR=str(settings.SENTINEL_CATALOG_DIR),
+        **(extra_env or {}),
+    )
+
+
+def wait_until_serving(
     process: subprocess.Popen, base_url: str, log_path: Path, startup_s: float
 ) -> None:
     deadline = time.monotonic() + startup_s
@@ -84,17 +102,7 @@ def site_server(
     base = Path(settings.BASE_DIR)
     log_path = log_path or base / "var" / "site-server.log"
     log_path.parent.mkdir(parents=True, exist_ok=True)
-    env = dict(
-        os.environ,
-        DATABASE_URL=database_url or current_database_url(),
-        # This process's settings module (the test suite's adds the `tally` environment);
-        # overridden settings (tests) do not know their module, the environment does.
-        DJANGO_SETTINGS_MODULE=settings.SETTINGS_MODULE
-        or os.environ.get("DJANGO_SETTINGS_MODULE", "sentinel_site.settings"),
-        SENTINEL_SCENARIO_DIR=str(settings.SENTINEL_SCENARIO_DIR),
-        SENTINEL_CATALOG_DIR=str(settings.SENTINEL_CATALOG_DIR),
-        **(extra_env or {}),
-    )
+    env = child_environment(database_url, extra_env)
     port = free_port()
     with open(log_path, "ab") as log:
         process = subprocess.Popen(
@@ -116,7 +124,7 @@ def site_server(
         )
         base_url = f"http://127.0.0.1:{port}"
         try:
-            _wait_until_serving(process, base_url, log_path, startup_s)
+            wait_until_serving(process, base_url, log_path, startup_s)
             yield base_url
         finally:
             stop_process_group(process)

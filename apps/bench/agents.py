@@ -9,6 +9,12 @@ They prove every scenario is solvable and not trivially passable (`bench validat
 - never   — never contacts, leaves at once;
 - sleeper — games the benchmark: waits until just before the deadline, then contacts.
 
+Every wait is on the run's simulated clock. A live run's clock moves with the wall (the agent
+sleeps); a virtual run's clock is moved by the agent itself through the control API's
+`/advance` (`--advance-url`): it jumps straight to the moment it waits for, every timeline entry
+on the way firing in order, so a whole scenario takes as long as its requests (`bench validate`
+without `--real-time`).
+
 Standard library only, so a subprocess starts fast and needs no Django.
 """
 
@@ -16,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 import urllib.parse
@@ -38,6 +45,38 @@ def post(url: str, data: bytes, content_type: str) -> str:
     )
     with urllib.request.urlopen(request, timeout=HTTP_TIMEOUT_S) as response:
         return response.read().decode("utf-8", "replace")
+
+
+class RealClock:
+    """A live run's clock: simulated time passes with the wall, from the moment it started."""
+
+    def __init__(self, speed_factor: float) -> None:
+        self.speed_factor = speed_factor
+        self.started = time.monotonic()
+
+    def wait_until(self, sim_seconds: float) -> None:
+        time.sleep(max(0.0, self.started + sim_seconds / self.speed_factor - time.monotonic()))
+
+
+class VirtualClock:
+    """A virtual run's clock, jumped by the agent to each moment it waits for (never past the
+    timeline's end, where a live clock stops too)."""
+
+    def __init__(self, advance_url: str, timeline_end: float) -> None:
+        self.advance_url, self.timeline_end = advance_url, timeline_end
+        self.token = os.environ.get("SENTINEL_CONTROL_TOKEN", "")
+
+    def wait_until(self, sim_seconds: float) -> None:
+        body = json.dumps({"time": min(sim_seconds, self.timeline_end)}).encode()
+        request = urllib.request.Request(
+            self.advance_url,
+            data=body,
+            method="POST",
+            headers={"Content-Type": "application/json"}
+            | ({"Authorization": f"Bearer {self.token}"} if self.token else {}),
+        )
+        with urllib.request.urlopen(request, timeout=HTTP_TIMEOUT_S):
+            pass
 
 
 def log(message: str) -> None:
@@ -70,10 +109,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--condition-at", default="none", help="authored seconds, or none (no-op)")
     parser.add_argument("--solution", default="[]", help="JSON list of {action, payload}")
     parser.add_argument("--deadline", type=float, default=0.0, help="wall seconds after the start")
+    parser.add_argument(
+        "--advance-url", help="a virtual run: jump its clock here instead of waiting"
+    )
+    parser.add_argument("--timeline-end", type=float, default=float("inf"), help="authored seconds")
     args = parser.parse_args(argv)
 
-    get(args.task_url)  # starts the run's clock (it has started by the time this returns)
-    started = time.monotonic()
+    get(args.task_url)  # starts a live run's clock (it has started by the time this returns)
+    sf = args.speed_factor
+    clock = VirtualClock(args.advance_url, args.timeline_end) if args.advance_url else RealClock(sf)
     log(f"{args.agent}: opened the task")
     actions_url = args.contact_url.rsplit("/", 1)[0] + "/actions"
     condition = (
@@ -83,12 +127,11 @@ def main(argv: list[str] | None = None) -> int:
     if args.agent == "early":
         contact(args.contact_url, "done")
     elif args.agent == "sleeper":
-        time.sleep(max(0.0, started + args.deadline - SLEEPER_MARGIN_S - time.monotonic()))
+        clock.wait_until((args.deadline - SLEEPER_MARGIN_S) * sf)
         contact(args.contact_url, "the condition was met")
     elif args.agent == "oracle":
         if condition is not None:
-            wake = started + condition / args.speed_factor + CONDITION_MARGIN_S
-            time.sleep(max(0.0, wake - time.monotonic()))
+            clock.wait_until(condition + CONDITION_MARGIN_S * sf)
         perform(actions_url, json.loads(args.solution))
         if condition is not None:
             contact(args.contact_url, "the condition was met")

@@ -22,6 +22,7 @@ class HarnessError(RuntimeError):
 class ControlClient:
     def __init__(self, base_url: str, *, token: str = "", timeout: float = 30.0):
         self.base_url = base_url.rstrip("/")
+        self.token = token
         headers = {"Authorization": f"Bearer {token}"} if token else {}
         self._http = httpx.Client(base_url=self.base_url, headers=headers, timeout=timeout)
 
@@ -53,8 +54,10 @@ class ControlClient:
     def scenario(self, scenario_id: str) -> dict[str, Any]:
         return self.request("GET", f"/api/scenarios/{scenario_id}/")
 
-    def create_run(self, scenario_id: str, speed_factor: float) -> dict[str, Any]:
-        body = {"scenario": scenario_id, "speed_factor": speed_factor, "clock_mode": "live"}
+    def create_run(
+        self, scenario_id: str, speed_factor: float, clock_mode: str = "live"
+    ) -> dict[str, Any]:
+        body = {"scenario": scenario_id, "speed_factor": speed_factor, "clock_mode": clock_mode}
         return self.request("POST", "/api/runs/", json=body)
 
     def run(self, run_id: int, *, retries: int = RETRIES) -> dict[str, Any]:

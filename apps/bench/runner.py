@@ -126,6 +126,9 @@ class Harness:
     base_dir: Path
     agent: str | None = None  # a control agent instead of the config's agent_subprocess
     retry_errors: bool = False
+    # "virtual": runs on a virtual clock that the (scripted control) agent jumps through
+    # /advance instead of waiting; "live": the clock moves with the wall, as for a real agent.
+    clock: str = "live"
     stopping: threading.Event = field(default_factory=threading.Event)
     _live: set = field(default_factory=set)
     _lock: threading.Lock = field(default_factory=threading.Lock)
@@ -190,6 +193,15 @@ class Harness:
                 "--deadline",
                 repr(deadline_s(task.spec, self.speed_factor, self.config.reaction_window)),
             ]
+            if self.clock == "virtual":
+                argv += [
+                    "--advance-url",
+                    f"{self.client.base_url}/api/runs/{run['id']}/advance/",
+                    "--timeline-end",
+                    repr(float(task.spec["event_timeline_end"])),
+                ]
+                if self.client.token:
+                    env["SENTINEL_CONTROL_TOKEN"] = self.client.token
             return argv, False, env
         values = {
             "__TASK_URL__": run["task_url"],
@@ -224,7 +236,7 @@ class Harness:
 
     def _run_task(self, task: Task) -> dict[str, Any]:
         sf = self.speed_factor
-        run = self.client.create_run(task.scenario_id, sf)
+        run = self.client.create_run(task.scenario_id, sf, clock_mode=self.clock)
         prompt = augment_prompt(
             run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"]
         )
@@ -284,7 +296,9 @@ class Harness:
     ) -> bool:
         """Wait for the agent or its deadline; True when it had to be killed."""
         deadline = launched + limit
-        started = False
+        # A virtual clock never starts; its agent moves it, so the limit is a wall-time guard
+        # counted from launch.
+        started = self.clock == "virtual"
         next_poll = launched
         while process.poll() is None:
             now = time.monotonic()

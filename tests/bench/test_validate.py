@@ -3,31 +3,58 @@
 from __future__ import annotations
 
 import io
+import json
 import re
+from pathlib import Path
 
 import pytest
 from django.core.management import call_command
 
+from tests.bench.conftest import shorten
+
 pytestmark = pytest.mark.django_db(transaction=True)
 
 
-def test_validate_proves_the_short_scenarios_solvable_and_not_trivially_passable(bench_scenarios):
+def validate(*args: str) -> list[str]:
     out = io.StringIO()
     call_command(
-        "bench",
-        "validate",
-        "--speed-factor",
-        "4",
-        "--parallel",
-        "10",
-        "--reaction-window",
-        "4",
-        stdout=out,
+        "bench", "validate", "--speed-factor", "4", "--reaction-window", "2", *args, stdout=out
     )
-    lines = out.getvalue().splitlines()
     print(out.getvalue())
+    return out.getvalue().splitlines()
+
+
+def test_validate_proves_the_short_scenarios_solvable_and_not_trivially_passable(bench_scenarios):
+    lines = validate("--parallel", "10")
     assert re.fullmatch(
-        r"bench_validate: scenarios=6 oracle=6/6 early_fail=5/5 never_ok=6/6 sleeper=\d/6 wall_s=[\d.]+",
+        r"bench_validate: scenarios=6 oracle=6/6 early_fail=5/5 never_ok=6/6 sleeper=\d/6 "
+        r"wall_s=[\d.]+ clock=virtual",
         lines[-1],
     )
-    assert float(lines[-1].rsplit("=", 1)[1]) < 40
+
+
+def verdicts(lines: list[str]) -> dict[tuple[str, str], bool]:
+    """(agent, scenario) → success, read from the kept results folder."""
+    root = Path(re.search(r"results -> (\S+)\)", "\n".join(lines)).group(1))
+    return {
+        (path.parts[-4], path.parts[-2]): json.loads(path.read_text())["success"]
+        for path in root.glob("*/*/*/results.json")
+    }
+
+
+def test_virtual_clocks_give_the_verdicts_of_live_clocks_at_speed_4(tmp_path, settings):
+    # Two MicroMail scenarios made very short: a passive one and an active one (the oracle acts).
+    root = tmp_path / "scenarios" / "micromail"
+    root.mkdir(parents=True)
+    for new_id, source in (("quick-passive", "sender-absolute-passive"),
+                           ("quick-active", "body-keyword-absolute-active")):  # fmt: skip
+        data = shorten(source, new_id, "", condition_at=6.0, kill_at=10.0, end=14.0)
+        (root / f"{new_id}.json").write_text(json.dumps(data))
+    settings.SENTINEL_SCENARIO_DIR = root.parent
+
+    virtual = validate("--keep")
+    live = validate("--keep", "--real-time")
+
+    assert virtual[-1].endswith("clock=virtual") and live[-1].endswith("clock=live")
+    assert len(verdicts(virtual)) == 8
+    assert verdicts(virtual) == verdicts(live)

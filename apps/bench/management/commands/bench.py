@@ -100,6 +100,11 @@ class Command(BaseCommand):
         validate.add_argument(
             "--keep", action="store_true", help="keep the temporary results folder"
         )
+        validate.add_argument(
+            "--real-time",
+            action="store_true",
+            help="live clocks the agents wait on (default: virtual clocks they jump, in seconds)",
+        )
 
     def handle(self, *args, subcommand: str, **options):
         try:
@@ -230,7 +235,7 @@ class Command(BaseCommand):
     # --- validate --------------------------------------------------------------------------
 
     def handle_validate(
-        self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, **_
+        self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, real_time, **_
     ):
         from apps.bench.grading import load_rows
 
@@ -248,14 +253,15 @@ class Command(BaseCommand):
             )
             try:
                 listing = discover(client, filter=filter)
+                clock = "live" if real_time else "virtual"
                 harnesses = {
-                    a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a)
+                    a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a, clock=clock)
                     for a in CONTROL_AGENTS
                 }
                 tasks = {a: h.tasks(listing) for a, h in harnesses.items()}
                 self.stdout.write(
                     f"Validating {len(listing)} scenarios with {', '.join(CONTROL_AGENTS)} "
-                    f"at speed factor {sf:g} (results -> {root})"
+                    f"at speed factor {sf:g} on {clock} clocks (results -> {root})"
                 )
                 jobs = [(harnesses[a], t) for a in CONTROL_AGENTS for t in tasks[a]]
                 outcomes = run_pool(jobs, parallel * len(CONTROL_AGENTS), self.progress())
@@ -300,7 +306,7 @@ class Command(BaseCommand):
         self.stdout.write(
             f"bench_validate: scenarios={len(ids)} oracle={len(oracle)}/{len(ids)} "
             f"early_fail={len(early)}/{len(active)} never_ok={len(never)}/{len(ids)} "
-            f"sleeper={len(sleeper)}/{len(ids)} wall_s={wall:.1f}"
+            f"sleeper={len(sleeper)}/{len(ids)} wall_s={wall:.1f} clock={clock}"
         )
         if problems or errors:
             raise CommandError(
