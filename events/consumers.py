@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import math
 
 from channels.db import database_sync_to_async
 from channels.generic.websocket import AsyncJsonWebsocketConsumer
@@ -37,6 +38,17 @@ CLOCK_PUSH_INTERVAL_S = 1.0  # at most one clock-driven push per wall second
 # A timer fires this long after its due time, so the run's clock has surely reached it (the wall
 # → simulated conversion rounds) and the re-render shows the change.
 DUE_MARGIN_S = 0.02
+
+
+def _finite(value: object) -> float | None:
+    """A client's `due` as simulated seconds, or None when it is not a finite number."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return None
+    try:
+        number = float(value)
+    except OverflowError:  # an integer beyond any float
+        return None
+    return number if math.isfinite(number) else None
 
 
 class RunLiveConsumer(AsyncJsonWebsocketConsumer):
@@ -67,6 +79,16 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
                 self.due_task.cancel()
             await self.channel_layer.group_discard(self.group, self.channel_name)
 
+    async def receive(self, text_data=None, bytes_data=None, **kwargs) -> None:
+        try:
+            content = await self.decode_json(text_data) if text_data else None
+        except ValueError:  # not JSON (or nested beyond the parser): say so, keep the socket
+            content = None
+        if content is None:
+            await self.send_json({"type": "error", "detail": "send a JSON object {url, seq, due}"})
+            return
+        await self.receive_json(content, **kwargs)
+
     async def receive_json(self, content, **kwargs) -> None:
         url = content.get("url") if isinstance(content, dict) else None
         try:
@@ -78,7 +100,7 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         self.disarm()
         self.url, self.sent = url, None
         self.seen = seq if isinstance(seq, int) and seq >= 0 else 0
-        self.next_change = float(due) if isinstance(due, int | float) else None
+        self.next_change = _finite(due)
         # An event may have fired, or the clock moved, between the page's render and now.
         latest, reading = await database_sync_to_async(live.subscription)(self.run.pk)
         if reading is not None:

@@ -16,7 +16,7 @@ from events.lifecycle import CONTACT_GET, CONTACT_POST, complete
 from events.models import Event, EventKind, Run
 from events.projection import folded_state
 from events.registry import Environment, get_environment
-from events.sandbox import is_truthy, run_eval_sql, write_session_meta
+from events.sandbox import is_truthy, run_eval_sql, shown, write_session_meta
 from events.timing import to_wall
 
 NOOP_DETAIL = "no-op task: success requires no /contact visit"
@@ -133,7 +133,7 @@ def grade(run: Run) -> tuple[bool, str, Contacts, int | None]:
     if not outcome.ok:
         return False, outcome.error, contacts, graded_at
     sql_pass = is_truthy(outcome.value)
-    detail = f"eval_sql returned {outcome.value!r}"
+    detail = f"eval_sql returned {shown(outcome.value)}"
     if noop:
         if contacted:
             detail += f"; {NOOP_DETAIL}"

@@ -7,6 +7,7 @@ Errors a caller can cause raise `LifecycleError` with the HTTP status and a clea
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from django.db import transaction
@@ -93,8 +94,8 @@ def start_clock(run: Run, *, wall: float | None = None) -> Run:
 def advance(run: Run, to: float) -> FireResult:
     """Move a manual clock to simulated time `to` (authored seconds) and fire what is due."""
     run.refresh_from_db()
-    if to != to or to < 0:  # NaN or negative
-        raise LifecycleError(f"time must be a number ≥ 0, got {to}", 422)
+    if not math.isfinite(to) or to < 0:  # an infinite clock would break every read of the run
+        raise LifecycleError(f"time must be a finite number ≥ 0, got {to}", 422)
     if run.status not in CLOCK_STARTABLE or run.closed_at is not None:
         raise LifecycleError(
             f"Wrong state: /advance requires 'ready' or 'running_manual'. Current: '{run.status}'."

@@ -144,9 +144,29 @@ class NotLive(Exception):
     """The URL cannot be re-rendered for this run (another run, unknown page, view error)."""
 
 
-def page_path_for(run: Run, url: str) -> tuple[str, str]:
+MAX_URL_CHARS = 2048
+LIVE_PAGE = "sentinel_live_page"  # attribute marking a view a live request may render
+
+
+def renderable(view):
+    """Mark `view` as a page a live request may render (apps.agent_site.pages.run_page does):
+    a view that reads the run and acts only through `Page.act`, which refuses on a live render.
+    Nothing else under a run's URL is ever called by the live protocol — not the task URL
+    (it starts the clock), the contact page (it records a contact) or the JSON actions."""
+    setattr(view, LIVE_PAGE, True)
+    return view
+
+
+def page_path_for(run: Run, url: object) -> tuple[str, str]:
     """Split and check a page URL sent by a client: it must be one of *this* run's pages."""
-    parts = urlsplit(url or "")
+    if not isinstance(url, str) or not url:
+        raise NotLive("the URL must be a non-empty string")
+    if len(url) > MAX_URL_CHARS or "\x00" in url:
+        raise NotLive(f"the URL must be at most {MAX_URL_CHARS} characters, without NUL")
+    try:
+        parts = urlsplit(url)
+    except ValueError as exc:  # e.g. "http://[::1": an unclosed IPv6 host
+        raise NotLive(f"the URL cannot be read: {exc}") from None
     run_home = reverse("run-home", kwargs={"token": run.token})
     if parts.scheme or parts.netloc or not parts.path.startswith(run_home):
         raise NotLive("the URL is not a page of this run")
@@ -201,6 +221,8 @@ def render_page(run: Run, url: str, host: str = "testserver") -> HttpRequest:
         raise NotLive("no page at this URL") from None
     if match.kwargs.get("token") != run.token:
         raise NotLive("the URL is not a page of this run")
+    if not getattr(match.func, LIVE_PAGE, False):
+        raise NotLive("the URL is not a page with live regions (a live render never acts)")
     request = live_request(path, query, host)
     try:
         response = match.func(request, *match.args, **match.kwargs)

@@ -9,21 +9,86 @@ model dump (no defaults filled in, no key order changed).
 
 from __future__ import annotations
 
+import math
 import re
 import types
 from typing import Annotated, Any, Literal, NamedTuple, Union, get_args, get_origin
 
-from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic import BaseModel, ConfigDict, ValidationError, model_validator
+
+# --- what every stored value must be ----------------------------------------------------------------
+
+MAX_DEPTH = 32  # nesting of objects and lists in any document a caller sends
+_INT64 = range(-(2**63), 2**63)  # integers both databases and SQLite's grading tables store
+
+
+def text_problem(text: str) -> str | None:
+    """Why `text` cannot be stored and shown (None: it can): PostgreSQL refuses NUL, and a lone
+    surrogate cannot be encoded as UTF-8, so it would break every page and export showing it."""
+    if "\x00" in text:
+        return "contains a NUL character (\\u0000)"
+    if not text.isascii():
+        try:
+            text.encode("utf-8")
+        except UnicodeEncodeError as error:
+            code = ord(text[error.start])
+            return f"contains a lone surrogate (\\u{code:04x}), which is not valid Unicode"
+    return None
+
+
+def value_problem(value: Any, *, depth: int = MAX_DEPTH) -> tuple[str, str] | None:
+    """The first part of a decoded JSON value that cannot be stored as is: (path, problem),
+    e.g. ("payload.body", "contains a NUL character"); None when all of it can. Numbers must be
+    finite and integers 64-bit; texts and keys pass `text_problem`; nesting is at most `depth`."""
+    return _value_problem(value, (), depth, depth)
+
+
+def _value_problem(value: Any, loc: tuple, depth: int, limit: int) -> tuple[str, str] | None:
+    if isinstance(value, str):
+        problem = text_problem(value)
+    elif isinstance(value, bool) or value is None:
+        problem = None
+    elif isinstance(value, int):
+        problem = None if value in _INT64 else f"integer {value} is out of the 64-bit range"
+    elif isinstance(value, float):
+        problem = None if math.isfinite(value) else f"must be a finite number, got {value}"
+    elif isinstance(value, dict | list | tuple):
+        if depth <= 0:
+            return _path(loc), f"is nested more than {limit} levels deep"
+        items = value.items() if isinstance(value, dict) else enumerate(value)
+        for key, item in items:
+            if isinstance(key, str) and (problem := text_problem(key)):
+                return _path(loc), f"has a field name that {problem}"  # never echoed
+            found = _value_problem(item, (*loc, key), depth - 1, limit)
+            if found:
+                return found
+        problem = None
+    else:
+        problem = None
+    return (_path(loc), problem) if problem else None
 
 
 class Payload(BaseModel):
     """Base class of every payload schema.
 
     Strict: a bool is not an integer and a string is not a number, but an integer is accepted
-    where a number (float) is expected, as JSON makes no difference between 3 and 3.0.
+    where a number (float) is expected, as JSON makes no difference between 3 and 3.0. Whatever
+    a payload holds must be storable and showable (`value_problem`): no NUL or lone surrogate in
+    any text, no infinite number — whether it comes from a scenario file, the API or a form.
     """
 
-    model_config = ConfigDict(extra="forbid", strict=True, frozen=True)
+    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _storable(cls, data: Any) -> Any:
+        found = value_problem(data) if isinstance(data, dict) else None
+        if found:
+            where, problem = found
+            raise ValueError(
+                f"payload field '{where}' {problem}" if where else f"payload {problem}"
+            )
+        return data
 
 
 class PayloadError(ValueError):

@@ -113,6 +113,12 @@ CELERY_TASK_IGNORE_RESULT = True
 CELERY_BEAT_SCHEDULE_FILENAME = str(VAR_DIR / "celerybeat-schedule")
 
 SENTINEL_CONTROL_TOKEN = env_str("SENTINEL_CONTROL_TOKEN")
+# The upstream flat endpoints (/init, /redirect, /contact, …) drive one shared default slot that
+# any caller can reach; off, only a run's own URLs touch a run (apps/control/slot.py).
+SENTINEL_FLAT_ENDPOINTS = env_bool("SENTINEL_FLAT_ENDPOINTS", True)
+# Keep each rendered agent page while nothing it shows can change (apps/agent_site/screen_cache.py);
+# off only to measure or debug rendering itself.
+SENTINEL_SCREEN_CACHE = env_bool("SENTINEL_SCREEN_CACHE", True)
 SENTINEL_CATALOG_DIR = env_dir("SENTINEL_CATALOG_DIR", BASE_DIR / "fixtures", base=BASE_DIR)
 SENTINEL_SCENARIO_DIR = env_dir("SENTINEL_SCENARIO_DIR", BASE_DIR / "scenarios", base=BASE_DIR)
 
@@ -130,6 +136,11 @@ REST_FRAMEWORK = {
     "DEFAULT_AUTHENTICATION_CLASSES": [],
     "DEFAULT_PERMISSION_CLASSES": ["apps.control.auth.ControlTokenPermission"],
     "EXCEPTION_HANDLER": "apps.control.errors.exception_handler",
+    "DEFAULT_PARSER_CLASSES": [
+        "apps.control.parsers.StrictJSONParser",  # the door: size, UTF-8, depth, text, numbers
+        "rest_framework.parsers.FormParser",
+        "rest_framework.parsers.MultiPartParser",
+    ],
     "UNAUTHENTICATED_USER": None,
 }
 SPECTACULAR_SETTINGS = {

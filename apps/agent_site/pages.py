@@ -22,6 +22,7 @@ from django.shortcuts import render
 from apps.agent_site import links
 from events.clock import sim_now, wall_now
 from events.commands import current_folded, perform_action, record_view
+from events.live import renderable
 from events.models import Event, Run
 from events.projection import state_at
 from events.registry import ActionRejected, get_environment
@@ -156,6 +157,10 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             request.sentinel_page = page
             return view(request, page, *args, **kwargs)
         run = run_for_token(token)
+        if not request.path.startswith(links.environment_root(run) + "/"):
+            # Another environment's page under this run's token would render its views on
+            # a state they do not know.
+            raise Http404(f"this run plays {run.environment}: no such page")
         wall = arrival_wall(request)  # the one clock reading of this request
         folded = current_folded(run, wall=wall, reload=False)  # the run was read just now
         live = bool(getattr(request, "sentinel_live", False))
@@ -182,4 +187,4 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
         except ActionRejected as exc:
             return rejected(request, page, exc)
 
-    return wrapper
+    return renderable(wrapper)  # the only views the live protocol renders

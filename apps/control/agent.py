@@ -7,8 +7,8 @@ none of them reveals scenario internals.
 from __future__ import annotations
 
 import contextlib
-import json
 
+from django.core.exceptions import RequestDataTooBig
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
 from django.shortcuts import render
 from django.views.decorators.csrf import csrf_exempt
@@ -17,10 +17,12 @@ from django.views.decorators.http import require_http_methods, require_POST
 from apps.agent_site.links import contact_path, start_page_path
 from apps.agent_site.pages import arrival_wall, run_for_token
 from apps.control import slot
+from apps.control.parsers import BadBody, body_limit, read_json
 from events import lifecycle
 from events.commands import perform_action
 from events.models import ClockMode, Run, RunStatus
 from events.registry import ActionRejected
+from events.schemas import text_problem
 
 
 @require_http_methods(["GET"])
@@ -37,7 +39,11 @@ def task_start(request: HttpRequest, token: str) -> HttpResponse:
 def _contact(request: HttpRequest, run: Run, action: str) -> HttpResponse:
     wall = arrival_wall(request)  # the agent's moment of contact, not when a thread was free
     if request.method == "POST":
-        lifecycle.contact(run, method="POST", message=request.POST.get("message", ""), wall=wall)
+        message = request.POST.get("message", "")
+        problem = text_problem(message)
+        if problem:  # checked before the contact counts: the agent can send it again
+            return JsonResponse({"detail": f"message {problem}"}, status=400)
+        lifecycle.contact(run, method="POST", message=message, wall=wall)
         return render(request, "control/thanks.html", {"run": run})
     lifecycle.contact(run, method="GET", wall=wall)
     return render(request, "control/contact.html", {"run": run, "action": action})
@@ -65,9 +71,11 @@ def run_action(request: HttpRequest, token: str) -> JsonResponse:
     """`POST {"action": name, "payload": {...}}`: the same actions the pages perform."""
     run = run_for_token(token)
     try:
-        body = json.loads(request.body or b"{}")
-    except json.JSONDecodeError as exc:
-        return JsonResponse({"detail": f"body is not JSON: {exc.msg}"}, status=400)
+        body = read_json(request.body or b"{}")
+    except BadBody as exc:
+        return JsonResponse({"detail": str(exc)}, status=400)
+    except RequestDataTooBig:
+        return JsonResponse({"detail": f"body is larger than {body_limit()} bytes"}, status=400)
     if not isinstance(body, dict) or not isinstance(body.get("action"), str):
         return JsonResponse(
             {"detail": 'body must be {"action": <name>, "payload": {...}}'}, status=400

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from drf_spectacular.utils import extend_schema
+from drf_spectacular.utils import OpenApiParameter, extend_schema
 from rest_framework import mixins, viewsets
 from rest_framework import status as http
 from rest_framework.decorators import action
@@ -86,6 +86,7 @@ class ScenarioViewSet(viewsets.ViewSet):
 
     serializer_class = None  # free-form scenario documents
 
+    @extend_schema(operation_id="scenarios_list")
     def list(self, request):
         return Response(
             [
@@ -99,6 +100,7 @@ class ScenarioViewSet(viewsets.ViewSet):
             ]
         )
 
+    @extend_schema(parameters=[OpenApiParameter("id", str, OpenApiParameter.PATH)])
     def retrieve(self, request, pk=None):
         from apps.scenarios.library import get_scenario
 

@@ -8,6 +8,8 @@ Times in requests and responses are wall-scale seconds (authored ÷ speed_factor
 
 from __future__ import annotations
 
+import math
+
 from django.http import HttpResponseRedirect
 from rest_framework import status as http
 from rest_framework.decorators import api_view, permission_classes
@@ -68,8 +70,13 @@ def advance(request: Request) -> Response:
     try:
         wall_time = float(raw)
     except (TypeError, ValueError):
+        wall_time = math.nan
+    if not math.isfinite(wall_time):
         return Response(
-            {"detail": f"query parameter 'time' is required and must be a number, got {raw!r}"},
+            {
+                "detail": "query parameter 'time' is required and must be a finite number, "
+                f"got {raw!r}"
+            },
             status=http.HTTP_422_UNPROCESSABLE_ENTITY,
         )
     fired = lifecycle.advance(run, wall_time * run.speed_factor)

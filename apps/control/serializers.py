@@ -7,11 +7,13 @@ import math
 from rest_framework import serializers
 
 from apps.agent_site import links
-from apps.scenarios.format import ScenarioError, parse_scenario
+from apps.scenarios.format import ScenarioError, parse_scenario, parse_timeline
 from apps.scenarios.library import get_scenario
 from events.models import ClockMode, Run
 from events.registry import UnknownEnvironment, environment_names, get_environment
 from events.timing import SpeedFactorError, validate_speed_factor
+
+SCENARIO_ID_MAX = Run._meta.get_field("scenario_id").max_length
 
 
 def _speed_factor(value: float) -> float:
@@ -21,14 +23,13 @@ def _speed_factor(value: float) -> float:
         raise serializers.ValidationError(str(exc)) from None
 
 
-class TimelineEntrySerializer(serializers.Serializer):
-    time = serializers.FloatField()
-    type = serializers.CharField()
-    payload = serializers.DictField(required=False, default=dict)
+class FiniteFloatField(serializers.FloatField):
+    """A number that is not NaN or infinite (DRF's FloatField takes "inf" and "1e400")."""
 
-    def validate_time(self, value: float) -> float:
-        if not math.isfinite(value) or value < 0:
-            raise serializers.ValidationError(f"must be a finite number ≥ 0, got {value}")
+    def to_internal_value(self, data) -> float:
+        value = super().to_internal_value(data)
+        if not math.isfinite(value):
+            raise serializers.ValidationError(f"must be a finite number, got {data!r}")
         return value
 
 
@@ -36,11 +37,12 @@ class InitPayloadSerializer(serializers.Serializer):
     """SentinelBench's `/init` body (extra keys such as kill_at, prompt, taxonomy are ignored)."""
 
     environment = serializers.CharField()
-    event_timeline_end = serializers.FloatField()
+    event_timeline_end = FiniteFloatField()
     eval_sql = serializers.CharField(required=False, allow_blank=True, default="")
-    condition_at = serializers.FloatField(required=False, allow_null=True, default=None)
-    speed_factor = serializers.FloatField(required=False, default=1.0, validators=[_speed_factor])
-    events = TimelineEntrySerializer(many=True)
+    condition_at = FiniteFloatField(required=False, allow_null=True, default=None)
+    speed_factor = FiniteFloatField(required=False, default=1.0, validators=[_speed_factor])
+    # [{time, type, payload}]: checked in validate() as a scenario file's timeline is.
+    events = serializers.ListField(child=serializers.JSONField())
     start_page = serializers.CharField(
         required=False, allow_blank=True, allow_null=True, default=None
     )
@@ -63,15 +65,20 @@ class InitPayloadSerializer(serializers.Serializer):
             raise serializers.ValidationError(f"must be ≥ 0, or null for a no-op task; got {value}")
         return value
 
+    def validate(self, attrs: dict) -> dict:
+        # The one timeline validator (apps.scenarios.format): types and payloads against the
+        # environment's schemas, so no accepted entry can break the run when it fires.
+        try:
+            attrs["events"] = parse_timeline(
+                attrs["events"], attrs["environment"], source="/init", sort=True
+            )  # a stable sort, as upstream
+        except ScenarioError as exc:
+            raise serializers.ValidationError({"events": str(exc)}) from None
+        return attrs
+
     def to_spec(self) -> dict:
         data = self.validated_data
-        events = sorted(
-            (
-                {"time": e["time"], "type": e["type"], "payload": dict(e.get("payload") or {})}
-                for e in data["events"]
-            ),
-            key=lambda e: e["time"],
-        )  # stable sort, as upstream
+        events = list(data["events"])
         return {
             "id": f"init-{data['environment']}",
             "environment": data["environment"],
@@ -91,9 +98,11 @@ class InitPayloadSerializer(serializers.Serializer):
 
 
 class RunCreateSerializer(serializers.Serializer):
-    scenario = serializers.CharField(required=False, help_text="id of a scenario in the library")
+    scenario = serializers.CharField(
+        required=False, max_length=SCENARIO_ID_MAX, help_text="id of a scenario in the library"
+    )
     scenario_json = serializers.JSONField(required=False, help_text="a whole scenario, inline")
-    speed_factor = serializers.FloatField(required=False, default=1.0, validators=[_speed_factor])
+    speed_factor = FiniteFloatField(required=False, default=1.0, validators=[_speed_factor])
     clock_mode = serializers.ChoiceField(
         choices=ClockMode.choices, required=False, default=ClockMode.LIVE
     )
@@ -113,6 +122,10 @@ class RunCreateSerializer(serializers.Serializer):
                 ).to_run_spec()
             except ScenarioError as exc:
                 raise serializers.ValidationError({"scenario_json": str(exc)}) from None
+            if len(attrs["spec"]["id"]) > SCENARIO_ID_MAX:
+                raise serializers.ValidationError(
+                    {"scenario_json": f"id: at most {SCENARIO_ID_MAX} characters"}
+                )
         if attrs["spec"]["environment"] not in environment_names():
             raise serializers.ValidationError(
                 {
@@ -124,7 +137,7 @@ class RunCreateSerializer(serializers.Serializer):
 
 
 class AdvanceSerializer(serializers.Serializer):
-    time = serializers.FloatField(help_text="simulated seconds on the authored scale")
+    time = FiniteFloatField(min_value=0, help_text="simulated seconds on the authored scale")
 
 
 class RunSerializer(serializers.ModelSerializer):
@@ -165,7 +178,10 @@ class RunSerializer(serializers.ModelSerializer):
     def get_prompt(self, run: Run) -> str:
         return run.spec.get("prompt", "")
 
-    def get_sim_time(self, run: Run) -> float:
+    def get_sim_time(self, run: Run) -> float | None:
         from events.clock import sim_now, wall_now
 
-        return sim_now(run, wall_now())
+        # A run's clock read as infinite (recorded before /advance refused it) must not make
+        # the run list fail for every caller: it reads as unknown.
+        now = sim_now(run, wall_now())
+        return now if math.isfinite(now) else None

@@ -1,13 +1,40 @@
-"""The single default slot the SentinelBench-compatible flat endpoints operate on."""
+"""The single default slot the SentinelBench-compatible flat endpoints operate on.
+
+The flat endpoints name no run: whoever can reach them drives the slot's run, an agent of
+another run included (it needs no token for /redirect and /contact). `SENTINEL_FLAT_ENDPOINTS=off`
+switches them all off (`flat_endpoint`), so that no URL outside a run's own touches that run;
+the multi-run API and the harness never need them.
+"""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import wraps
+
+from django.conf import settings
 from django.db import IntegrityError, transaction
+from django.http import HttpResponse, JsonResponse
 
 from events.lifecycle import LifecycleError, close, create_run
 from events.models import Run
 
 NO_SESSION = "No active simulation. Call /init first."
+SWITCHED_OFF = (
+    "the flat SentinelBench endpoints are switched off (SENTINEL_FLAT_ENDPOINTS=off): "
+    "use the multi-run API under /api/runs/"
+)
+
+
+def flat_endpoint(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
+    """`view`, answering 404 while SENTINEL_FLAT_ENDPOINTS is off (read per request)."""
+
+    @wraps(view)
+    def gated(request, *args, **kwargs) -> HttpResponse:
+        if not settings.SENTINEL_FLAT_ENDPOINTS:
+            return JsonResponse({"detail": SWITCHED_OFF}, status=404)
+        return view(request, *args, **kwargs)
+
+    return gated
 
 
 def default_run() -> Run | None:

@@ -3,6 +3,7 @@ from drf_spectacular.views import SpectacularAPIView
 from rest_framework.routers import SimpleRouter
 
 from apps.control import agent, api, flat
+from apps.control.slot import flat_endpoint
 
 router = SimpleRouter()
 router.register("runs", api.RunViewSet, basename="run")
@@ -13,20 +14,24 @@ api_urlpatterns = [
     path("schema/", SpectacularAPIView.as_view(), name="schema"),
 ]
 
+# Upstream's protocol on the one default slot; all off with SENTINEL_FLAT_ENDPOINTS=off.
 flat_urlpatterns = [
-    path("status", flat.status),
-    path("init", flat.init),
-    path("advance", flat.advance),
-    path("play", flat.play),
-    path("redirect", flat.redirect),
-    path("contact", agent.flat_contact),
-    path("evaluate", flat.evaluate),
-    path("close", flat.close),
-    path("dev_init", flat.dev_init),
-    path("scenarios", flat.scenarios),
-    path("scenarios/<str:scenario_id>", flat.scenario_detail),
-    path("data/config", flat.data_config),
-    path("data/users", flat.data_users),
+    path(route, flat_endpoint(view))
+    for route, view in (
+        ("status", flat.status),
+        ("init", flat.init),
+        ("advance", flat.advance),
+        ("play", flat.play),
+        ("redirect", flat.redirect),
+        ("contact", agent.flat_contact),
+        ("evaluate", flat.evaluate),
+        ("close", flat.close),
+        ("dev_init", flat.dev_init),
+        ("scenarios", flat.scenarios),
+        ("scenarios/<str:scenario_id>", flat.scenario_detail),
+        ("data/config", flat.data_config),
+        ("data/users", flat.data_users),
+    )
 ]
 
 run_urlpatterns = [

@@ -138,6 +138,15 @@ def _payload(value: Any, schema, where: str, source: str) -> dict:
 
 def _events(data: dict, environment: str, source: str) -> tuple[dict[str, Any], ...]:
     raw = _require(data, "events", source, "a list of {time, type, payload}")
+    return parse_timeline(raw, environment, source=source)
+
+
+def parse_timeline(
+    raw: object, environment: str, *, source: str = INLINE, sort: bool = False
+) -> tuple[dict[str, Any], ...]:
+    """A timeline (`events`), checked as a scenario file's is: each entry's time, its type
+    against the environment's event types and its payload against that type's schema. Files
+    must be sorted by time; `sort=True` sorts instead (stable), as upstream's /init does."""
     if not isinstance(raw, list):
         _fail(source, "events", f"must be a list, got {type(raw).__name__}")
     env = _registered(environment)
@@ -156,6 +165,8 @@ def _events(data: dict, environment: str, source: str) -> tuple[dict[str, Any], 
         )
         # Other event keys are dropped, as upstream's pydantic model does.
         events.append({"time": time, "type": kind, "payload": copy.deepcopy(payload)})
+    if sort:
+        events.sort(key=lambda event: event["time"])
     for i in range(1, len(events)):
         if events[i]["time"] < events[i - 1]["time"]:
             _fail(
