@@ -11,8 +11,9 @@ from __future__ import annotations
 from typing import Any
 
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect
-from django.shortcuts import render
+from django.template.loader import render_to_string
 
+from apps.agent_site import screen_cache
 from apps.agent_site.pages import Page
 
 FRAGMENT_TEMPLATE = "site/fragment.html"
@@ -31,10 +32,14 @@ def render_screen(
     *,
     status: int = 200,
 ) -> HttpResponse:
-    """`template` with `page`, `root` and `base_template` in its context."""
+    """`template` with `page`, `root` and `base_template` in its context — or the same screen
+    rendered for an earlier identical load, while nothing it shows can have changed
+    (`screen_cache`)."""
     base = FRAGMENT_TEMPLATE if is_fragment(request) else f"{page.run.environment}/base.html"
     full = {"page": page, "root": page.root + "/", "base_template": base, **context}
-    return render(request, template, full, status=status)
+    return screen_cache.cached_render(
+        request, page, lambda extra: render_to_string(template, {**full, **extra}, request), status
+    )
 
 
 def redirect_to(page: Page, path: str = "") -> HttpResponse:

