@@ -1,0 +1,8 @@
+from apps.agent_site import environments
+
+
+class MicrolendarConfig(environments.EnvironmentConfig):
+    name = "apps.microlendar"
+    label = "microlendar"
+    verbose_name = "MicroLendar"
+    environment = "apps.microlendar.environment.MICROLENDAR"

@@ -1,0 +1,112 @@
+"""Turning catalog records (SentinelBench format) into `CalendarEvent` and `Task` values.
+
+One table, `microlendar/events.jsonl`, holds events and tasks alike (`is_task` tells them apart),
+as upstream's does. A record: id, title, description, start_time / end_time (ISO), category
+(Work, Family, Personal…), is_task, is_completed, attendees (user ids), location, order. Our
+catalog may add `due_date` (YYYY-MM-DD) and `notes` to tasks; upstream's tasks have neither.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from apps.microlendar import times
+from apps.microlendar.state import (
+    CALENDARS,
+    DAY_MIN,
+    DEFAULT_CALENDAR,
+    DEFAULT_DURATION_MIN,
+    ENVIRONMENT,
+    Attendee,
+    CalendarEvent,
+    Task,
+    TaskState,
+)
+
+TABLE = "events"
+
+
+def records(catalog: Any) -> Mapping[str, Mapping[str, Any]]:
+    return catalog.table(ENVIRONMENT, TABLE)
+
+
+def is_task(record: Mapping[str, Any]) -> bool:
+    return bool(record.get("is_task", False))
+
+
+def event_ids(catalog: Any, ids: list[str]) -> list[str]:
+    """`["*"]` = every record that is not a task; other lists as given."""
+    if ids == ["*"]:
+        return [i for i, r in records(catalog).items() if not is_task(r)]
+    return ids
+
+
+def task_ids(catalog: Any, ids: list[str]) -> list[str]:
+    """`["*"]` = every record flagged is_task; other lists as given."""
+    if ids == ["*"]:
+        return [i for i, r in records(catalog).items() if is_task(r)]
+    return ids
+
+
+def attendee(catalog: Any, user_id: str) -> Attendee | None:
+    user = catalog.users.get(str(user_id))
+    if user is None:
+        return None
+    return Attendee(
+        id=str(user_id),
+        name=str(user.get("name") or user_id),
+        email=str(user.get("email") or ""),
+        job_title=str(user.get("jobTitle") or ""),
+    )
+
+
+def catalog_event(catalog: Any, event_id: str) -> CalendarEvent | None:
+    """The event `event_id`; None if the catalog lacks it, it is a task or has no start time."""
+    record = records(catalog).get(event_id)
+    if record is None or is_task(record) or not record.get("start_time"):
+        return None
+    day, start = times.parse_iso(record["start_time"])
+    end = start + DEFAULT_DURATION_MIN
+    if record.get("end_time"):
+        end_day, end_minutes = times.parse_iso(record["end_time"])
+        # An event running past midnight is shown up to the end of its first day.
+        end = end_minutes if end_day == day else DAY_MIN
+    if end <= start:
+        end = start + DEFAULT_DURATION_MIN
+    calendar = str(record.get("category") or DEFAULT_CALENDAR)
+    people = (attendee(catalog, user_id) for user_id in record.get("attendees") or ())
+    return CalendarEvent(
+        id=event_id,
+        title=str(record.get("title") or "(No title)"),
+        day=day,
+        start=start,
+        end=min(end, DAY_MIN),
+        calendar=calendar if calendar in CALENDARS else DEFAULT_CALENDAR,
+        description=str(record.get("description") or ""),
+        location=str(record.get("location") or ""),
+        attendees=tuple(p for p in people if p is not None),
+        order=int(record.get("order") or 0),
+    )
+
+
+def catalog_task(catalog: Any, task_id: str) -> tuple[Task, TaskState] | None:
+    """The task `task_id` with its catalog completion; None if missing or not a task."""
+    record = records(catalog).get(task_id)
+    if record is None or not is_task(record):
+        return None
+    due = record.get("due_date") or record.get("dueDate") or record.get("start_time")
+    task = Task(
+        id=task_id,
+        title=str(record.get("title") or "(No title)"),
+        due=times.parse_iso(due)[0] if due and "T" in str(due) else _date_or_none(due),
+        notes=str(record.get("notes") or record.get("description") or ""),
+    )
+    return task, TaskState(completed=bool(record.get("is_completed", False)))
+
+
+def _date_or_none(text: Any):
+    try:
+        return times.parse_date(str(text)) if text else None
+    except times.BadTime:
+        return None

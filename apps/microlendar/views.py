@@ -1,0 +1,256 @@
+"""MicroLendar pages: thin views over `page.state`, actions through `page.act`.
+
+Every view serves the full page, or just the `#calendar-app` content when htmx asks for a
+fragment (apps.agent_site.rendering). Actions are POST forms that come back to the screen they
+came from (the `back` field; post/redirect/get), so the site works with plain links and forms;
+htmx and the drag-and-drop script only make it smoother. Opening an event's details marks it
+viewed: declared with the environment (`implicit_actions`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from django.contrib import messages
+from django.http import Http404, HttpRequest, HttpResponse
+from django.views.decorators.http import require_GET, require_http_methods, require_POST
+
+from apps.agent_site.pages import Page, run_page
+from apps.agent_site.rendering import redirect_to, render_screen
+from apps.microlendar import screens, times
+from apps.microlendar.actions import DEFAULT_START, existing_event
+from apps.microlendar.clock import calendar_moment, now_line_top
+from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery, InvalidQuery
+from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda
+from events.registry import ActionRejected
+
+DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
+EVENT_ACTIONS = {"reschedule": "reschedule_event", "delete": "delete_event"}
+TASK_ACTIONS = {"toggle": "toggle_task", "delete": "delete_task"}
+
+
+def bad_query(exc: InvalidQuery) -> HttpResponse:
+    return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
+
+
+def base_context(page: Page, query: CalendarQuery) -> dict:
+    """What the chrome (top bar, sidebar) of every screen needs."""
+    agenda: Agenda = page.state
+    moment = calendar_moment(agenda, page)
+    today = moment.date()
+    shown = query.shown_date(today)
+    return {
+        "agenda": agenda,
+        "query": query,
+        "moment": moment,
+        "today": today,
+        "shown": shown,
+        "self_name": agenda.self_name,
+        "self_email": agenda.self_email,
+        "views": [
+            (v, VIEW_TITLES[v], query.on(shown, today, view=v).querystring() or "?") for v in VIEWS
+        ],
+        "mini": screens.mini_month(agenda, query.but(q="", event=None), shown, today),
+        "calendars": screens.calendar_links(query),
+        "tasks": screens.task_rows(agenda, today),
+        "back": query.querystring(),
+        "calendar_choices": CALENDARS,
+    }
+
+
+@require_GET
+@run_page
+def calendar(request: HttpRequest, page: Page) -> HttpResponse:
+    """The calendar in the chosen view, with event `event=<id>` open (which marks it viewed)."""
+    try:
+        query = CalendarQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    agenda: Agenda = page.state
+    if query.event is not None and not agenda.has_event(query.event):
+        raise Http404("no such event")  # unknown, deleted, or not on the calendar yet: alike
+    context = base_context(page, query)
+    screen = screens.calendar_screen(agenda, query, context["today"])
+    context.update(
+        screen=screen,
+        now_top=now_line_top(context["moment"]),
+        details=screens.details(agenda, query.event) if query.event else None,
+        close_url=query.but(event=None).querystring() or "?",
+        clear_search_url=query.but(q="", event=None).querystring() or "?",
+        title_for_tab=screen.title,
+    )
+    return render_screen(request, page, "microlendar/calendar.html", context)
+
+
+# --- creating and editing events ---------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class EventForm:
+    """The fields of the event form as shown (prefilled, or as typed when refused)."""
+
+    title: str = ""
+    date: str = ""
+    time: str = DEFAULT_START
+    endTime: str = "10:00"
+    calendar: str = "Work"
+    description: str = ""
+    location: str = ""
+    event_id: str | None = None
+
+    @classmethod
+    def typed(cls, request: HttpRequest, **extra) -> EventForm:
+        fields = {name: request.POST.get(name, "").strip() for name in FORM_FIELDS}
+        return cls(**fields, **extra)
+
+    def payload(self) -> dict:
+        return {name: getattr(self, name) for name in FORM_FIELDS if getattr(self, name) != ""}
+
+
+FORM_FIELDS = ("title", "date", "time", "endTime", "calendar", "description", "location")
+
+
+def new_event_form(request: HttpRequest, today) -> EventForm:
+    """Prefilled from the link that opened it: `date`, `time` (a clicked slot), `kind=reminder`
+    (upstream's reminder: an event in Personal described "Reminder")."""
+    day = request.GET.get("date") or today.isoformat()
+    start = request.GET.get("time") or DEFAULT_START
+    try:
+        end = times.hhmm(min(times.parse_clock(start) + 60, 24 * 60 - 1))
+    except times.BadTime:
+        start, end = DEFAULT_START, "10:00"
+    if request.GET.get("kind") == "reminder":
+        return EventForm(
+            date=day, time=start, endTime=end, calendar="Personal", description="Reminder"
+        )
+    return EventForm(date=day, time=start, endTime=end)
+
+
+def render_form(
+    request: HttpRequest, page: Page, form: EventForm, *, error: str = "", status: int = 200
+) -> HttpResponse:
+    back = CalendarQuery.from_querystring(request.POST.get("back") or request.GET.get("back", ""))
+    context = {
+        **base_context(page, back),
+        "form": form,
+        "error": error,
+        "colors": CALENDAR_COLORS,
+        "cancel_url": back.querystring() or "?",
+    }
+    return render_screen(request, page, "microlendar/event_form.html", context, status=status)
+
+
+def after_save(request: HttpRequest, page: Page, day: str) -> HttpResponse:
+    """Back to the screen the form came from, moved to the event's day."""
+    back = CalendarQuery.from_querystring(request.POST.get("back", ""))
+    return redirect_to(page, back.but(date=day, event=None).querystring())
+
+
+@require_http_methods(["GET", "POST"])
+@run_page
+def new_event(request: HttpRequest, page: Page) -> HttpResponse:
+    if request.method == "GET":
+        today = calendar_moment(page.state, page).date()
+        return render_form(request, page, new_event_form(request, today))
+    form = EventForm.typed(request)
+    try:
+        event = page.act("create_event", form.payload())
+    except ActionRejected as exc:
+        return render_form(request, page, form, error=str(exc), status=exc.status)
+    messages.success(request, f"“{event.payload['title']}” saved")
+    return after_save(request, page, event.payload["date"])
+
+
+@require_http_methods(["GET", "POST"])
+@run_page
+def edit_event(request: HttpRequest, page: Page, event_id: str) -> HttpResponse:
+    current = existing_event(page.state, event_id)
+    if request.method == "GET":
+        form = EventForm(
+            title=current.title,
+            date=current.day.isoformat(),
+            time=times.hhmm(current.start),
+            endTime=times.hhmm(current.end),
+            calendar=current.calendar,
+            description=current.description,
+            location=current.location,
+            event_id=event_id,
+        )
+        return render_form(request, page, form)
+    form = EventForm.typed(request, event_id=event_id)
+    original = _as_form(current)
+    # Only what was changed is sent (an emptied description is a change; an unchanged time is not).
+    changes = {
+        name: getattr(form, name) for name in FORM_FIELDS if getattr(form, name) != original[name]
+    }
+    try:
+        event = page.act("update_event", {"event_id": event_id, **changes})
+    except ActionRejected as exc:
+        return render_form(request, page, form, error=str(exc), status=exc.status)
+    messages.success(request, "Event updated")
+    return after_save(request, page, event.payload.get("date", current.day.isoformat()))
+
+
+def _as_form(event) -> dict:
+    return {
+        "title": event.title,
+        "date": event.day.isoformat(),
+        "time": times.hhmm(event.start),
+        "endTime": times.hhmm(event.end),
+        "calendar": event.calendar,
+        "description": event.description,
+        "location": event.location,
+    }
+
+
+# --- acting on an event, on tasks ----------------------------------------------------------------
+
+
+@require_POST
+@run_page
+def event_action(request: HttpRequest, page: Page, event_id: str, action: str) -> HttpResponse:
+    """`POST events/<id>/reschedule` (date, time: the form and a drag send the same) and
+    `POST events/<id>/delete`, then back to the screen."""
+    if action not in EVENT_ACTIONS:
+        raise ActionRejected(f"unknown event action {action!r}; allowed: reschedule, delete", 404)
+    payload = {"event_id": event_id}
+    if action == "reschedule":
+        payload["date"] = request.POST.get("date", "")
+        if request.POST.get("time"):
+            payload["time"] = request.POST["time"]
+    page.act(EVENT_ACTIONS[action], payload)
+    messages.success(request, DONE[action])
+    back = CalendarQuery.from_querystring(request.POST.get("back", ""))
+    if action == "delete":
+        back = back.but(event=None)
+    return redirect_to(page, back.querystring())
+
+
+@require_POST
+@run_page
+def new_task(request: HttpRequest, page: Page) -> HttpResponse:
+    payload = {"title": request.POST.get("title", "")}
+    if request.POST.get("dueDate"):
+        payload["dueDate"] = request.POST["dueDate"]
+    page.act("create_task", payload)
+    messages.success(request, "Task created")
+    return redirect_to(page, _back(request))
+
+
+@require_POST
+@run_page
+def task_action(request: HttpRequest, page: Page, task_id: str, action: str) -> HttpResponse:
+    if action not in TASK_ACTIONS:
+        raise ActionRejected(f"unknown task action {action!r}; allowed: toggle, delete", 404)
+    event = page.act(TASK_ACTIONS[action], {"task_id": task_id})
+    if action == "delete":
+        messages.success(request, "Task deleted")
+    else:
+        messages.success(
+            request, "Task completed" if event.payload["completed"] else "Task marked not done"
+        )
+    return redirect_to(page, _back(request))
+
+
+def _back(request: HttpRequest) -> str:
+    return CalendarQuery.from_querystring(request.POST.get("back", "")).querystring()
