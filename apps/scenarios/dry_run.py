@@ -24,7 +24,7 @@ from events.registry import (
     get_environment,
     validate_payload,
 )
-from events.sandbox import is_truthy, run_eval_sql
+from events.sandbox import is_truthy, run_eval_sql, shown
 
 TOLERANCE_S = 1.0
 
@@ -141,7 +141,7 @@ def _check_solution(scenario: Scenario, environment, start, sql: str, result: Dr
     else:
         result.warnings.append(
             f"the solution performed at condition_at {at:g} s does not make the condition hold "
-            f"(eval_sql returned {value!r})"
+            f"(eval_sql returned {shown(value)})"
         )
 
 
