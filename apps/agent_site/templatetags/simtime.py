@@ -2,6 +2,8 @@
 
     {% load simtime %}
     {{ email.arrived_at|sim_ago:page }}         just now · 5 min ago · 08:55
+    {{ post.at|sim_ago_compact:page }}          now · 5m · 2h · 3d · 1w
+    {{ video.at|sim_ago_long:page }}            just now · 1 minute ago · 3 hours ago · 2 weeks ago
     {{ event.at|sim_relative:page }}            … · 14:05 · Yesterday 17:30 · Mon 3 Mar
     {{ event.at|sim_absolute:page }}            Mon 6 Jan 2025, 09:12
     {{ event.at|sim_clock }}                    09:12
@@ -11,7 +13,7 @@
 
 `page` is the `apps.agent_site.pages.Page` of the request: its `now` was read once from the run's
 clock, so every time on a page agrees. Filters whose text moves on with the clock (`sim_ago`,
-`sim_relative`, `sim_now`) tell the page when it next changes (`page.changes_at`), so a live
+`sim_ago_compact`, `sim_ago_long`, `sim_relative`, `sim_now`) tell the page when it next changes (`page.changes_at`), so a live
 page is pushed again then. `sim_ago` and `sim_relative` also take a plain `now` (simulated
 seconds) instead of the page; nothing is registered then.
 """
@@ -34,6 +36,22 @@ def sim_ago(at: float, page) -> str:
         return simclock.ago(at, page)
     page.changes_at(simclock.ago_changes_at(at, page.now))
     return simclock.ago(at, page.now)
+
+
+@register.filter
+def sim_ago_compact(at: float, page) -> str:
+    if isinstance(page, int | float):
+        return simclock.compact_ago(at, page)
+    page.changes_at(simclock.units_changes_at(at, page.now))
+    return simclock.compact_ago(at, page.now)
+
+
+@register.filter
+def sim_ago_long(at: float, page) -> str:
+    if isinstance(page, int | float):
+        return simclock.long_ago(at, page)
+    page.changes_at(simclock.units_changes_at(at, page.now))
+    return simclock.long_ago(at, page.now)
 
 
 @register.filter

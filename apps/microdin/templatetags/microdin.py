@@ -1,4 +1,4 @@
-"""Template tags for MicroDin pages: compact ages ("5m", "2h", "3d") and repeated rows.
+"""Template tags for MicroDin pages: repeated rows, each with its compact age ("5m", "2h", "3d").
 
 `{% rows "microdin/_post.html" cards "card" stamp="post.posted_at" %}` renders each item once
 per distinct input (apps.agent_site.fragments): the row gets the item, the environment root and
@@ -15,34 +15,11 @@ from django import template
 from django.utils.safestring import SafeString, mark_safe
 
 from apps.agent_site.fragments import render_fragment
+from apps.agent_site.simclock import compact_ago, units_changes_at
 
 register = template.Library()
 
-MINUTE, HOUR, DAY, WEEK = 60, 3600, 86400, 7 * 86400
 _BLANK_CSRF = 'name="csrfmiddlewaretoken" value=""'
-
-
-def short_ago(at: float, now: float) -> str:
-    """How long ago, as the network writes it: now, 5m, 2h, 3d, 1w."""
-    elapsed = max(0.0, now - at)
-    for unit, size in (("w", WEEK), ("d", DAY), ("h", HOUR), ("m", MINUTE)):
-        if elapsed >= size:
-            return f"{int(elapsed // size)}{unit}"
-    return "now"
-
-
-def short_ago_changes_at(at: float, now: float) -> float:
-    """When `short_ago(at, now)` next reads differently: the next whole unit."""
-    elapsed = max(0.0, now - at)
-    size = next((s for s in (WEEK, DAY, HOUR, MINUTE) if elapsed >= s), MINUTE)
-    return at + (elapsed // size + 1) * size
-
-
-@register.filter
-def ago(at: float, page) -> str:
-    """`{{ post.posted_at|ago:page }}`; the page learns when the text next changes."""
-    page.changes_at(short_ago_changes_at(at, page.now))
-    return short_ago(at, page.now)
 
 
 @register.simple_tag(takes_context=True)
@@ -62,8 +39,8 @@ def rows(
             except AttributeError:  # nothing to date (a thread without messages yet)
                 at = None
             if at is not None:
-                page.changes_at(short_ago_changes_at(at, page.now))
-            inputs["ago"] = short_ago(at, page.now) if at is not None else ""
+                page.changes_at(units_changes_at(at, page.now))
+            inputs["ago"] = compact_ago(at, page.now) if at is not None else ""
         html.append(render_fragment(template_name, **inputs))
     return mark_safe(with_csrf_token("".join(html), str(context.get("csrf_token", ""))))
 
