@@ -1,0 +1,113 @@
+"""What an agent can do in MicroScholar: `Action(schema, decide, reduce, page)` per name.
+
+- `save` / `unsave` — the library. Set, not toggled as in the original: repeating a request, or
+  two tabs racing, cannot flip a paper back out of the library by accident.
+- `cite` — opening the Cite dialog, which is what the original records (isCited, never unset).
+- `mark_alert_read`.
+
+`decide` refuses ids that are not indexed (unknown and not-yet-arrived look the same: 404);
+reducers trust the log and never raise.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from types import MappingProxyType
+from typing import Any
+
+from pydantic import Field
+
+from apps.microscholar.state import Paper, Scholar, with_alert_read, with_paper_state
+from events.registry import Action, ActionRejected, LoggedEvent, PageStep
+from events.schemas import Payload
+
+
+class PaperId(Payload):
+    paper_id: str = Field(description="id of an indexed paper")
+
+
+class AlertId(Payload):
+    alert_id: str = Field(description="id of an alert that has arrived")
+
+
+def existing_paper(scholar: Scholar, paper_id: str) -> Paper:
+    paper = scholar.papers.get(paper_id)
+    if paper is None:
+        raise ActionRejected(f"no paper {paper_id!r} in the index", status=404)
+    return paper
+
+
+def decide_on_paper(scholar: Scholar, payload: dict) -> dict:
+    existing_paper(scholar, payload["paper_id"])
+    return payload
+
+
+def decide_on_alert(scholar: Scholar, payload: dict) -> dict:
+    if payload["alert_id"] not in scholar.alerts:
+        raise ActionRejected(f"no alert {payload['alert_id']!r}", status=404)
+    return payload
+
+
+def setting(**changes: Any) -> Callable[[Scholar, LoggedEvent], Scholar]:
+    def reduce(scholar: Scholar, event: LoggedEvent) -> Scholar:
+        return with_paper_state(scholar, event.payload["paper_id"], **changes)
+
+    return reduce
+
+
+def reduce_mark_alert_read(scholar: Scholar, event: LoggedEvent) -> Scholar:
+    return with_alert_read(scholar, event.payload["alert_id"])
+
+
+# --- where a person does it (forms marked data-action="<action>" in the templates) -------------
+
+
+def paper_page(scholar: Scholar, payload: dict) -> PageStep:
+    """The paper's own page, whose first Save / Remove form is the paper's."""
+    existing_paper(scholar, payload["paper_id"])
+    return PageStep(f"papers/{payload['paper_id']}", {"paper_id": payload["paper_id"]})
+
+
+def cite_page(scholar: Scholar, payload: dict) -> PageStep:
+    """Opening the Cite dialog is the action (an implicit action of the `cite` page)."""
+    existing_paper(scholar, payload["paper_id"])
+    return PageStep(f"papers/{payload['paper_id']}/cite")
+
+
+def alerts_page(scholar: Scholar, payload: dict) -> PageStep:
+    decide_on_alert(scholar, payload)
+    return PageStep("alerts", {"alert_id": payload["alert_id"]})
+
+
+ACTIONS: Mapping[str, Action] = MappingProxyType(
+    {
+        "save": Action(
+            PaperId,
+            decide_on_paper,
+            setting(saved=True),
+            help="Add a paper to My library.",
+            page=paper_page,
+        ),
+        "unsave": Action(
+            PaperId,
+            decide_on_paper,
+            setting(saved=False),
+            help="Remove a paper from My library.",
+            page=paper_page,
+        ),
+        "cite": Action(
+            PaperId,
+            decide_on_paper,
+            setting(cited=True),
+            help="Open a paper's Cite dialog (formatted citations and export links).",
+            page=cite_page,
+        ),
+        "mark_alert_read": Action(
+            AlertId,
+            decide_on_alert,
+            reduce_mark_alert_read,
+            help="Mark an alert read.",
+            page=alerts_page,
+        ),
+    }
+)

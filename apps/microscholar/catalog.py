@@ -1,0 +1,157 @@
+"""Catalog records (SentinelBench format) → papers, alerts, scholar profiles and co-authors.
+
+Tables in `microscholar/`: `papers.jsonl`, `alerts.jsonl`, `coauthors.jsonl` (the original's
+three, whose record shapes are accepted as they are) and, in our catalog, `scholars.jsonl` (the
+profile of each person who has one; the original keeps that as a `microscholar` block on the
+user record, also accepted). Our papers may add `versions` and `citationGrowth`
+(`[[seconds after indexing, count], …]`: how "Cited by" climbs while a run lasts); without it a
+count stays as catalogued, which is the original's behaviour.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from apps.microscholar.state import ENVIRONMENT, Alert, Paper
+from events.waypoints import Waypoints
+
+
+def _int(value: Any, default: int = 0) -> int:
+    try:
+        return int(value)
+    except (TypeError, ValueError):
+        return default
+
+
+def citation_series(record: Mapping[str, Any], indexed_at: float) -> Waypoints:
+    """The catalogued count, flat until the paper is indexed, then along its growth points."""
+    start = float(_int(record.get("citedBy")))
+    growth = record.get("citationGrowth") or ()
+    if not growth:
+        return Waypoints(start)
+    points = [(indexed_at, start)] + [(indexed_at + float(dt), float(v)) for dt, v in growth]
+    return Waypoints(start).with_points(points)
+
+
+def catalog_paper(catalog: Any, paper_id: str, *, indexed_at: float) -> Paper | None:
+    """The paper `paper_id` as indexed at `indexed_at`; None if the catalog lacks it."""
+    record = catalog.table(ENVIRONMENT, "papers").get(paper_id)
+    if record is None:
+        return None
+    return Paper(
+        id=paper_id,
+        title=str(record.get("title", "")),
+        author_ids=tuple(str(a) for a in record.get("authorIds") or ()),
+        authors=str(record.get("authors", "")),
+        source=str(record.get("source", "")),
+        year=_int(record.get("year")),
+        snippet=str(record.get("snippet", "")),
+        citations=citation_series(record, indexed_at),
+        pdf_source=str(record.get("pdfSource") or ""),
+        is_book=bool(record.get("isBook", False)),
+        is_target=bool(record.get("isTargetPaper", False)),
+        task_type=str(record.get("taskType") or "noise"),
+        versions=_int(record.get("versions"), 1),
+        indexed_at=float(indexed_at),
+    )
+
+
+def catalog_alert(catalog: Any, alert_id: str, *, arrived_at: float) -> Alert | None:
+    record = catalog.table(ENVIRONMENT, "alerts").get(alert_id)
+    if record is None:
+        return None
+    return Alert(
+        id=alert_id,
+        type=str(record.get("type") or "keyword"),
+        title=str(record.get("title", "")),
+        description=str(record.get("description", "")),
+        related_paper_id=str(record.get("relatedPaperId") or ""),
+        arrived_at=float(arrived_at),
+    )
+
+
+def catalog_alert_read(catalog: Any, alert_id: str) -> bool:
+    return bool((catalog.table(ENVIRONMENT, "alerts").get(alert_id) or {}).get("isRead", False))
+
+
+@dataclass(frozen=True)
+class Profile:
+    """A scholar's public profile (the header of their citations page)."""
+
+    user_id: str
+    name: str
+    affiliation: str
+    email_domain: str
+    interests: tuple[str, ...]
+    is_self: bool = False
+
+
+def _domain(email: str) -> str:
+    return email.partition("@")[2]
+
+
+def profiles(catalog: Any) -> Mapping[str, Profile]:
+    """Every person with a scholar profile: ours from `scholars.jsonl`, the original's from the
+    user records' `microscholar` blocks (computed once per catalog)."""
+    found: dict[str, Profile] = {}
+    for user_id, user in catalog.users.items():
+        block = user.get("microscholar")
+        if isinstance(block, Mapping):
+            affiliation = ", ".join(
+                str(x) for x in (block.get("title"), block.get("affiliation")) if x
+            )
+            found[user_id] = Profile(
+                user_id=user_id,
+                name=str(user.get("name", user_id)),
+                affiliation=affiliation,
+                email_domain=_domain(str(block.get("email") or user.get("email") or "")),
+                interests=tuple(str(i) for i in block.get("interests") or ()),
+                is_self=bool(user.get("isSelf", False)),
+            )
+    for user_id, record in catalog.table(ENVIRONMENT, "scholars").items():
+        user = catalog.users.get(user_id) or {}
+        found[user_id] = Profile(
+            user_id=user_id,
+            name=str(user.get("name", user_id)),
+            affiliation=str(record.get("affiliation", "")),
+            email_domain=str(record.get("emailDomain") or _domain(str(user.get("email", "")))),
+            interests=tuple(str(i) for i in record.get("interests") or ()),
+            is_self=bool(user.get("isSelf", False)),
+        )
+    return found
+
+
+def self_id(catalog: Any) -> str | None:
+    user = catalog.self_user
+    return str(user["id"]) if user else None
+
+
+def coauthors(catalog: Any) -> Mapping[str, tuple[str, ...]]:
+    """Person → co-authors, in catalog order, from the pairs of `coauthors.jsonl` (both ways).
+    All relations are always known (the original loads them whatever the preload says)."""
+    found: dict[str, list[str]] = {}
+    for record in catalog.table(ENVIRONMENT, "coauthors").values():
+        one, two = str(record.get("authorId1", "")), str(record.get("authorId2", ""))
+        if not one or not two:
+            continue
+        found.setdefault(one, []).append(two)
+        found.setdefault(two, []).append(one)
+    return {k: tuple(dict.fromkeys(v)) for k, v in found.items()}
+
+
+def coauthor_pairs(catalog: Any) -> tuple[tuple[str, str, tuple[str, ...]], ...]:
+    """(authorId1, authorId2, sharedPapers) of every relation, for the evaluation table."""
+    return tuple(
+        (
+            str(r.get("authorId1", "")),
+            str(r.get("authorId2", "")),
+            tuple(str(p) for p in r.get("sharedPapers") or ()),
+        )
+        for r in catalog.table(ENVIRONMENT, "coauthors").values()
+    )
+
+
+def person_name(catalog: Any, user_id: str) -> str:
+    return str((catalog.users.get(user_id) or {}).get("name") or user_id)

@@ -1,0 +1,148 @@
+"""The scholar's view of the index as immutable values, and the questions pages ask of it.
+
+`Scholar` holds what has been indexed so far (papers and alerts, in arrival order) and what the
+user did to them (saved, cited, read). Citation counts move with the clock: each paper's count is
+a `Waypoints` series read at the one `now` of a request, so the page, its live push and the
+evaluation tables show the same number at the same simulated instant.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+from events.frozen import with_changed, with_items
+from events.waypoints import Waypoints
+
+ENVIRONMENT = "microscholar"
+EMPTY: Mapping = MappingProxyType({})
+ALERT_TYPES = ("citation", "new_paper", "keyword")
+
+
+def shown_count(value: float) -> int:
+    """A moving count as the page shows it: to the nearest whole citation (half rounds up, the
+    rounding `Waypoints.next_change(step=1)` assumes)."""
+    return math.floor(value + 0.5)
+
+
+@dataclass(frozen=True)
+class Paper:
+    """One indexed article (the catalog record as the site shows it)."""
+
+    id: str
+    title: str
+    author_ids: tuple[str, ...]
+    authors: str  # display string, "C Taylor, H Marsh" (the eval column)
+    source: str
+    year: int
+    snippet: str  # the abstract (the eval column is called snippet, as the original's)
+    citations: Waypoints  # "Cited by N" over simulated time
+    pdf_source: str = ""
+    is_book: bool = False
+    is_target: bool = False
+    task_type: str = "noise"
+    versions: int = 1
+    indexed_at: float = 0.0  # simulated seconds
+
+    def cited_by(self, now: float) -> int:
+        return shown_count(self.citations.value_at(now))
+
+    def citations_change_at(self, now: float) -> float | None:
+        return self.citations.next_change(now, step=1)
+
+
+@dataclass(frozen=True)
+class PaperState:
+    saved: bool = False
+    cited: bool = False  # the Cite dialog was opened (the original's isCited)
+
+
+@dataclass(frozen=True)
+class Alert:
+    id: str
+    type: str  # citation | new_paper | keyword
+    title: str
+    description: str
+    related_paper_id: str = ""
+    arrived_at: float = 0.0
+
+
+@dataclass(frozen=True)
+class Scholar:
+    # The catalog is an input, not state: excluded from equality so folds compare cheaply.
+    catalog: Any = field(compare=False, repr=False)
+    papers: Mapping[str, Paper] = field(default_factory=lambda: EMPTY)  # arrival order
+    paper_states: Mapping[str, PaperState] = field(default_factory=lambda: EMPTY)
+    alerts: Mapping[str, Alert] = field(default_factory=lambda: EMPTY)  # arrival order
+    alert_read: Mapping[str, bool] = field(default_factory=lambda: EMPTY)
+
+    def has_paper(self, paper_id: str) -> bool:
+        return paper_id in self.papers
+
+    def is_saved(self, paper_id: str) -> bool:
+        return self.paper_states.get(paper_id, PaperState()).saved
+
+    def is_cited(self, paper_id: str) -> bool:
+        return self.paper_states.get(paper_id, PaperState()).cited
+
+
+def empty_scholar(catalog: Any) -> Scholar:
+    return Scholar(catalog=catalog)
+
+
+# --- building new states (reducers only) ---------------------------------------------------------
+
+
+def with_papers(scholar: Scholar, arrivals: Iterable[tuple[Paper, PaperState]]) -> Scholar:
+    arrivals = list(arrivals)
+    scholar = with_items(scholar, "papers", [(paper.id, paper) for paper, _ in arrivals])
+    return with_items(scholar, "paper_states", [(paper.id, state) for paper, state in arrivals])
+
+
+def with_paper_state(scholar: Scholar, paper_id: str, **changes: Any) -> Scholar:
+    """Change what the user did to a paper; a paper not indexed leaves the state as it is."""
+    return with_changed(scholar, "paper_states", paper_id, **changes)
+
+
+def with_alerts(scholar: Scholar, arrivals: Iterable[tuple[Alert, bool]]) -> Scholar:
+    arrivals = list(arrivals)
+    scholar = with_items(scholar, "alerts", [(alert.id, alert) for alert, _ in arrivals])
+    return with_items(scholar, "alert_read", [(alert.id, read) for alert, read in arrivals])
+
+
+def with_alert_read(scholar: Scholar, alert_id: str) -> Scholar:
+    if alert_id not in scholar.alerts or scholar.alert_read.get(alert_id):
+        return scholar
+    return with_items(scholar, "alert_read", [(alert_id, True)])
+
+
+# --- counts (baselines, badges) ------------------------------------------------------------------
+
+
+def paper_count(scholar: Scholar) -> int:
+    return len(scholar.papers)
+
+
+def saved_paper_count(scholar: Scholar) -> int:
+    return sum(1 for s in scholar.paper_states.values() if s.saved)
+
+
+def unread_alert_count(scholar: Scholar) -> int:
+    return sum(1 for is_read in scholar.alert_read.values() if not is_read)
+
+
+def target_paper_available(scholar: Scholar) -> int:
+    return int(any(p.is_target for p in scholar.papers.values()))
+
+
+def saved_ids(scholar: Scholar) -> list[str]:
+    return [i for i, s in scholar.paper_states.items() if s.saved]
+
+
+def newest_first(scholar: Scholar, ids: Iterable[str]) -> list[str]:
+    """Latest indexed on top; equal times keep the later arrival first."""
+    position = {paper_id: n for n, paper_id in enumerate(scholar.papers)}
+    return sorted(ids, key=lambda i: (scholar.papers[i].indexed_at, position[i]), reverse=True)

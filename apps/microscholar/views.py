@@ -1,0 +1,203 @@
+"""MicroScholar pages: thin views over `page.state`, actions through `page.act`.
+
+Each view serves the whole page, or its content block for an htmx fragment request
+(apps.agent_site.rendering). Actions are POST forms that go back to the screen they came from
+(`back`, post/redirect/get). Opening the Cite dialog cites the paper: declared with the
+environment (`implicit_actions`), so this module never does it itself.
+"""
+
+from __future__ import annotations
+
+from django.contrib import messages
+from django.http import Http404, HttpRequest, HttpResponse
+from django.views.decorators.http import require_GET, require_POST
+
+from apps.agent_site import simclock
+from apps.agent_site.pages import Page, run_page
+from apps.agent_site.rendering import redirect_to, render_screen
+from apps.microscholar import cite as citing
+from apps.microscholar import screens
+from apps.microscholar import state as index
+from apps.microscholar.actions import existing_paper
+from apps.microscholar.catalog import profiles
+from apps.microscholar.query import AlertsQuery, ProfileQuery, SearchQuery
+
+
+def root_url(page: Page) -> str:
+    return page.root + "/"
+
+
+def this_year(page: Page) -> int:
+    """The simulated calendar year (the "Since <year>" filters follow it)."""
+    return simclock.moment(page.now, simclock.day_zero(page.run)).year
+
+
+def base_context(page: Page, current: str) -> dict:
+    scholar = page.state
+    me = screens.my_profile_id(scholar)
+    return {
+        "token": page.run.token,
+        "current": current,
+        "library_count": index.saved_paper_count(scholar),
+        "unread_alerts": index.unread_alert_count(scholar),
+        "my_profile_url": screens.profile_url(root_url(page), me) if me else None,
+    }
+
+
+def watch(page: Page, ids) -> None:
+    """The page changes when a shown "Cited by" count next ticks over."""
+    page.changes_at(screens.moving(page.state, ids, page.now))
+
+
+def shown_paper(page: Page, paper_id: str):
+    if not page.state.has_paper(paper_id):
+        raise Http404("no such paper")  # unknown, or not indexed yet: alike
+    return page.state.papers[paper_id]
+
+
+@require_GET
+@run_page
+def search(request: HttpRequest, page: Page) -> HttpResponse:
+    """Home (recommended articles) without `q`; results with the filter column with it."""
+    query = SearchQuery.from_params(request.GET).check()
+    root = root_url(page)
+    screen = screens.search_screen(page.state, query, this_year(page), root)
+    watch(page, screen.ids)
+    context = {
+        **base_context(page, "search" if query.q else "home"),
+        "screen": screen,
+        "query": query,
+        "rows": screens.rows(page.state, screen.ids, page.now, root),
+        "back": query.querystring(),
+    }
+    template = "microscholar/results.html" if query.q else "microscholar/home.html"
+    return render_screen(request, page, template, context)
+
+
+def paper_context(page: Page, paper_id: str) -> dict:
+    root = root_url(page)
+    related = screens.related(page.state, paper_id)
+    watch(page, (paper_id, *related))
+    return {
+        **base_context(page, "paper"),
+        "paper": screens.row(page.state, paper_id, page.now, root, full=True),
+        "related": screens.rows(page.state, related, page.now, root),
+        "back": f"papers/{paper_id}",
+    }
+
+
+@require_GET
+@run_page
+def paper(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
+    shown_paper(page, paper_id)
+    return render_screen(request, page, "microscholar/paper.html", paper_context(page, paper_id))
+
+
+@require_GET
+@run_page
+def cite(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
+    """The paper's page with the Cite dialog open: five styles and the export links."""
+    found = shown_paper(page, paper_id)
+    names = citing.author_names(found, page.state.catalog)
+    context = {
+        **paper_context(page, paper_id),
+        "styles": citing.styles(found, names),
+        "exports": [(fmt, label) for fmt, (label, _, _) in citing.EXPORTS.items()],
+    }
+    return render_screen(request, page, "microscholar/cite.html", context)
+
+
+@require_GET
+@run_page
+def export(request: HttpRequest, page: Page, paper_id: str, fmt: str) -> HttpResponse:
+    """A citation file to download (the request is logged like every page view)."""
+    found = shown_paper(page, paper_id)
+    if fmt not in citing.EXPORTS:
+        raise Http404(f"format={fmt!r} is not valid; allowed: {', '.join(citing.EXPORTS)}")
+    _, extension, media_type = citing.EXPORTS[fmt]
+    body = citing.export(found, citing.author_names(found, page.state.catalog), fmt)
+    response = HttpResponse(body, content_type=f"{media_type}; charset=utf-8")
+    response["Content-Disposition"] = f'attachment; filename="{paper_id}.{extension}"'
+    return response
+
+
+@require_GET
+@run_page
+def profile(request: HttpRequest, page: Page) -> HttpResponse:
+    query = ProfileQuery.from_params(request.GET)
+    if not query.user:
+        me = screens.my_profile_id(page.state)
+        if me is None:
+            raise Http404("no profile for the signed-in user")
+        query = query.but(user=me)
+    if query.user not in page.state.catalog.index(profiles):
+        raise Http404("no such scholar")
+    screen = screens.profile_screen(page.state, query, page.now, this_year(page), root_url(page))
+    watch(page, screens.authored(page.state, query.user))
+    context = {
+        **base_context(page, "profile"),
+        "screen": screen,
+        "back": "citations" + query.querystring(),
+    }
+    return render_screen(request, page, "microscholar/profile.html", context)
+
+
+@require_GET
+@run_page
+def library(request: HttpRequest, page: Page) -> HttpResponse:
+    ids = screens.library(page.state)
+    watch(page, ids)
+    context = {
+        **base_context(page, "library"),
+        "rows": screens.rows(page.state, ids, page.now, root_url(page)),
+        "back": "library",
+    }
+    return render_screen(request, page, "microscholar/library.html", context)
+
+
+@require_GET
+@run_page
+def alerts(request: HttpRequest, page: Page) -> HttpResponse:
+    query = AlertsQuery.from_params(request.GET)
+    context = {
+        **base_context(page, "alerts"),
+        "screen": screens.alerts_screen(page.state, query, root_url(page)),
+        "back": "alerts" + query.querystring(),
+    }
+    return render_screen(request, page, "microscholar/alerts.html", context)
+
+
+def go_back(page: Page, request: HttpRequest) -> HttpResponse:
+    """Back to the screen the form was on (`back`, relative to the root; never off-site)."""
+    back = request.POST.get("back", "")
+    if back.startswith(("/", "\\")) or "://" in back:
+        back = ""
+    return redirect_to(page, back)
+
+
+@require_POST
+@run_page
+def save(request: HttpRequest, page: Page) -> HttpResponse:
+    paper_id = request.POST.get("paper_id", "")
+    page.act("save", {"paper_id": paper_id})
+    messages.success(request, f"Saved to My library: {existing_paper(page.state, paper_id).title}")
+    return go_back(page, request)
+
+
+@require_POST
+@run_page
+def remove(request: HttpRequest, page: Page) -> HttpResponse:
+    paper_id = request.POST.get("paper_id", "")
+    page.act("unsave", {"paper_id": paper_id})
+    messages.success(
+        request, f"Removed from My library: {existing_paper(page.state, paper_id).title}"
+    )
+    return go_back(page, request)
+
+
+@require_POST
+@run_page
+def mark_alert_read(request: HttpRequest, page: Page) -> HttpResponse:
+    page.act("mark_alert_read", {"alert_id": request.POST.get("alert_id", "")})
+    messages.success(request, "Alert marked as read")
+    return go_back(page, request)
