@@ -20,6 +20,7 @@ from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllow
 from django.shortcuts import render
 
 from apps.agent_site import links
+from apps.agent_site.query import InvalidQuery
 from events.clock import sim_now, wall_now
 from events.commands import current_folded, perform_action, record_view
 from events.live import renderable
@@ -186,5 +187,7 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             return view(request, page, *args, **kwargs)
         except ActionRejected as exc:
             return rejected(request, page, exc)
+        except InvalidQuery as exc:  # a view's QueryState.from_params: a page naming the field
+            return rejected(request, page, ActionRejected(str(exc), exc.status))
 
     return renderable(wrapper)  # the only views the live protocol renders

@@ -17,7 +17,7 @@ from apps.agent_site.rendering import redirect_to, render_screen
 from apps.microchat import screens
 from apps.microchat.actions import existing_conversation, existing_message
 from apps.microchat.calendar import calendar_grid
-from apps.microchat.query import CalendarQuery, CallsQuery, ChatQuery, InvalidQuery, SearchQuery
+from apps.microchat.query import CalendarQuery, CallsQuery, ChatQuery, SearchQuery
 from events.registry import ActionRejected
 
 CONVERSATION_ACTIONS = {
@@ -46,18 +46,11 @@ def base_context(page: Page, section: str) -> dict:
     }
 
 
-def bad_query(exc: InvalidQuery) -> HttpResponse:
-    return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
-
-
 @require_GET
 @run_page
 def chat(request: HttpRequest, page: Page) -> HttpResponse:
     """The chat list, with `conversation=<id>` open (opening has marked it read)."""
-    try:
-        query = ChatQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = ChatQuery.from_params(request.GET)
     root = page.root + "/"
     opened = None
     if query.conversation is not None:
@@ -77,10 +70,7 @@ def chat(request: HttpRequest, page: Page) -> HttpResponse:
 @require_GET
 @run_page
 def search(request: HttpRequest, page: Page) -> HttpResponse:
-    try:
-        query = SearchQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = SearchQuery.from_params(request.GET)
     context = {
         **base_context(page, "chat"),
         "search_q": query.q,
@@ -121,10 +111,7 @@ def team(request: HttpRequest, page: Page, team_id: str, channel_id: str = "") -
 @require_GET
 @run_page
 def calendar(request: HttpRequest, page: Page) -> HttpResponse:
-    try:
-        query = CalendarQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = CalendarQuery.from_params(request.GET)
     zero = simclock.day_zero(page.run)
     today = simclock.today(page.now, zero)
     found = screens.meetings(page.state, zero, page.root + "/")
@@ -143,10 +130,7 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
 @require_GET
 @run_page
 def calls(request: HttpRequest, page: Page) -> HttpResponse:
-    try:
-        query = CallsQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = CallsQuery.from_params(request.GET)
     context = {
         **base_context(page, "calls"),
         "query": query,

@@ -30,9 +30,9 @@ from apps.microdin.state import (
     Network,
     ProfileSection,
     status,
-    with_items,
     with_state,
 )
+from events.frozen import with_items
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 

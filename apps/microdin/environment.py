@@ -31,8 +31,8 @@ from apps.microdin.state import (
     Network,
     PostState,
     ProfileStats,
-    with_items,
 )
+from events.frozen import with_items
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
 from events.tables import Table

@@ -9,9 +9,11 @@ the original's `<table>_states` evaluation tables.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
+
+from events.frozen import with_changed
 
 ENVIRONMENT = "microdin"
 EMPTY: Mapping = MappingProxyType({})
@@ -203,22 +205,9 @@ class Network:
 # --- building new states (reducers only) -----------------------------------------------------
 
 
-def with_items(network: Network, name: str, items: Iterable[tuple[str, Any]]) -> Network:
-    """Add or replace entries of the mapping field `name`, keeping the order of those present."""
-    items = list(items)
-    if not items:
-        return network
-    merged = dict(getattr(network, name))
-    merged.update(items)
-    return replace(network, **{name: MappingProxyType(merged)})
-
-
 def with_state(network: Network, name: str, item_id: str, **changes: Any) -> Network:
     """Change the user-side record `name[item_id]`; an id that is not there changes nothing."""
-    current = getattr(network, name).get(item_id)
-    if current is None:
-        return network
-    return with_items(network, name, [(item_id, replace(current, **changes))])
+    return with_changed(network, name, item_id, **changes)
 
 
 # --- questions --------------------------------------------------------------------------------

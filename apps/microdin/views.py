@@ -18,7 +18,6 @@ from apps.agent_site.pages import Page, run_page
 from apps.agent_site.rendering import redirect_to, render_screen
 from apps.microdin import screens
 from apps.microdin.query import (
-    InvalidQuery,
     JobsQuery,
     MessagingQuery,
     NotificationsQuery,
@@ -58,13 +57,6 @@ def show(request: HttpRequest, page: Page, template: str, tab: str, **context) -
     return render_screen(
         request, page, f"microdin/{template}", {**base_context(page, tab), **context}
     )
-
-
-def query_of(cls, request: HttpRequest):
-    try:
-        return cls.from_params(request.GET)
-    except InvalidQuery as exc:
-        raise ActionRejected(str(exc), exc.status) from None
 
 
 def back_path(request: HttpRequest, default: str = "") -> str:
@@ -211,7 +203,7 @@ def answer_invitation(request: HttpRequest, page: Page, verb: str) -> HttpRespon
 @require_GET
 @run_page
 def jobs(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(JobsQuery, request)
+    query = JobsQuery.from_params(request.GET)
     if query.job is not None and query.job not in page.state.jobs:
         raise Http404("no such job")
     screen = screens.jobs_screen(page.state, query)
@@ -241,7 +233,7 @@ def apply(request: HttpRequest, page: Page, job_id: str) -> HttpResponse:
 @require_GET
 @run_page
 def messaging(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(MessagingQuery, request)
+    query = MessagingQuery.from_params(request.GET)
     if query.conversation is not None and query.conversation not in page.state.conversations:
         raise Http404("no such conversation")
     screen = screens.messaging_screen(page.state, query)
@@ -284,7 +276,7 @@ def start_conversation(request: HttpRequest, page: Page) -> HttpResponse:
 @require_GET
 @run_page
 def notifications(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(NotificationsQuery, request)
+    query = NotificationsQuery.from_params(request.GET)
     rows = screens.notifications_screen(page.state, query)
     return show(
         request,
@@ -348,7 +340,7 @@ def company(request: HttpRequest, page: Page, company_id: str) -> HttpResponse:
 @require_GET
 @run_page
 def search(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(SearchQuery, request)
+    query = SearchQuery.from_params(request.GET)
     results = screens.search(page.state, query)
     return show(
         request, page, "search.html", "", results=results, query=query, kinds=SEARCH_KIND_LABELS

@@ -12,10 +12,12 @@ the calendar, whatever zone the browser is in (upstream shifted days outside UTC
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from datetime import date, timedelta
 from types import MappingProxyType
 from typing import Any
+
+from events.frozen import with_changed, with_items
 
 ENVIRONMENT = "microlendar"
 
@@ -141,47 +143,28 @@ def empty_agenda(catalog: Any) -> Agenda:
 
 def with_events(agenda: Agenda, arrivals: Iterable[CalendarEvent]) -> Agenda:
     """Add events, each with a fresh state (not viewed, not deleted)."""
-    events, states = dict(agenda.events), dict(agenda.event_states)
-    for event in arrivals:
-        events[event.id] = event
-        states[event.id] = EventState()
-    return replace(agenda, events=MappingProxyType(events), event_states=MappingProxyType(states))
+    arrivals = list(arrivals)
+    agenda = with_items(agenda, "events", [(event.id, event) for event in arrivals])
+    return with_items(agenda, "event_states", [(event.id, EventState()) for event in arrivals])
 
 
 def with_event(agenda: Agenda, event_id: str, **changes: Any) -> Agenda:
     """Edit an event's fields; an id that is gone leaves the calendar as it is."""
-    current = agenda.events.get(event_id)
-    if current is None:
-        return agenda
-    events = dict(agenda.events)
-    events[event_id] = replace(current, **changes)
-    return replace(agenda, events=MappingProxyType(events))
+    return with_changed(agenda, "events", event_id, **changes)
 
 
 def with_event_state(agenda: Agenda, event_id: str, **changes: Any) -> Agenda:
-    current = agenda.event_states.get(event_id)
-    if current is None:
-        return agenda
-    states = dict(agenda.event_states)
-    states[event_id] = replace(current, **changes)
-    return replace(agenda, event_states=MappingProxyType(states))
+    return with_changed(agenda, "event_states", event_id, **changes)
 
 
 def with_tasks(agenda: Agenda, arrivals: Iterable[tuple[Task, TaskState]]) -> Agenda:
-    tasks, states = dict(agenda.tasks), dict(agenda.task_states)
-    for task, task_state in arrivals:
-        tasks[task.id] = task
-        states[task.id] = task_state
-    return replace(agenda, tasks=MappingProxyType(tasks), task_states=MappingProxyType(states))
+    arrivals = list(arrivals)
+    agenda = with_items(agenda, "tasks", [(task.id, task) for task, _ in arrivals])
+    return with_items(agenda, "task_states", [(task.id, state) for task, state in arrivals])
 
 
 def with_task_state(agenda: Agenda, task_id: str, **changes: Any) -> Agenda:
-    current = agenda.task_states.get(task_id)
-    if current is None:
-        return agenda
-    states = dict(agenda.task_states)
-    states[task_id] = replace(current, **changes)
-    return replace(agenda, task_states=MappingProxyType(states))
+    return with_changed(agenda, "task_states", task_id, **changes)
 
 
 # --- what the calendar holds ---------------------------------------------------------------------

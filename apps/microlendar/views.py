@@ -20,17 +20,13 @@ from apps.agent_site.rendering import redirect_to, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, existing_event
 from apps.microlendar.clock import calendar_moment, now_line_top
-from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery, InvalidQuery
+from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
 from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda
 from events.registry import ActionRejected
 
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
 EVENT_ACTIONS = {"reschedule": "reschedule_event", "delete": "delete_event"}
 TASK_ACTIONS = {"toggle": "toggle_task", "delete": "delete_task"}
-
-
-def bad_query(exc: InvalidQuery) -> HttpResponse:
-    return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
 
 
 def base_context(page: Page, query: CalendarQuery) -> dict:
@@ -62,10 +58,7 @@ def base_context(page: Page, query: CalendarQuery) -> dict:
 @run_page
 def calendar(request: HttpRequest, page: Page) -> HttpResponse:
     """The calendar in the chosen view, with event `event=<id>` open (which marks it viewed)."""
-    try:
-        query = CalendarQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = CalendarQuery.from_params(request.GET)
     agenda: Agenda = page.state
     if query.event is not None and not agenda.has_event(query.event):
         raise Http404("no such event")  # unknown, deleted, or not on the calendar yet: alike

@@ -12,6 +12,8 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
+from events.frozen import with_changed, with_items
+
 ENVIRONMENT = "micromail"
 
 FOLDERS: tuple[str, ...] = ("inbox", "sent", "drafts", "archive", "junk", "deleted", "scheduled")
@@ -118,21 +120,14 @@ def empty_mail(catalog: Any) -> Mail:
 
 def with_emails(mail: Mail, arrivals: Iterable[tuple[Email, EmailState]]) -> Mail:
     """Add or replace messages, keeping delivery order for ids already present."""
-    emails, states = dict(mail.emails), dict(mail.states)
-    for email, email_state in arrivals:
-        emails[email.id] = email
-        states[email.id] = email_state
-    return replace(mail, emails=MappingProxyType(emails), states=MappingProxyType(states))
+    arrivals = list(arrivals)
+    mail = with_items(mail, "emails", [(email.id, email) for email, _ in arrivals])
+    return with_items(mail, "states", [(email.id, state) for email, state in arrivals])
 
 
 def with_state(mail: Mail, email_id: str, **changes: Any) -> Mail:
     """Change a message's flags or folder; an id that is gone leaves the mailbox as it is."""
-    current = mail.states.get(email_id)
-    if current is None:
-        return mail
-    states = dict(mail.states)
-    states[email_id] = replace(current, **changes)
-    return replace(mail, states=MappingProxyType(states))
+    return with_changed(mail, "states", email_id, **changes)
 
 
 def without_email(mail: Mail, email_id: str) -> Mail:

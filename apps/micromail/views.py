@@ -23,7 +23,7 @@ from apps.micromail.compose import (
     split_addresses,
 )
 from apps.micromail.listing import compose_url, folder_links, mailbox_screen
-from apps.micromail.query import InvalidQuery, MailboxQuery
+from apps.micromail.query import MailboxQuery
 from apps.micromail.state import FOLDER_TITLES, FOLDERS
 from events.registry import ActionRejected
 
@@ -81,18 +81,11 @@ def back_to(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpRespon
     return redirect_to(page, query.querystring())
 
 
-def bad_query(exc: InvalidQuery) -> HttpResponse:
-    return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
-
-
 @require_GET
 @run_page
 def mailbox(request: HttpRequest, page: Page) -> HttpResponse:
     """The mail client, with message `email=<id>` open (which has marked it read)."""
-    try:
-        query = MailboxQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = MailboxQuery.from_params(request.GET)
     if query.email is not None and not page.state.has(query.email):
         raise Http404("no such email")  # unknown, purged, or not arrived yet: all alike
     return render_mailbox(request, page, query)
