@@ -9,7 +9,9 @@ asks for a fragment — a non-boosted htmx request, e.g. a region refreshed in p
 from __future__ import annotations
 
 from typing import Any
+from urllib.parse import urlsplit
 
+from django.contrib import messages
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect
 from django.template.loader import render_to_string
 
@@ -45,3 +47,33 @@ def render_screen(
 def redirect_to(page: Page, path: str = "") -> HttpResponse:
     """Post/redirect/get: back to `path` (relative to the environment root, e.g. "?folder=x")."""
     return HttpResponseRedirect(page.root + "/" + path)
+
+
+def redirect_after(
+    request: HttpRequest, page: Page, path: str = "", done: str = ""
+) -> HttpResponse:
+    """Post/redirect/get after an action, with `done` shown once as a toast (when given)."""
+    if done:
+        messages.success(request, done)
+    return redirect_to(page, path)
+
+
+def _on_site(path: str) -> bool:
+    return not (path.startswith("/") or "://" in path or "\\" in path)
+
+
+def back_field(request: HttpRequest, default: str = "") -> str:
+    """Where a form says to return: its `back` field, a path relative to the environment root
+    (anything absolute is ignored, so a form can never redirect off the site), else `default`."""
+    back = request.POST.get("back", default)
+    return back if _on_site(back) else default
+
+
+def came_from(request: HttpRequest, page: Page, default: str = "") -> str:
+    """The screen a form was on, relative to the environment root: its Referer when that is one
+    of this run's environment pages, else `default`."""
+    referer = urlsplit(request.headers.get("referer", ""))
+    prefix = page.root + "/"
+    if not referer.path.startswith(prefix):
+        return default
+    return referer.path[len(prefix) :] + (f"?{referer.query}" if referer.query else "")

@@ -8,14 +8,16 @@ Every view serves the full page, or just its content when htmx asks for a fragme
 
 from __future__ import annotations
 
-from urllib.parse import urlsplit
-
-from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.agent_site.pages import Page, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.agent_site.rendering import (
+    back_field,
+    came_from,
+    redirect_after,
+    render_screen,
+)
 from apps.microdin import screens
 from apps.microdin.query import (
     JobsQuery,
@@ -59,33 +61,10 @@ def show(request: HttpRequest, page: Page, template: str, tab: str, **context) -
     )
 
 
-def back_path(request: HttpRequest, default: str = "") -> str:
-    """Where a form returns to: its `back` field, a path relative to the environment root
-    (anything absolute is ignored, so a form cannot redirect off the site)."""
-    back = request.POST.get("back", default)
-    return default if back.startswith("/") or "://" in back or "\\" in back else back
-
-
 def ending(query, item: str) -> str:
     """The screen's query string without its open item, ready for `<item>=…` to be appended."""
     rest = query.but(**{item: None}).querystring()
     return rest + "&" if rest else "?"
-
-
-def came_from(request: HttpRequest, page: Page) -> str:
-    """The screen the form was on (its Referer within this run's pages), else the feed."""
-    referer = urlsplit(request.headers.get("referer", ""))
-    prefix = page.root + "/"
-    if referer.path.startswith(prefix):
-        rest = referer.path[len(prefix) :]
-        return rest + (f"?{referer.query}" if referer.query else "")
-    return ""
-
-
-def acted(page: Page, path: str, request: HttpRequest, done: str = "") -> HttpResponse:
-    if done:
-        messages.success(request, done)
-    return redirect_to(page, path)
 
 
 # --- home feed and posts -----------------------------------------------------------------------
@@ -129,7 +108,7 @@ def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> 
         payload["text"] = request.POST.get("text", "")
     page.act(action, payload)
     back = came_from(request, page) + f"#post-{post_id}"
-    return acted(page, back, request, POST_ACTIONS[action])
+    return redirect_after(request, page, back, POST_ACTIONS[action])
 
 
 # --- my network ----------------------------------------------------------------------------------
@@ -194,7 +173,7 @@ def answer_invitation(request: HttpRequest, page: Page, verb: str) -> HttpRespon
         if verb == "accept"
         else f"Invitation from {name} ignored"
     )
-    return acted(page, back_path(request, "mynetwork/"), request, done)
+    return redirect_after(request, page, back_field(request, "mynetwork/"), done)
 
 
 # --- jobs -------------------------------------------------------------------------------------------
@@ -223,8 +202,8 @@ def jobs(request: HttpRequest, page: Page) -> HttpResponse:
 def apply(request: HttpRequest, page: Page, job_id: str) -> HttpResponse:
     page.act("apply_job", {"job_id": job_id})
     job = page.state.jobs[job_id]
-    back = back_path(request, "jobs/" + JobsQuery(job=job_id).querystring())
-    return acted(page, back, request, f"Application sent to {job.company.name}")
+    back = back_field(request, "jobs/" + JobsQuery(job=job_id).querystring())
+    return redirect_after(request, page, back, f"Application sent to {job.company.name}")
 
 
 # --- messaging ---------------------------------------------------------------------------------------
@@ -255,8 +234,8 @@ def send_message(request: HttpRequest, page: Page, conversation_id: str) -> Http
         "send_message",
         {"conversation_id": conversation_id, "content": request.POST.get("content", "")},
     )
-    return acted(
-        page, "messaging/" + MessagingQuery(conversation=conversation_id).querystring(), request
+    return redirect_after(
+        request, page, "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
     )
 
 
@@ -265,8 +244,8 @@ def send_message(request: HttpRequest, page: Page, conversation_id: str) -> Http
 def start_conversation(request: HttpRequest, page: Page) -> HttpResponse:
     event = page.act("start_conversation", {"user_id": request.POST.get("user_id", "")})
     conversation_id = event.payload["conversation_id"] if event else ""
-    return acted(
-        page, "messaging/" + MessagingQuery(conversation=conversation_id).querystring(), request
+    return redirect_after(
+        request, page, "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
     )
 
 
@@ -296,7 +275,7 @@ def read_notification(request: HttpRequest, page: Page) -> HttpResponse:
     notification_id = request.POST.get("notification_id", "")
     page.act("mark_notification_read", {"notification_id": notification_id})
     notification = page.state.notifications[notification_id]
-    return acted(page, screens.notification_target(page.state, notification), request)
+    return redirect_after(request, page, screens.notification_target(page.state, notification))
 
 
 # --- profile, company, search ---------------------------------------------------------------------------
@@ -325,7 +304,7 @@ def add_section(request: HttpRequest, page: Page, user_id: str) -> HttpResponse:
         raise ActionRejected("only your own profile can be edited", 403)
     payload = {k: request.POST.get(k, "") for k in ("type", "title", "subtitle", "content")}
     page.act("add_profile_section", payload)
-    return acted(page, f"in/{user_id}/", request, "Section added to your profile")
+    return redirect_after(request, page, f"in/{user_id}/", "Section added to your profile")
 
 
 @require_GET

@@ -1,0 +1,395 @@
+"""What an agent can do on MicroGram: `Action(schema, decide, reduce, page)` per action name.
+
+`decide(gram, payload)` checks the request against the current state and returns the payload to
+log (with any id it generated, so replay is deterministic). `reduce` applies a logged action; it
+trusts the log and never raises (an id that is gone changes nothing).
+
+The original toggled likes, saves and follows; here each has a set and an unset action, so a
+repeated request cannot undo itself (the like count still moves ±1 with the like). Sending a DM
+was client-only in the original and is logged here; so is reading activity.
+"""
+
+from __future__ import annotations
+
+import json
+import uuid
+from collections.abc import Callable, Mapping
+from dataclasses import replace
+from types import MappingProxyType
+from typing import Any
+from urllib.parse import quote
+
+from pydantic import Field
+
+from apps.microgram.catalog import person
+from apps.microgram.state import (
+    Conversation,
+    Gram,
+    SentMessage,
+    UserComment,
+    known_people,
+    thread_with,
+    unread_in,
+    with_post_state,
+)
+from events.frozen import with_items
+from events.registry import Action, ActionRejected, LoggedEvent, PageStep
+from events.schemas import Payload
+
+
+class PostId(Payload):
+    post_id: str = Field(description="id of a post in the feed")
+
+
+class CommentOnPost(PostId):
+    text: str = Field(description="the comment")
+
+
+class StoryId(Payload):
+    story_id: str = Field(description="id of a story in the story bar")
+
+
+class ConversationId(Payload):
+    conversation_id: str = Field(description="id of a DM thread")
+
+
+class SendMessage(ConversationId):
+    text: str = Field(description="the message")
+
+
+class SharePost(PostId):
+    conversation_id: str = Field(description="the DM thread to send it to")
+    text: str = Field("", description="an optional note")
+
+
+class UserId(Payload):
+    user_id: str = Field(description="id of a MicroGram member")
+
+
+class ActivityId(Payload):
+    activity_id: str = Field(description="id of an activity item")
+
+
+class Nothing(Payload):
+    pass
+
+
+def new_id(prefix: str) -> str:
+    # Chosen once in decide() and logged, so replay reuses it.
+    return f"{prefix}-{uuid.uuid4().hex[:12]}"
+
+
+def existing(gram: Gram, field: str, item_id: str, what: str) -> Any:
+    """The item, or a 404: unknown and not-yet-arrived ids look the same."""
+    item = getattr(gram, field).get(item_id)
+    if item is None:
+        raise ActionRejected(f"no {what} {item_id!r} on MicroGram", status=404)
+    return item
+
+
+def checking(field: str, key: str, what: str) -> Callable[[Gram, dict], dict]:
+    def decide(gram: Gram, payload: dict) -> dict:
+        existing(gram, field, payload[key], what)
+        return payload
+
+    return decide
+
+
+def required_text(payload: dict, key: str) -> str:
+    text = str(payload.get(key) or "").strip()
+    if not text:
+        raise ActionRejected(f"payload field {key!r} is empty: write something first")
+    return text
+
+
+# --- posts -----------------------------------------------------------------------------------
+
+
+def setting_post(**changes: bool) -> Callable[[Gram, LoggedEvent], Gram]:
+    def reduce(gram: Gram, event: LoggedEvent) -> Gram:
+        return with_post_state(gram, event.payload["post_id"], **changes)
+
+    return reduce
+
+
+def decide_comment(gram: Gram, payload: dict) -> dict:
+    existing(gram, "posts", payload["post_id"], "post")
+    return {**payload, "text": required_text(payload, "text"), "id": new_id("user-comment")}
+
+
+def reduce_comment(gram: Gram, event: LoggedEvent) -> Gram:
+    p = event.payload
+    if p["post_id"] not in gram.posts:
+        return gram
+    comment = UserComment(p["id"], p["post_id"], p["text"], event.at)
+    return replace(gram, user_comments=(*gram.user_comments, comment))
+
+
+# --- stories, DMs, activity ------------------------------------------------------------------
+
+
+def reduce_view_story(gram: Gram, event: LoggedEvent) -> Gram:
+    story_id = event.payload["story_id"]
+    if story_id not in gram.stories or story_id in gram.viewed_stories:
+        return gram
+    return replace(gram, viewed_stories=gram.viewed_stories | {story_id})
+
+
+def reduce_read_conversation(gram: Gram, event: LoggedEvent) -> Gram:
+    """Every message of the thread is read."""
+    conversation = gram.conversations.get(event.payload["conversation_id"])
+    if conversation is None or not unread_in(gram, conversation.id):
+        return gram
+    reads = dict(gram.read_messages)
+    reads.update((m.id, True) for m in conversation.messages)
+    return replace(gram, read_messages=MappingProxyType(reads))
+
+
+def decide_send(gram: Gram, payload: dict) -> dict:
+    existing(gram, "conversations", payload["conversation_id"], "conversation")
+    return {**payload, "text": required_text(payload, "text"), "id": new_id("user-dm")}
+
+
+def reduce_send(gram: Gram, event: LoggedEvent) -> Gram:
+    """The message joins the thread; writing in a thread means having it open, so it is read."""
+    p = event.payload
+    if p["conversation_id"] not in gram.conversations:
+        return gram
+    gram = reduce_read_conversation(gram, event)
+    message = SentMessage(p["id"], p["conversation_id"], p["text"], event.at)
+    return replace(gram, sent=(*gram.sent, message))
+
+
+def decide_share(gram: Gram, payload: dict) -> dict:
+    existing(gram, "posts", payload["post_id"], "post")
+    existing(gram, "conversations", payload["conversation_id"], "conversation")
+    return {**payload, "text": str(payload.get("text") or "").strip(), "id": new_id("user-dm")}
+
+
+def reduce_share(gram: Gram, event: LoggedEvent) -> Gram:
+    """The post goes into the thread as a message from the self user (with the note, if any)."""
+    p = event.payload
+    if p["conversation_id"] not in gram.conversations or p["post_id"] not in gram.posts:
+        return gram
+    message = SentMessage(p["id"], p["conversation_id"], p["text"], event.at, p["post_id"])
+    return replace(gram, sent=(*gram.sent, message))
+
+
+def decide_start(gram: Gram, payload: dict) -> dict:
+    """The thread with that person, else a new empty one — only with someone the self user
+    follows (the original's New message dialog refused anyone else)."""
+    user_id = payload["user_id"]
+    existing_thread = thread_with(gram, user_id)
+    if existing_thread is None:
+        if user_id not in known_people(gram) or user_id == gram.me.id:
+            raise ActionRejected(f"no member {user_id!r} to message on MicroGram", status=404)
+        if user_id not in gram.followed:
+            raise ActionRejected("you can only start a conversation with someone you follow")
+    return {**payload, "conversation_id": existing_thread or new_id("user-thread")}
+
+
+def reduce_start(gram: Gram, event: LoggedEvent) -> Gram:
+    p = event.payload
+    if p["conversation_id"] in gram.conversations:
+        return gram
+    other = person(gram.catalog, p["user_id"])
+    conversation = Conversation(
+        id=p["conversation_id"],
+        other=other,
+        messages=(),
+        last_message="",
+        data=json.dumps(
+            {"id": p["conversation_id"], "participantIds": [gram.me.id, other.id], "messages": []}
+        ),
+        arrived_at=event.at,
+        order=len(gram.conversations),
+    )
+    return with_items(gram, "conversations", [(conversation.id, conversation)])
+
+
+def reduce_read_activity(gram: Gram, event: LoggedEvent) -> Gram:
+    activity_id = event.payload["activity_id"]
+    if activity_id not in gram.activity or activity_id in gram.read_activity:
+        return gram
+    return replace(gram, read_activity=gram.read_activity | {activity_id})
+
+
+def reduce_read_all_activity(gram: Gram, event: LoggedEvent) -> Gram:
+    return replace(gram, read_activity=frozenset(gram.activity))
+
+
+# --- people ------------------------------------------------------------------------------------
+
+
+def decide_follow(gram: Gram, payload: dict) -> dict:
+    user_id = payload["user_id"]
+    if user_id not in known_people(gram):
+        raise ActionRejected(f"no member {user_id!r} on MicroGram", status=404)
+    if user_id == gram.me.id:
+        raise ActionRejected("you cannot follow yourself")
+    return payload
+
+
+def reduce_follow(gram: Gram, event: LoggedEvent) -> Gram:
+    user_id = event.payload["user_id"]
+    if user_id in gram.followed:
+        return gram
+    return replace(gram, followed=(*gram.followed, user_id))
+
+
+def reduce_unfollow(gram: Gram, event: LoggedEvent) -> Gram:
+    user_id = event.payload["user_id"]
+    return replace(gram, followed=tuple(u for u in gram.followed if u != user_id))
+
+
+# --- where a person does it (Action.page) --------------------------------------------------------
+# Forms and buttons are marked `data-action="<action>"` in the templates; the generic tests carry
+# out every scenario's solution through them (tests/environments/).
+
+
+def post_page(gram: Gram, payload: dict) -> PageStep:
+    existing(gram, "posts", payload["post_id"], "post")
+    form = {"text": payload["text"]} if "text" in payload else {}
+    return PageStep(f"p/{quote(payload['post_id'])}/", form)
+
+
+def opened_post_page(gram: Gram, payload: dict) -> PageStep:
+    existing(gram, "posts", payload["post_id"], "post")
+    return PageStep(f"p/{quote(payload['post_id'])}/", None)
+
+
+def story_page(gram: Gram, payload: dict) -> PageStep:
+    existing(gram, "stories", payload["story_id"], "story")
+    return PageStep(f"stories/{quote(payload['story_id'])}/", None)
+
+
+def thread_page(gram: Gram, payload: dict) -> PageStep:
+    existing(gram, "conversations", payload["conversation_id"], "conversation")
+    form = {"text": payload["text"]} if "text" in payload else None
+    return PageStep(f"direct/t/{quote(payload['conversation_id'])}/", form)
+
+
+def profile_page(gram: Gram, payload: dict) -> PageStep:
+    return PageStep(f"profile/{quote(payload['user_id'])}/", {})
+
+
+def share_page(gram: Gram, payload: dict) -> PageStep:
+    existing(gram, "posts", payload["post_id"], "post")
+    form = {"conversation_id": payload["conversation_id"], "text": payload.get("text", "")}
+    return PageStep(f"p/{quote(payload['post_id'])}/", form)
+
+
+def activity_page(gram: Gram, payload: dict) -> PageStep:
+    form = {"activity_id": payload["activity_id"]} if "activity_id" in payload else {}
+    return PageStep("activity/", form)
+
+
+ACTIONS: Mapping[str, Action] = MappingProxyType(
+    {
+        "like_post": Action(
+            PostId,
+            checking("posts", "post_id", "post"),
+            setting_post(is_liked=True),
+            help="Like a post (its like count goes up by one).",
+            page=post_page,
+        ),
+        "unlike_post": Action(
+            PostId,
+            checking("posts", "post_id", "post"),
+            setting_post(is_liked=False),
+            help="Take a like back.",
+            page=post_page,
+        ),
+        "save_post": Action(
+            PostId,
+            checking("posts", "post_id", "post"),
+            setting_post(is_saved=True),
+            help="Save a post (it shows under Saved on your profile).",
+            page=post_page,
+        ),
+        "unsave_post": Action(
+            PostId,
+            checking("posts", "post_id", "post"),
+            setting_post(is_saved=False),
+            help="Remove a post from Saved.",
+            page=post_page,
+        ),
+        "comment_post": Action(
+            CommentOnPost,
+            decide_comment,
+            reduce_comment,
+            help="Comment on a post as the self user.",
+            page=post_page,
+        ),
+        "view_post": Action(
+            PostId,
+            checking("posts", "post_id", "post"),
+            setting_post(is_viewed=True),
+            help="Open a post with its comments (what opening it does).",
+            page=opened_post_page,
+        ),
+        "view_story": Action(
+            StoryId,
+            checking("stories", "story_id", "story"),
+            reduce_view_story,
+            help="Watch a story (its ring turns grey).",
+            page=story_page,
+        ),
+        "read_conversation": Action(
+            ConversationId,
+            checking("conversations", "conversation_id", "conversation"),
+            reduce_read_conversation,
+            help="Open a DM thread; this marks its messages read.",
+            page=thread_page,
+        ),
+        "send_message": Action(
+            SendMessage,
+            decide_send,
+            reduce_send,
+            help="Send a message in a DM thread.",
+            page=thread_page,
+        ),
+        "share_post": Action(
+            SharePost,
+            decide_share,
+            reduce_share,
+            help="Send a post to a DM thread, with an optional note.",
+            page=share_page,
+        ),
+        "start_conversation": Action(
+            UserId,
+            decide_start,
+            reduce_start,
+            help="Open the DM thread with a person you follow (a new one if there is none).",
+            page=profile_page,
+        ),
+        "follow_user": Action(
+            UserId,
+            decide_follow,
+            reduce_follow,
+            help="Follow a member.",
+            page=profile_page,
+        ),
+        "unfollow_user": Action(
+            UserId,
+            decide_follow,
+            reduce_unfollow,
+            help="Stop following a member.",
+            page=profile_page,
+        ),
+        "mark_activity_read": Action(
+            ActivityId,
+            checking("activity", "activity_id", "activity item"),
+            reduce_read_activity,
+            help="Mark one activity item read (what clicking it does).",
+            page=activity_page,
+        ),
+        "mark_all_activity_read": Action(
+            Nothing,
+            lambda gram, payload: payload,
+            reduce_read_all_activity,
+            help="Mark every activity item read.",
+            page=activity_page,
+        ),
+    }
+)

@@ -1,0 +1,8 @@
+from apps.agent_site import environments
+
+
+class MicrogramConfig(environments.EnvironmentConfig):
+    name = "apps.microgram"
+    label = "microgram"
+    verbose_name = "MicroGram"
+    environment = "apps.microgram.environment.MICROGRAM"

@@ -1,0 +1,267 @@
+"""What each MicroGram screen shows: pure functions of the state, memoised per state.
+
+Rows are small frozen values (a card, a bubble, a thread row) so a page can render each through
+`render_fragment` once per distinct input.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from apps.microgram.catalog import people, person
+from apps.microgram.state import (
+    Activity,
+    Conversation,
+    Gram,
+    Person,
+    Post,
+    Story,
+    comments_of,
+    is_following,
+    known_people,
+    likes_now,
+    newest_first,
+    unread_activity_count,
+    unread_conversation_count,
+    unread_in,
+)
+from events.derived import per_state
+
+HASHTAG = re.compile(r"(#\w+)")
+SUGGESTIONS_SHOWN = 5
+SEARCH_RESULTS = 30
+
+
+@dataclass(frozen=True)
+class PostCard:
+    post: Post
+    likes: int
+    is_liked: bool
+    is_saved: bool
+    comment_count: int
+
+
+@dataclass(frozen=True)
+class StoryBubble:
+    story: Story
+    viewed: bool
+
+
+@dataclass(frozen=True)
+class ThreadRow:
+    conversation: Conversation
+    preview: str
+    unread: int
+    at: float
+
+
+@dataclass(frozen=True)
+class Bubble:
+    """One message in an open thread."""
+
+    mine: bool
+    sender: Person
+    text: str
+    post: Post | None  # a shared post
+
+
+@dataclass(frozen=True)
+class ActivityRow:
+    item: Activity
+    unread: bool
+    post: Post | None  # the post it is about, when it is in the feed
+    follows_back: bool  # a follow: whether the self user follows them
+
+
+@dataclass(frozen=True)
+class Badges:
+    activity: int  # unread activity items
+    direct: int  # threads with unread messages
+
+
+@dataclass(frozen=True)
+class ProfileView:
+    person: Person
+    is_self: bool
+    followed: bool
+    posts: tuple[PostCard, ...]
+    posts_count: int
+    followers: int
+    following: int
+
+
+def caption_parts(caption: str) -> list[tuple[str, bool]]:
+    """The caption as (text, is_hashtag) pieces, so hashtags can be drawn as links."""
+    return [(part, part.startswith("#")) for part in HASHTAG.split(caption) if part]
+
+
+def card(gram: Gram, post_id: str) -> PostCard:
+    state = gram.post_states[post_id]
+    return PostCard(
+        post=gram.posts[post_id],
+        likes=likes_now(gram, post_id),
+        is_liked=state.is_liked,
+        is_saved=state.is_saved,
+        comment_count=len(comments_of(gram, post_id)),
+    )
+
+
+@per_state()
+def feed(gram: Gram) -> tuple[PostCard, ...]:
+    """Every post, newest first."""
+    return tuple(card(gram, p.id) for p in newest_first(gram.posts.values()))
+
+
+@per_state()
+def story_bar(gram: Gram) -> tuple[StoryBubble, ...]:
+    """One bubble per story: not yet watched first, newest first within each."""
+    ordered = newest_first(gram.stories.values())
+    viewed = gram.viewed_stories
+    return tuple(
+        StoryBubble(s, s.id in viewed)
+        for s in sorted(ordered, key=lambda s: s.id in viewed)  # stable: keeps newest first
+    )
+
+
+def story_neighbours(gram: Gram, story_id: str) -> tuple[str | None, str | None]:
+    """The viewer's previous and next story, newest first: next is the first later story not
+    yet watched (the bar's point), else simply the next one."""
+    ids = [s.id for s in newest_first(gram.stories.values())]
+    n = ids.index(story_id)
+    later = ids[n + 1 :]
+    unwatched = [i for i in later if i not in gram.viewed_stories]
+    following = unwatched[0] if unwatched else (later[0] if later else None)
+    return (ids[n - 1] if n > 0 else None, following)
+
+
+@per_state()
+def explore(gram: Gram, q: str) -> tuple[PostCard, ...]:
+    """The Explore grid: every post but the task's target posts (as the original), filtered by
+    caption, location or author username."""
+    needle = q.lower()
+    return tuple(
+        c
+        for c in feed(gram)
+        if not c.post.is_target
+        and (
+            not needle
+            or needle in c.post.caption.lower()
+            or needle in c.post.location.lower()
+            or needle in c.post.author.username.lower()
+        )
+    )
+
+
+@per_state()
+def search_people(gram: Gram, q: str) -> tuple[Person, ...]:
+    """Members whose username or name contains the search (the self user left out)."""
+    needle = q.lower()
+    if not needle:
+        return ()
+    found = (
+        p
+        for p in gram.catalog.index(people).values()
+        if p.id != gram.me.id
+        and p.id in known_people(gram)
+        and (needle in p.username.lower() or needle in p.name.lower())
+    )
+    return tuple(found)[:SEARCH_RESULTS]
+
+
+@per_state()
+def suggestions(gram: Gram) -> tuple[Person, ...]:
+    """Authors in the feed the self user does not follow yet, most posts first."""
+    counts: dict[str, int] = {}
+    authors: dict[str, Person] = {}
+    for post in gram.posts.values():
+        if post.author.id != gram.me.id and not is_following(gram, post.author.id):
+            counts[post.author.id] = counts.get(post.author.id, 0) + 1
+            authors[post.author.id] = post.author
+    ranked = sorted(counts, key=lambda i: -counts[i])
+    return tuple(authors[i] for i in ranked[:SUGGESTIONS_SHOWN])
+
+
+def preview(gram: Gram, conversation: Conversation) -> str:
+    """The row's preview: the self user's last reply, else the catalog's `lastMessage` (which
+    need not be the thread's most telling message — the original's, kept on purpose)."""
+    mine = [m for m in gram.sent if m.conversation_id == conversation.id]
+    if not mine:
+        return conversation.last_message or "Say hi"
+    return "You sent a post" if mine[-1].post_id else f"You: {mine[-1].text}"
+
+
+@per_state()
+def inbox(gram: Gram) -> tuple[ThreadRow, ...]:
+    """DM threads, the most recently active first."""
+    rows = []
+    for c in gram.conversations.values():
+        sent_at = [m.at for m in gram.sent if m.conversation_id == c.id]
+        rows.append(
+            ThreadRow(c, preview(gram, c), unread_in(gram, c.id), max([c.arrived_at, *sent_at]))
+        )
+    return tuple(sorted(rows, key=lambda r: (-r.at, -r.conversation.order)))
+
+
+@per_state()
+def thread(gram: Gram, conversation_id: str) -> tuple[Bubble, ...]:
+    """The thread's catalog messages, then what the self user sent (notes and shared posts)."""
+    conversation = gram.conversations[conversation_id]
+    received = tuple(
+        Bubble(m.sender.id == gram.me.id, m.sender, m.text, None) for m in conversation.messages
+    )
+    sent = tuple(
+        Bubble(True, gram.me, m.text, gram.posts.get(m.post_id or ""))
+        for m in gram.sent
+        if m.conversation_id == conversation_id
+    )
+    return received + sent
+
+
+@per_state()
+def activity(gram: Gram) -> tuple[ActivityRow, ...]:
+    """Activity items, newest first."""
+    return tuple(
+        ActivityRow(
+            item=a,
+            unread=a.id not in gram.read_activity,
+            post=gram.posts.get(a.target_post_id or ""),
+            follows_back=is_following(gram, a.actor.id),
+        )
+        for a in newest_first(gram.activity.values())
+    )
+
+
+@per_state()
+def badges(gram: Gram) -> Badges:
+    return Badges(unread_activity_count(gram), unread_conversation_count(gram))
+
+
+@per_state()
+def profile(gram: Gram, user_id: str, tab: str) -> ProfileView:
+    """A member's profile. Posts: those of theirs in the feed (saved ones on the self user's
+    Saved tab). Counts: the catalog's, never fewer than the posts shown; following the person
+    adds one follower, and the self user's own following grows with each follow."""
+    who = gram.me if user_id == gram.me.id else person(gram.catalog, user_id)
+    is_self = user_id == gram.me.id
+    theirs = tuple(c for c in feed(gram) if c.post.author.id == user_id)
+    shown = theirs
+    if tab == "saved":
+        shown = tuple(c for c in feed(gram) if c.is_saved) if is_self else ()
+    elif tab == "tagged":
+        shown = ()
+    followed = is_following(gram, user_id)
+    return ProfileView(
+        person=who,
+        is_self=is_self,
+        followed=followed,
+        posts=shown,
+        posts_count=max(who.posts_count, len(theirs)),
+        followers=who.followers + int(followed),
+        following=who.following + (len(gram.followed) if is_self else 0),
+    )
+
+
+@per_state()
+def following(gram: Gram) -> tuple[Person, ...]:
+    return tuple(person(gram.catalog, u) for u in reversed(gram.followed))

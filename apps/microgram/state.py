@@ -1,0 +1,268 @@
+"""MicroGram as immutable values, and the questions pages and baselines ask of it.
+
+`Gram` is what the reducers build and what every page, baseline and evaluation reads. It is never
+mutated: a reducer returns a new `Gram`. Content (a post, a story, a DM thread, an activity item)
+is fixed when it arrives; what the user changes about it lives beside it in a `*State` record, as
+in the original's `<table>_states` evaluation tables.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+from events.derived import per_state
+from events.frozen import with_changed
+
+ENVIRONMENT = "microgram"
+EMPTY: Mapping = MappingProxyType({})
+
+ACTIVITY_TYPES = ("like", "follow", "comment", "mention")
+
+
+@dataclass(frozen=True)
+class Person:
+    """Someone as MicroGram shows them (the same name and face in every environment)."""
+
+    id: str
+    name: str
+    username: str
+    bio: str = ""
+    website: str = ""
+    followers: int = 0
+    following: int = 0
+    posts_count: int = 0
+    verified: bool = False
+
+
+@dataclass(frozen=True)
+class Picture:
+    """A generated illustration (apps.media) of `subject`, square in posts and stories."""
+
+    seed: str
+    subject: str
+    label: str = ""
+
+
+@dataclass(frozen=True)
+class Comment:
+    id: str
+    author: Person
+    text: str
+    likes: int = 0
+    at: float | None = None  # the self user's comments carry their time
+
+
+@dataclass(frozen=True)
+class Post:
+    id: str
+    author: Person
+    image: Picture
+    caption: str
+    location: str
+    likes: int  # as delivered; the self user's like is added by `likes_now`
+    comments: tuple[Comment, ...]  # the catalog's (the `comments` evaluation table)
+    is_target: bool
+    posted_at: float
+    order: int
+
+
+@dataclass(frozen=True)
+class PostState:
+    is_liked: bool = False
+    is_saved: bool = False
+    is_viewed: bool = False  # the post was opened
+
+
+@dataclass(frozen=True)
+class Story:
+    id: str
+    author: Person
+    image: Picture
+    media_type: str
+    posted_at: float
+    order: int
+
+
+@dataclass(frozen=True)
+class Message:
+    id: str
+    sender: Person
+    text: str
+    order: int
+
+
+@dataclass(frozen=True)
+class Conversation:
+    """A DM thread with `other`. `data` is the thread as the catalog gives it, as JSON text (the
+    original's `messages.data`: keyword evaluations match it with LIKE)."""
+
+    id: str
+    other: Person
+    messages: tuple[Message, ...]
+    last_message: str
+    data: str
+    arrived_at: float
+    order: int
+
+
+@dataclass(frozen=True)
+class SentMessage:
+    """A message the self user wrote in a thread during the run."""
+
+    id: str
+    conversation_id: str
+    text: str
+    at: float
+    post_id: str | None = None  # a shared post
+
+
+@dataclass(frozen=True)
+class Activity:
+    id: str
+    type: str
+    actor: Person
+    text: str
+    target_post_id: str | None
+    posted_at: float
+    order: int
+
+
+@dataclass(frozen=True)
+class UserComment:
+    id: str
+    post_id: str
+    text: str
+    at: float
+
+
+@dataclass(frozen=True)
+class Gram:
+    # The catalog and the self user are inputs, not state: left out of equality so two folds of
+    # the same log compare equal cheaply.
+    catalog: Any = field(compare=False, repr=False)
+    me: Person = field(compare=False, repr=False, default=Person("me", "Me", "me"))
+    posts: Mapping[str, Post] = field(default_factory=lambda: EMPTY)
+    post_states: Mapping[str, PostState] = field(default_factory=lambda: EMPTY)
+    stories: Mapping[str, Story] = field(default_factory=lambda: EMPTY)
+    viewed_stories: frozenset[str] = frozenset()
+    conversations: Mapping[str, Conversation] = field(default_factory=lambda: EMPTY)
+    read_messages: Mapping[str, bool] = field(default_factory=lambda: EMPTY)  # nested id → read
+    sent: tuple[SentMessage, ...] = ()
+    activity: Mapping[str, Activity] = field(default_factory=lambda: EMPTY)
+    read_activity: frozenset[str] = frozenset()
+    followed: tuple[str, ...] = ()  # user ids, in the order followed
+    user_comments: tuple[UserComment, ...] = ()
+
+
+# --- building new states (reducers only) -----------------------------------------------------
+
+
+def with_post_state(gram: Gram, post_id: str, **changes: Any) -> Gram:
+    """Change a post's user-side record; an id that is not there changes nothing."""
+    return with_changed(gram, "post_states", post_id, **changes)
+
+
+# --- questions --------------------------------------------------------------------------------
+
+
+def likes_now(gram: Gram, post_id: str) -> int:
+    """The post's like count with the self user's like counted once (the original's card
+    counted it twice: the server had already added it)."""
+    return gram.posts[post_id].likes + int(gram.post_states[post_id].is_liked)
+
+
+def comments_of(gram: Gram, post_id: str) -> tuple[Comment, ...]:
+    """Every comment under the post: the catalog's, then the self user's (the original showed
+    these only until a reload)."""
+    own = tuple(
+        Comment(c.id, gram.me, c.text, 0, c.at) for c in gram.user_comments if c.post_id == post_id
+    )
+    return gram.posts[post_id].comments + own
+
+
+def newest_first(items: Iterable[Any]) -> list[Any]:
+    """Newest first (`posted_at`); items of the same moment by the catalog's order, higher
+    first (the original's only notion of recency)."""
+    return sorted(items, key=lambda x: (-x.posted_at, -x.order))
+
+
+def unread_in(gram: Gram, conversation_id: str) -> int:
+    conversation = gram.conversations.get(conversation_id)
+    if conversation is None:
+        return 0
+    return sum(1 for m in conversation.messages if not gram.read_messages.get(m.id, True))
+
+
+def thread_with(gram: Gram, user_id: str) -> str | None:
+    """The DM thread with that person, if there is one."""
+    return next((c.id for c in gram.conversations.values() if c.other.id == user_id), None)
+
+
+def is_following(gram: Gram, user_id: str) -> bool:
+    return user_id in gram.followed
+
+
+def is_story_viewed(gram: Gram, story_id: str) -> bool:
+    return story_id in gram.viewed_stories
+
+
+# --- counts (baselines and badges: the original's definitions) --------------------------------
+
+
+def post_count(gram: Gram) -> int:
+    return len(gram.posts)
+
+
+def story_count(gram: Gram) -> int:
+    return len(gram.stories)
+
+
+def activity_count(gram: Gram) -> int:
+    return len(gram.activity)
+
+
+def liked_count(gram: Gram) -> int:
+    return sum(1 for s in gram.post_states.values() if s.is_liked)
+
+
+def saved_count(gram: Gram) -> int:
+    return sum(1 for s in gram.post_states.values() if s.is_saved)
+
+
+def comment_count(gram: Gram) -> int:
+    return len(gram.user_comments)
+
+
+def followed_count(gram: Gram) -> int:
+    return len(gram.followed)
+
+
+def story_viewed_count(gram: Gram) -> int:
+    return len(gram.viewed_stories)
+
+
+def unread_activity_count(gram: Gram) -> int:
+    return sum(1 for i in gram.activity if i not in gram.read_activity)
+
+
+def unread_conversation_count(gram: Gram) -> int:
+    return sum(1 for c in gram.conversations if unread_in(gram, c) > 0)
+
+
+@per_state()
+def known_people(gram: Gram) -> frozenset[str]:
+    """Members the app has shown so far: the self user, the people followed and everyone in the
+    delivered posts, comments, stories, threads and activity. Anyone else has not "appeared"
+    yet, so their profile is a 404 and they are absent from search (like an item whose event
+    has not fired)."""
+    ids = {gram.me.id, *gram.followed}
+    for post in gram.posts.values():
+        ids.add(post.author.id)
+        ids.update(c.author.id for c in post.comments)
+    ids.update(s.author.id for s in gram.stories.values())
+    ids.update(c.other.id for c in gram.conversations.values())
+    ids.update(a.actor.id for a in gram.activity.values())
+    return frozenset(ids)
