@@ -45,6 +45,8 @@ INSTALLED_APPS = [
     # Environments: one line each. The core never imports them; each app registers its
     # Environment with the core registry when Django starts (AppConfig.ready).
     "apps.micromail",
+    "apps.microfy",
+    "apps.microtube",
     "apps.microgram",
     "apps.microscholar",
     "apps.microlendar",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
@@ -13,7 +14,12 @@ from events import registry
 from events.projection import clear_cache
 
 REPO = Path(__file__).resolve().parents[1]
-UPSTREAM = REPO.parent / "shared" / "upstream"
+# The original benchmark's data, for the conformance tests (README, "Conformance tests").
+UPSTREAM = Path(os.environ.get("SENTINEL_UPSTREAM_DIR") or REPO.parent / "shared" / "upstream")
+UPSTREAM_ABSENT = (
+    f"original SentinelBench data absent: no {UPSTREAM} (set SENTINEL_UPSTREAM_DIR; "
+    "README, Conformance tests)"
+)
 
 
 def pytest_configure(config):
@@ -49,7 +55,7 @@ def tally_spec():
 @pytest.fixture
 def upstream_dir() -> Path:
     if not UPSTREAM.is_dir():
-        pytest.skip("../shared/upstream is absent")
+        pytest.skip(UPSTREAM_ABSENT)
     return UPSTREAM
 
 

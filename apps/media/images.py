@@ -11,17 +11,23 @@ import functools
 import hashlib
 from dataclasses import dataclass
 
-from apps.media import banners, faces, logos, pictures
+from apps.media import banners, covers, faces, logos, pictures
 from apps.media.links import seeded_random
 
 IMAGES_KEPT = 2048  # a few pages' worth of faces, logos and pictures (a few KB each)
 KINDS = {"avatars": faces.portrait, "logos": logos.mark, "banners": banners.banner}
+KINDS["covers"] = covers.cover  # square album and playlist artwork
 
 
 @dataclass(frozen=True)
 class Image:
     body: bytes
     etag: str
+
+
+def tagged(body: bytes) -> Image:
+    """`body` with its ETag (a digest of the bytes), for any generated media file."""
+    return _tagged(body)
 
 
 def _tagged(body: bytes) -> Image:

@@ -59,3 +59,21 @@ def banner_url(seed: str) -> str:
 def picture_url(seed: str, subject: str = "landscape") -> str:
     """Raises ValueError naming the allowed subjects for an unknown `subject`."""
     return reverse("media:picture", kwargs={"subject": check_subject(subject), "slug": slug(seed)})
+
+
+@functools.lru_cache(maxsize=4096)
+def cover_url(seed: str) -> str:
+    """Square album / playlist artwork."""
+    return reverse("media:cover", kwargs={"slug": slug(seed)})
+
+
+@functools.lru_cache(maxsize=4096)
+def audio_url(seed: str) -> str:
+    """A short generated music clip (WAV)."""
+    return reverse("media:audio", kwargs={"slug": slug(seed)})
+
+
+@functools.lru_cache(maxsize=4096)
+def poster_url(seed: str, subject: str = "landscape") -> str:
+    """A video's animated poster (the picture of the same seed and subject, moving, 16:9)."""
+    return reverse("media:poster", kwargs={"subject": check_subject(subject), "slug": slug(seed)})

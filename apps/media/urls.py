@@ -11,6 +11,9 @@ urlpatterns = [
     path("logos/<str:slug>.svg", views.drawn, {"kind": "logos"}, name="logo"),
     path("banners/<str:slug>.svg", views.drawn, {"kind": "banners"}, name="banner"),
     path("pictures/<str:subject>/<str:slug>.svg", views.picture, name="picture"),
+    path("posters/<str:subject>/<str:slug>.svg", views.poster, name="poster"),
+    path("covers/<str:slug>.svg", views.drawn, {"kind": "covers"}, name="cover"),
+    path("audio/<str:slug>.wav", views.audio, name="audio"),
     # Anything else under /media/ names a kind we do not draw: a 404 that says so.
     path("<str:kind>/<str:slug>.svg", views.drawn, name="unknown-kind"),
 ]

@@ -6,16 +6,19 @@ from __future__ import annotations
 from django.http import HttpRequest, HttpResponse, HttpResponseNotFound, HttpResponseNotModified
 from django.views.decorators.http import require_safe
 
-from apps.media import images, links, pictures
+from apps.media import audio as clips
+from apps.media import images, links, pictures, posters
 
 CACHE_FOREVER = "public, max-age=31536000, immutable"
 
 
-def _served(request: HttpRequest, image: images.Image) -> HttpResponse:
+def _served(
+    request: HttpRequest, image: images.Image, content_type: str = "image/svg+xml"
+) -> HttpResponse:
     if request.headers.get("If-None-Match") == image.etag:
         response: HttpResponse = HttpResponseNotModified()
     else:
-        response = HttpResponse(image.body, content_type="image/svg+xml")
+        response = HttpResponse(image.body, content_type=content_type)
     response["Cache-Control"] = CACHE_FOREVER
     response["ETag"] = image.etag
     return response
@@ -47,3 +50,19 @@ def picture(request: HttpRequest, subject: str, slug: str) -> HttpResponse:
             f"unknown picture subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
         )
     return _bad_slug(slug) or _served(request, images.drawn_picture(subject, slug))
+
+
+@require_safe
+def audio(request: HttpRequest, slug: str) -> HttpResponse:
+    """/media/audio/<slug>.wav: a short generated music clip, cached like the images."""
+    return _bad_slug(slug) or _served(request, clips.clip(slug), "audio/wav")
+
+
+@require_safe
+def poster(request: HttpRequest, subject: str, slug: str) -> HttpResponse:
+    """/media/posters/<subject>/<slug>.svg: the animated poster of a video (apps.media.posters)."""
+    if subject not in pictures.SUBJECTS:
+        return _not_found(
+            f"unknown poster subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
+        )
+    return _bad_slug(slug) or _served(request, posters.drawn_poster(subject, slug))

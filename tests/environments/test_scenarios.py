@@ -54,10 +54,18 @@ def test_evaluating_right_after_create_fails(case, start):
 
 @pytest.mark.parametrize("case", params(noop=False))
 def test_eval_sql_is_false_just_before_condition_at_and_true_from_it(case, start):
+    if case.stale_condition_at:
+        pytest.skip(f"original file with a stale condition_at: {case.stale_condition_at}")
     scenario, run = start(case)
     lifecycle.advance(run, max(0.0, scenario.condition_at - JUST_BEFORE))
     pending = perform_possible(run, list(scenario.solution))
     assert eval_sql_holds(run) is False
+    if len(pending) < len(scenario.solution):
+        # Some steps were possible early (an order at a moving price is, at the wrong price):
+        # what must hold from condition_at is the solution performed then, on a run that did
+        # not act early.
+        _, run = start(case)
+        pending = list(scenario.solution)
     lifecycle.advance(run, scenario.condition_at)
     pending = perform_possible(run, pending)
     assert pending == [], f"solution steps not possible at condition_at: {pending}"

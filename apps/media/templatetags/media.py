@@ -82,3 +82,28 @@ def picture(
     return _img(
         "picture", links.picture_url(seed, subject), width, height, label, options.get("class", "")
     )
+
+
+@register.simple_tag
+def cover(seed: str, size: int = 160, label: str = "", **options: str) -> SafeString:
+    """Square album / playlist artwork for `seed` (most styles set its words in large type)."""
+    return _img("cover", links.cover_url(seed), size, size, label, options.get("class", ""))
+
+
+@register.simple_tag
+def poster(
+    seed: str,
+    subject: str = "landscape",
+    width: int = 854,
+    height: int = 480,
+    label: str = "",
+    **options: str,
+) -> SafeString:
+    """A video's animated poster: the picture of `seed` and `subject`, moving (16:9, looping)."""
+    if subject not in pictures.SUBJECTS:
+        raise template.TemplateSyntaxError(
+            f"{{% poster %}} subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
+        )
+    return _img(
+        "poster", links.poster_url(seed, subject), width, height, label, options.get("class", "")
+    )

@@ -1,0 +1,8 @@
+from apps.agent_site import environments
+
+
+class MicrofyConfig(environments.EnvironmentConfig):
+    name = "apps.microfy"
+    label = "microfy"
+    verbose_name = "MicroFy"
+    environment = "apps.microfy.environment.MICROFY"

@@ -1,0 +1,210 @@
+"""MicroFy pages: thin views over `page.state`, actions through `page.act`.
+
+Every screen has its own URL (urls.py). Actions are POST forms carrying a `back` path (relative
+to the environment root) and returning there (post/redirect/get). What a page shows that moves
+with the clock — the player's position, an artist's listeners, a track's plays — registers when
+it next changes (`page.changes_at`), so kept screens and live pushes never show a stale value.
+"""
+
+from __future__ import annotations
+
+import re
+
+from django.contrib import messages
+from django.http import Http404, HttpRequest, HttpResponse
+from django.views.decorators.http import require_GET, require_POST
+
+from apps.agent_site.pages import Page, run_page
+from apps.agent_site.rendering import redirect_to, render_screen
+from apps.microfy import library
+from apps.microfy.query import HomeQuery, SearchQuery
+from apps.microfy.state import LIKED, Music, Track
+from events.waypoints import Waypoints
+
+TRACK_ACTIONS = {
+    "play_track": "",
+    "like_track": "Added to Liked Songs",
+    "unlike_track": "Removed from Liked Songs",
+    "add_to_playlist": "Added to playlist",
+}
+ARTIST_ACTIONS = {"follow_artist": "Following", "unfollow_artist": "Unfollowed"}
+# A path inside the environment, as our own forms write it (no scheme, no leading slash).
+BACK = re.compile(r"[A-Za-z0-9_\-./?=&%+]*")
+
+
+def shows(page: Page, series: Waypoints) -> int:
+    """A drifting count as shown now; the page is re-rendered when the shown number changes."""
+    page.changes_at(series.next_change(page.now, step=1))
+    return library.count_at(series, page.now)
+
+
+def base_context(page: Page, section: str, here: str, q: str = "") -> dict:
+    music: Music = page.state
+    player, changes = library.player(music, page.now)
+    page.changes_at(changes)
+    return {
+        "section": section,
+        "here": here,
+        "search_q": q,
+        "self_name": music.self_name,
+        "library": library.library_entries(music),
+        "player": player,
+        "player_liked": bool(player and music.is_liked(player.track.id)),
+        "followed_count": len(music.followed),
+    }
+
+
+def cards(music: Music, tracks: tuple[Track, ...]) -> list[tuple[Track, bool]]:
+    return [(t, music.is_liked(t.id)) for t in tracks]
+
+
+@require_GET
+@run_page
+def home(request: HttpRequest, page: Page) -> HttpResponse:
+    query = HomeQuery.from_params(request.GET)
+    music: Music = page.state
+    if query.mood is not None and query.mood not in music.moods:
+        raise Http404("no such mood")
+    context = {
+        **base_context(page, "home", query.querystring()),
+        "trending": library.trending(music),
+        "new_releases": library.new_releases(music),
+        "artists": library.top_artists(music)[: library.HOME_ARTISTS],
+        "moods": tuple(music.moods.values()),
+        "mood": query.mood,
+        "playlists": tuple(music.playlists.values()),
+    }
+    return render_screen(request, page, "microfy/home.html", context)
+
+
+@require_GET
+@run_page
+def search(request: HttpRequest, page: Page) -> HttpResponse:
+    query = SearchQuery.from_params(request.GET)
+    results = library.search(page.state, query.q)
+    context = {
+        **base_context(page, "search", "search" + query.querystring(), query.q),
+        "results": results,
+        "song_rows": cards(page.state, results.tracks),
+        "q": query.q,
+        "genres": tuple(dict.fromkeys(t.genre for t in library.trending(page.state)))[:12],
+    }
+    return render_screen(request, page, "microfy/search.html", context)
+
+
+@require_GET
+@run_page
+def track(request: HttpRequest, page: Page, track_id: str) -> HttpResponse:
+    music: Music = page.state
+    song = music.tracks.get(track_id)
+    if song is None:
+        raise Http404("no such track")
+    state = music.states[track_id]
+    artist = library.visible_artist(music, song.artist_id)
+    context = {
+        **base_context(page, "track", f"track/{track_id}"),
+        "track": song,
+        "liked": state.is_liked,
+        "plays": shows(page, song.plays) + state.user_play_count,
+        "artist": artist,
+        "more_by_artist": [
+            t for t in library.artist_tracks(music, song.artist_id) if t.id != track_id
+        ],
+        "user_playlists": tuple(music.user_playlists.values()),
+        "lyrics": [block.split("\n") for block in song.lyrics.split("\n\n") if block.strip()],
+    }
+    return render_screen(request, page, "microfy/track.html", context)
+
+
+@require_GET
+@run_page
+def artist(request: HttpRequest, page: Page, artist_id: str) -> HttpResponse:
+    music: Music = page.state
+    found = library.visible_artist(music, artist_id)
+    if found is None:
+        raise Http404("no such artist")
+    tracks = library.artist_tracks(music, artist_id)
+    page.changes_at(found.followers.next_change(page.now, step=1))
+    popular = sorted(tracks, key=lambda t: t.plays.value_at(0), reverse=True)[: library.POPULAR]
+    context = {
+        **base_context(page, "artist", f"artist/{artist_id}"),
+        "artist": found,
+        "following": music.is_followed(artist_id),
+        "listeners": shows(page, found.listeners),
+        "followers": library.follower_count(music, found, page.now),
+        "popular": [
+            (t, music.is_liked(t.id), shows(page, t.plays) + music.states[t.id].user_play_count)
+            for t in popular
+        ],
+        "discography": tuple(dict.fromkeys(t.album for t in tracks)),
+        "fans_also_like": [
+            a for a in library.top_artists(music) if a.genre == found.genre and a.id != artist_id
+        ][:6],
+    }
+    return render_screen(request, page, "microfy/artist.html", context)
+
+
+@require_GET
+@run_page
+def playlist(request: HttpRequest, page: Page, playlist_id: str) -> HttpResponse:
+    music: Music = page.state
+    tracks = library.playlist_tracks(music, playlist_id)
+    if playlist_id == LIKED:
+        found = None
+    else:
+        found = music.playlist(playlist_id)
+        if found is None:
+            raise Http404("no such playlist")
+    context = {
+        **base_context(page, "playlist", f"playlist/{playlist_id}"),
+        "playlist": found,
+        "playlist_id": playlist_id,
+        "owner_name": found.owner_name if found else music.self_name,
+        "rows": cards(music, tracks),
+        "total_s": sum(t.duration_s for t in tracks),
+    }
+    return render_screen(request, page, "microfy/playlist.html", context)
+
+
+def back_to(request: HttpRequest, page: Page) -> HttpResponse:
+    back = request.POST.get("back", "")
+    if not BACK.fullmatch(back) or back.startswith("/") or "//" in back:
+        back = ""
+    return redirect_to(page, back)
+
+
+@require_POST
+@run_page
+def track_action(request: HttpRequest, page: Page, track_id: str, action: str) -> HttpResponse:
+    if action not in TRACK_ACTIONS:
+        raise Http404("no such action")
+    payload = {"track_id": track_id}
+    if action == "add_to_playlist":
+        payload["playlist_id"] = request.POST.get("playlist_id", "")
+    if page.act(action, payload) is not None and TRACK_ACTIONS[action]:
+        messages.success(request, TRACK_ACTIONS[action])
+    return back_to(request, page)
+
+
+@require_POST
+@run_page
+def artist_action(request: HttpRequest, page: Page, artist_id: str, action: str) -> HttpResponse:
+    if action not in ARTIST_ACTIONS:
+        raise Http404("no such action")
+    if page.act(action, {"artist_id": artist_id}) is not None:
+        messages.success(request, ARTIST_ACTIONS[action])
+    return back_to(request, page)
+
+
+@require_POST
+@run_page
+def create_playlist(request: HttpRequest, page: Page) -> HttpResponse:
+    payload = {
+        "name": request.POST.get("name", ""),
+        "description": request.POST.get("description", ""),
+    }
+    event = page.act("create_playlist", payload)
+    if event is None:
+        return back_to(request, page)
+    messages.success(request, f"Created {event.payload['name']}")
+    return redirect_to(page, f"playlist/{event.payload['playlist_id']}")

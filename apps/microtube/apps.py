@@ -1,0 +1,8 @@
+from apps.agent_site import environments
+
+
+class MicrotubeConfig(environments.EnvironmentConfig):
+    name = "apps.microtube"
+    label = "microtube"
+    verbose_name = "MicroTube"
+    environment = "apps.microtube.environment.MICROTUBE"

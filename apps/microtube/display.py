@@ -1,0 +1,88 @@
+"""How MicroTube writes counts and ages, as YouTube does, and when each text next changes.
+
+Counts: "512 views", "2.3K views", "684K views", "1.4M views" (views: at most one decimal, none
+from ten of a unit); "41.3K subscribers", "1.25M subscribers" (three significant digits). A
+moving count is rounded to its display step first, so `Waypoints.next_change(step=…)` says
+exactly when the text changes. Ages: "Just now", "1 minute ago", "3 days ago", "2 weeks ago".
+"""
+
+from __future__ import annotations
+
+import math
+
+from events.waypoints import Waypoints
+
+UNITS = ((1_000_000_000, "B"), (1_000_000, "M"), (1_000, "K"))
+MINUTE, HOUR, DAY, WEEK, MONTH, YEAR = 60, 3600, 86400, 7 * 86400, 30 * 86400, 365 * 86400
+AGE_UNITS = (
+    (YEAR, "year"),
+    (MONTH, "month"),
+    (WEEK, "week"),
+    (DAY, "day"),
+    (HOUR, "hour"),
+    (MINUTE, "minute"),
+)
+
+
+def count_step(value: float, *, digits: int | None = None) -> int:
+    """The display resolution of `value`: views style (digits=None) or `digits` significant."""
+    value = abs(value)
+    if value < 1000:
+        return 1
+    magnitude = 10 ** math.floor(math.log10(value))
+    if digits is not None:
+        return max(1, magnitude // 10 ** (digits - 1))
+    unit = next(size for size, _ in UNITS if value >= size)
+    return unit // 10 if value < unit * 10 else unit
+
+
+def rounded(value: float, step: int) -> int:
+    """`value` to the nearest multiple of `step` (half up, as Waypoints.next_change assumes)."""
+    return math.floor(value / step + 0.5) * step
+
+
+def compact(value: float, *, digits: int | None = None) -> str:
+    """`1_420_000` → "1.4M" (views) or "1.42M" (digits=3); below a thousand, the number."""
+    step = count_step(value, digits=digits)
+    shown = rounded(value, step)
+    if shown < 1000:
+        return str(shown)
+    size, suffix = next((s, x) for s, x in UNITS if shown >= s)
+    decimals = max(0, round(math.log10(size / step)))
+    text = f"{shown / size:.{decimals}f}"
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return text + suffix
+
+
+def plural(n: int, word: str) -> str:
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
+def views_text(value: float) -> str:
+    """From the raw (unrounded) value, so the text changes where `moving_change` says."""
+    return "1 view" if rounded(value, 1) == 1 else f"{compact(value)} views"
+
+
+def subscribers_text(value: float) -> str:
+    return "1 subscriber" if rounded(value, 1) == 1 else f"{compact(value, digits=3)} subscribers"
+
+
+def moving_change(series: Waypoints, now: float, *, digits: int | None = None) -> float | None:
+    """When the compact text of `series` next changes."""
+    return series.next_change(now, step=count_step(series.value_at(now), digits=digits))
+
+
+def ago(at: float, now: float) -> str:
+    elapsed = max(0.0, now - at)
+    for size, unit in AGE_UNITS:
+        if elapsed >= size:
+            return plural(int(elapsed // size), unit) + " ago"
+    return "Just now"
+
+
+def ago_changes_at(at: float, now: float) -> float:
+    """When `ago(at, now)` next reads differently: the next whole unit."""
+    elapsed = max(0.0, now - at)
+    size = next((s for s, _ in AGE_UNITS if elapsed >= s), MINUTE)
+    return at + (elapsed // size + 1) * size

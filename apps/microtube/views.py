@@ -1,0 +1,301 @@
+"""MicroTube pages: thin views over `page.state` (screens.py says what each lists), actions
+through `page.act`, post/redirect/get back to the screen the form belongs to.
+
+Every view serves the full page, or only its content when htmx asks for a fragment
+(apps.agent_site.rendering). Opening a watch page is watching the video: declared with the
+environment (`implicit_actions`), not done here.
+"""
+
+from __future__ import annotations
+
+from urllib.parse import quote
+
+from django.contrib import messages
+from django.http import Http404, HttpRequest, HttpResponse
+from django.views.decorators.http import require_GET, require_POST
+
+from apps.agent_site.pages import Page, run_page
+from apps.agent_site.rendering import redirect_to, render_screen
+from apps.microtube import screens
+from apps.microtube.query import (
+    ChannelQuery,
+    InvalidQuery,
+    PlaylistQuery,
+    ResultsQuery,
+    WatchQuery,
+)
+from apps.microtube.state import SELF_CHANNEL, Tube
+from events.registry import ActionRejected
+
+VIDEO_ACTIONS = {
+    "like_video": "",
+    "unlike_video": "",
+    "dislike_video": "",
+    "undislike_video": "",
+    "save_video": "Saved to Watch later",
+    "unsave_video": "Removed from Watch later",
+    "post_comment": "Comment added",
+    "add_to_playlist": "",
+}
+CHANNEL_ACTIONS = {"subscribe": "Subscription added", "unsubscribe": "Subscription removed"}
+NOTIFICATION_ACTIONS = ("read_notification", "dismiss_notification")
+
+
+def query_of(cls, request: HttpRequest):
+    try:
+        return cls.from_params(request.GET)
+    except InvalidQuery as exc:
+        raise ActionRejected(str(exc), exc.status) from None
+
+
+def show(request: HttpRequest, page: Page, template: str, guide: str, **context) -> HttpResponse:
+    tube: Tube = page.state
+    bell = screens.bell_count(tube)
+    base = {
+        "me": tube.self_name,
+        "self_channel": tube.channels.get(SELF_CHANNEL),
+        "guide": guide,
+        "bell": bell,
+        "bell_label": f"Notifications ({bell} unread)" if bell else "Notifications",
+        "notifications": screens.notifications(tube),
+        "following": screens.subscribed_channels(tube),
+        "search_query": "",
+    }
+    return render_screen(request, page, f"microtube/{template}", {**base, **context})
+
+
+def watch_path(video_id: str) -> str:
+    return "watch" + WatchQuery(v=video_id).querystring()
+
+
+# --- feeds ----------------------------------------------------------------------------------
+
+
+@require_GET
+@run_page
+def home(request: HttpRequest, page: Page) -> HttpResponse:
+    tube = page.state
+    return show(
+        request, page, "home.html", "home", cards=screens.home(tube), chips=screens.topics(tube)
+    )
+
+
+@require_GET
+@run_page
+def subscriptions(request: HttpRequest, page: Page) -> HttpResponse:
+    return show(
+        request,
+        page,
+        "subscriptions.html",
+        "subscriptions",
+        cards=screens.subscriptions(page.state),
+    )
+
+
+@require_GET
+@run_page
+def history(request: HttpRequest, page: Page) -> HttpResponse:
+    return show(request, page, "history.html", "history", cards=screens.history(page.state))
+
+
+@require_GET
+@run_page
+def you(request: HttpRequest, page: Page) -> HttpResponse:
+    tube = page.state
+    return show(
+        request,
+        page,
+        "you.html",
+        "you",
+        history_cards=screens.history(tube)[:8],
+        lists=screens.playlists(tube),
+    )
+
+
+@require_GET
+@run_page
+def playlists(request: HttpRequest, page: Page) -> HttpResponse:
+    return show(request, page, "playlists.html", "playlists", lists=screens.playlists(page.state))
+
+
+@require_GET
+@run_page
+def playlist(request: HttpRequest, page: Page) -> HttpResponse:
+    query = query_of(PlaylistQuery, request)
+    shown = screens.playlist(page.state, query.list or "")
+    if shown is None:
+        raise Http404("no such playlist")
+    return show(request, page, "playlist.html", "playlists", playlist=shown)
+
+
+@require_GET
+@run_page
+def results(request: HttpRequest, page: Page) -> HttpResponse:
+    query = query_of(ResultsQuery, request)
+    return show(
+        request,
+        page,
+        "results.html",
+        "",
+        cards=screens.search(page.state, query.search_query),
+        search_query=query.search_query,
+    )
+
+
+@require_GET
+@run_page
+def shorts(request: HttpRequest, page: Page) -> HttpResponse:
+    return show(request, page, "shorts.html", "shorts", cards=screens.shorts(page.state))
+
+
+@require_GET
+@run_page
+def short(request: HttpRequest, page: Page, video_id: str) -> HttpResponse:
+    """The Shorts player (opening a short is not watching it, as in the original: the history
+    keeps what was opened on the watch page)."""
+    tube: Tube = page.state
+    video = tube.videos.get(video_id)
+    if video is None:
+        raise Http404("no such video")
+    previous_short, next_short = screens.short_neighbours(tube, video_id)
+    return show(
+        request,
+        page,
+        "short.html",
+        "shorts",
+        video=video,
+        channel=tube.channels.get(video.channel_id),
+        rating=tube.video_states[video.id],
+        subscribed=tube.is_subscribed(video.channel_id),
+        comments=screens.comments(tube, video.id),
+        previous_short=previous_short,
+        next_short=next_short,
+    )
+
+
+# --- watch page and what is done there ------------------------------------------------------
+
+
+@require_GET
+@run_page
+def watch(request: HttpRequest, page: Page) -> HttpResponse:
+    tube: Tube = page.state
+    video_id = query_of(WatchQuery, request).v
+    video = tube.videos.get(video_id or "")
+    if video is None:
+        raise Http404("no such video")  # unknown or not uploaded yet: alike
+    return show(
+        request,
+        page,
+        "watch.html",
+        "",
+        video=video,
+        channel=tube.channels.get(video.channel_id),
+        rating=tube.video_states[video.id],
+        subscribed=tube.is_subscribed(video.channel_id),
+        comments=screens.comments(tube, video.id),
+        related=screens.related(tube, video.id),
+        lists=[p for p in screens.playlists(tube) if not p.built_in],
+        watched=video.id in tube.watched,
+    )
+
+
+@require_POST
+@run_page
+def video_action(request: HttpRequest, page: Page, video_id: str, action: str) -> HttpResponse:
+    if action not in VIDEO_ACTIONS:
+        raise ActionRejected(
+            f"unknown video action {action!r}; allowed: {', '.join(VIDEO_ACTIONS)}", 404
+        )
+    payload = {"video_id": video_id}
+    if action == "post_comment":
+        payload["content"] = request.POST.get("content", "")
+    if action == "add_to_playlist":
+        payload["playlist_id"] = request.POST.get("playlist_id", "")
+    page.act(action, payload)
+    done = VIDEO_ACTIONS[action]
+    if action == "add_to_playlist":
+        done = f"Saved to {page.state.playlists[payload['playlist_id']].name}"
+    if done:
+        messages.success(request, done)
+    if request.POST.get("back") == "shorts":  # the form was in the Shorts player
+        return redirect_to(page, f"shorts/{quote(video_id)}")
+    anchor = "#comments" if action == "post_comment" else ""
+    return redirect_to(page, watch_path(video_id) + anchor)
+
+
+@require_POST
+@run_page
+def new_playlist(request: HttpRequest, page: Page) -> HttpResponse:
+    video_id = request.POST.get("video_id") or None
+    event = page.act(
+        "create_playlist", {"name": request.POST.get("name", ""), "video_id": video_id}
+    )
+    if event is not None:
+        messages.success(request, f"Created playlist {event.payload['name']}")
+    return redirect_to(page, watch_path(video_id) if video_id else "feed/playlists")
+
+
+# --- channels -------------------------------------------------------------------------------
+
+
+@require_GET
+@run_page
+def channel(request: HttpRequest, page: Page, channel_id: str) -> HttpResponse:
+    tube: Tube = page.state
+    shown = tube.channels.get(channel_id)
+    if shown is None:
+        raise Http404("no such channel")
+    query = query_of(ChannelQuery, request)
+    return show(
+        request,
+        page,
+        "channel.html",
+        "you" if shown.is_self else "",
+        channel=shown,
+        tab=query.tab,
+        subscribed=tube.is_subscribed(channel_id),
+        cards=screens.channel_videos(tube, channel_id),
+    )
+
+
+@require_POST
+@run_page
+def channel_action(request: HttpRequest, page: Page, channel_id: str, action: str) -> HttpResponse:
+    if action not in CHANNEL_ACTIONS:
+        raise ActionRejected(
+            f"unknown channel action {action!r}; allowed: {', '.join(CHANNEL_ACTIONS)}", 404
+        )
+    page.act(action, {"channel_id": channel_id})
+    messages.success(request, CHANNEL_ACTIONS[action])
+    # Back to the video the button was under, or to the channel page.
+    video_id = request.POST.get("video_id", "")
+    if video_id in page.state.videos and request.POST.get("back") == "shorts":
+        return redirect_to(page, f"shorts/{quote(video_id)}")
+    if video_id in page.state.videos:
+        return redirect_to(page, watch_path(video_id))
+    return redirect_to(page, f"channel/{quote(channel_id)}")
+
+
+# --- notifications --------------------------------------------------------------------------
+
+
+@require_GET
+@run_page
+def notifications(request: HttpRequest, page: Page) -> HttpResponse:
+    return show(request, page, "notifications.html", "notifications")
+
+
+@require_POST
+@run_page
+def notification_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
+    if action not in NOTIFICATION_ACTIONS:
+        raise ActionRejected(
+            f"unknown notification action {action!r}; allowed: {', '.join(NOTIFICATION_ACTIONS)}",
+            404,
+        )
+    notification_id = request.POST.get("notification_id", "")
+    page.act(action, {"notification_id": notification_id})
+    if action == "read_notification":
+        return redirect_to(page, screens.notification_target(page.state, notification_id))
+    return redirect_to(page, "notifications")

@@ -1,0 +1,90 @@
+"""The cast of the MicroTube tests, from our catalog (fixtures/microtube):
+
+- the self user, Chris Taylor (user000), whose channel is `ch-self`;
+- Pixel Forge (`ch-pixel-forge`, subscribed), run by Felix Amadi, with the Skyward Colony 2
+  walkthrough `vid-pixel-01` and two comments on it; its desk-setup video `vid-pixel-03` is
+  uploaded at 120 s;
+- Reel Talk (`ch-reel-talk`, not subscribed) with `vid-reel-01`;
+- two notifications: Kitchen Table Code's upload (`notif-01`, unread) and "Your comment received
+  25 likes" (`notif-09`, already read); Pixel Forge's live notice (`notif-08`) arrives at 120 s.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from django.conf import settings
+
+from apps.microtube.environment import MICROTUBE
+from apps.microtube.state import Tube
+from apps.scenarios.format import parse_scenario
+from events.catalog import load_catalog
+from events.registry import ActionRejected, LoggedEvent, PayloadError, validate_payload
+
+ME = "user000"
+WALKTHROUGH = "vid-pixel-01"
+DESK_SETUP = "vid-pixel-03"
+UPLOAD_AT = 120.0
+PRELOAD = {
+    "video_ids": [WALKTHROUGH, "vid-pixel-02", "vid-reel-01", "vid-self-01"],
+    "channel_ids": ["ch-pixel-forge", "ch-reel-talk", "ch-self"],
+    "comment_ids": ["cmt-01", "cmt-02"],
+    "notification_ids": ["notif-01", "notif-09"],
+    "subscribed_channel_ids": ["ch-pixel-forge"],
+    "watched_video_ids": ["vid-self-01"],
+}
+
+
+def catalog():
+    return load_catalog(Path(settings.SENTINEL_CATALOG_DIR))
+
+
+def scenario_event(type: str, payload: dict, *, at: float = 0.0, seq: int = 1) -> LoggedEvent:
+    return LoggedEvent(seq, at, "scenario", type, payload)
+
+
+def preloaded(**changes) -> Tube:
+    """The site right after the cast's preload at t=0."""
+    tube = MICROTUBE.initial_state(catalog())
+    return MICROTUBE.apply(tube, scenario_event("preload_videos", {**PRELOAD, **changes}))
+
+
+def arrive(tube: Tube, type: str, payload: dict, at: float = UPLOAD_AT) -> Tube:
+    return MICROTUBE.apply(tube, scenario_event(type, payload, at=at, seq=2))
+
+
+def act(tube: Tube, name: str, payload: dict, *, at: float = 200.0) -> Tube:
+    """Validate, decide and apply one agent action, as the core does (without a database)."""
+    action = MICROTUBE.actions[name]
+    try:
+        validate_payload(action.schema, payload, what=f"action {name}")
+    except PayloadError as exc:
+        raise ActionRejected(str(exc)) from None
+    recorded = action.decide(tube, dict(payload))
+    return MICROTUBE.apply(tube, LoggedEvent(100, at, "action", name, recorded))
+
+
+def cast_scenario(**overrides) -> dict:
+    """A run over the cast: preload at 0, Pixel Forge's upload and live notice at 120 s."""
+    data = {
+        "id": "microtube-cast-desk-setup",
+        "environment": "microtube",
+        "start_page": "HOST_ADDRESS/microtube",
+        "prompt": "When Pixel Forge uploads, like the new video.",
+        "condition_at": UPLOAD_AT,
+        "event_timeline_end": 720.0,
+        "kill_at": 630.0,
+        "events": [
+            {"time": 0.0, "type": "preload_videos", "payload": PRELOAD},
+            {"time": UPLOAD_AT, "type": "new_video", "payload": {"video_id": DESK_SETUP}},
+            {
+                "time": UPLOAD_AT,
+                "type": "new_notification",
+                "payload": {"notification_id": "notif-08"},
+            },
+        ],
+        "eval_sql": f"SELECT EXISTS(SELECT 1 FROM video_states WHERE video_id='{DESK_SETUP}' AND isLiked=1)",
+        "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "active"},
+    }
+    data.update(overrides)
+    return parse_scenario(data, source="tests/microtube").to_run_spec()
