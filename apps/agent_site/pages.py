@@ -106,6 +106,14 @@ class Page:
         return event
 
 
+def one_of(name: str, allowed, what: str) -> str:
+    """`name` when it is one of `allowed` (a URL segment naming an action, a tab…), else a 404
+    page naming what was asked for and what exists."""
+    if name not in allowed:
+        raise ActionRejected(f"unknown {what} {name!r}; allowed: {', '.join(allowed)}", 404)
+    return name
+
+
 def is_navigation(request: HttpRequest) -> bool:
     """A page the user goes to (a load, a boosted link), not a fragment refreshed in place."""
     htmx = getattr(request, "htmx", None)

@@ -12,13 +12,12 @@ from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.agent_site import simclock
-from apps.agent_site.pages import Page, run_page
+from apps.agent_site.pages import Page, one_of, run_page
 from apps.agent_site.rendering import redirect_to, render_screen
 from apps.microchat import screens
 from apps.microchat.actions import existing_conversation, existing_message
 from apps.microchat.calendar import calendar_grid
 from apps.microchat.query import CalendarQuery, CallsQuery, ChatQuery, SearchQuery
-from events.registry import ActionRejected
 
 CONVERSATION_ACTIONS = {
     "pin": "Added to Favorites",
@@ -165,10 +164,7 @@ def back_to(page: Page, request: HttpRequest, *, close: str | None = None) -> Ht
 def conversation_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
     """`POST conversations/<action>` with `conversation_id`: pin, unpin, mute, unmute,
     mark_unread."""
-    if action not in CONVERSATION_ACTIONS:
-        raise ActionRejected(
-            f"unknown chat action {action!r}; allowed: {', '.join(CONVERSATION_ACTIONS)}", 404
-        )
+    one_of(action, CONVERSATION_ACTIONS, "chat action")
     conversation_id = request.POST.get("conversation_id", "")
     existing_conversation(page.state, conversation_id)
     page.act(action, {"conversation_id": conversation_id})
@@ -180,10 +176,7 @@ def conversation_action(request: HttpRequest, page: Page, action: str) -> HttpRe
 @run_page
 def message_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
     """`POST messages/<action>` with `message_id` (react/unreact: `reaction`; edit: `content`)."""
-    if action not in MESSAGE_ACTIONS:
-        raise ActionRejected(
-            f"unknown message action {action!r}; allowed: {', '.join(MESSAGE_ACTIONS)}", 404
-        )
+    one_of(action, MESSAGE_ACTIONS, "message action")
     message_id = request.POST.get("message_id", "")
     existing_message(page.state, message_id)
     payload = {"message_id": message_id}

@@ -11,7 +11,7 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, run_page
+from apps.agent_site.pages import Page, one_of, run_page
 from apps.agent_site.rendering import (
     back_field,
     came_from,
@@ -99,10 +99,7 @@ def post(request: HttpRequest, page: Page, post_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> HttpResponse:
-    if action not in POST_ACTIONS:
-        raise ActionRejected(
-            f"unknown post action {action!r}; allowed: {', '.join(POST_ACTIONS)}", 404
-        )
+    one_of(action, POST_ACTIONS, "post action")
     payload = {"post_id": post_id}
     if action == "comment_post":
         payload["text"] = request.POST.get("text", "")

@@ -14,7 +14,7 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, run_page
+from apps.agent_site.pages import Page, one_of, run_page
 from apps.agent_site.rendering import redirect_to, render_screen
 from apps.microfy import library
 from apps.microfy.query import HomeQuery, SearchQuery
@@ -176,8 +176,7 @@ def back_to(request: HttpRequest, page: Page) -> HttpResponse:
 @require_POST
 @run_page
 def track_action(request: HttpRequest, page: Page, track_id: str, action: str) -> HttpResponse:
-    if action not in TRACK_ACTIONS:
-        raise Http404("no such action")
+    one_of(action, TRACK_ACTIONS, "track action")
     payload = {"track_id": track_id}
     if action == "add_to_playlist":
         payload["playlist_id"] = request.POST.get("playlist_id", "")
@@ -189,8 +188,7 @@ def track_action(request: HttpRequest, page: Page, track_id: str, action: str) -
 @require_POST
 @run_page
 def artist_action(request: HttpRequest, page: Page, artist_id: str, action: str) -> HttpResponse:
-    if action not in ARTIST_ACTIONS:
-        raise Http404("no such action")
+    one_of(action, ARTIST_ACTIONS, "artist action")
     if page.act(action, {"artist_id": artist_id}) is not None:
         messages.success(request, ARTIST_ACTIONS[action])
     return back_to(request, page)

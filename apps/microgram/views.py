@@ -10,7 +10,7 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, run_page
+from apps.agent_site.pages import Page, one_of, run_page
 from apps.agent_site.rendering import (
     came_from,
     redirect_after,
@@ -21,7 +21,6 @@ from apps.microgram import screens
 from apps.microgram.catalog import person
 from apps.microgram.query import ExploreQuery, FeedQuery, ProfileQuery, SearchQuery
 from apps.microgram.state import Gram, comments_of, is_following, known_people, thread_with
-from events.registry import ActionRejected
 
 POST_ACTIONS = {
     "like_post": "",
@@ -84,10 +83,7 @@ def post(request: HttpRequest, page: Page, post_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> HttpResponse:
-    if action not in POST_ACTIONS:
-        raise ActionRejected(
-            f"unknown post action {action!r}; allowed: {', '.join(POST_ACTIONS)}", 404
-        )
+    one_of(action, POST_ACTIONS, "post action")
     payload = {"post_id": post_id}
     if action == "comment_post":
         payload["text"] = request.POST.get("text", "")
@@ -269,7 +265,6 @@ def message(request: HttpRequest, page: Page, user_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def follow(request: HttpRequest, page: Page, user_id: str, verb: str) -> HttpResponse:
-    if verb not in FOLLOW_VERBS:
-        raise ActionRejected(f"unknown verb {verb!r}; allowed: follow, unfollow", 404)
+    one_of(verb, FOLLOW_VERBS, "verb")
     page.act(FOLLOW_VERBS[verb], {"user_id": user_id})
     return redirect_to(page, came_from(request, page, f"profile/{user_id}/"))

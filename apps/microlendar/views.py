@@ -15,7 +15,7 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
-from apps.agent_site.pages import Page, run_page
+from apps.agent_site.pages import Page, one_of, run_page
 from apps.agent_site.rendering import redirect_to, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, existing_event
@@ -204,8 +204,7 @@ def _as_form(event) -> dict:
 def event_action(request: HttpRequest, page: Page, event_id: str, action: str) -> HttpResponse:
     """`POST events/<id>/reschedule` (date, time: the form and a drag send the same) and
     `POST events/<id>/delete`, then back to the screen."""
-    if action not in EVENT_ACTIONS:
-        raise ActionRejected(f"unknown event action {action!r}; allowed: reschedule, delete", 404)
+    one_of(action, EVENT_ACTIONS, "event action")
     payload = {"event_id": event_id}
     if action == "reschedule":
         payload["date"] = request.POST.get("date", "")
@@ -233,8 +232,7 @@ def new_task(request: HttpRequest, page: Page) -> HttpResponse:
 @require_POST
 @run_page
 def task_action(request: HttpRequest, page: Page, task_id: str, action: str) -> HttpResponse:
-    if action not in TASK_ACTIONS:
-        raise ActionRejected(f"unknown task action {action!r}; allowed: toggle, delete", 404)
+    one_of(action, TASK_ACTIONS, "task action")
     event = page.act(TASK_ACTIONS[action], {"task_id": task_id})
     if action == "delete":
         messages.success(request, "Task deleted")

@@ -14,7 +14,7 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, run_page
+from apps.agent_site.pages import Page, one_of, run_page
 from apps.agent_site.rendering import redirect_to, render_screen
 from apps.microtube import screens
 from apps.microtube.query import (
@@ -203,10 +203,7 @@ def watch(request: HttpRequest, page: Page) -> HttpResponse:
 @require_POST
 @run_page
 def video_action(request: HttpRequest, page: Page, video_id: str, action: str) -> HttpResponse:
-    if action not in VIDEO_ACTIONS:
-        raise ActionRejected(
-            f"unknown video action {action!r}; allowed: {', '.join(VIDEO_ACTIONS)}", 404
-        )
+    one_of(action, VIDEO_ACTIONS, "video action")
     payload = {"video_id": video_id}
     if action == "post_comment":
         payload["content"] = request.POST.get("content", "")
@@ -262,10 +259,7 @@ def channel(request: HttpRequest, page: Page, channel_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def channel_action(request: HttpRequest, page: Page, channel_id: str, action: str) -> HttpResponse:
-    if action not in CHANNEL_ACTIONS:
-        raise ActionRejected(
-            f"unknown channel action {action!r}; allowed: {', '.join(CHANNEL_ACTIONS)}", 404
-        )
+    one_of(action, CHANNEL_ACTIONS, "channel action")
     page.act(action, {"channel_id": channel_id})
     messages.success(request, CHANNEL_ACTIONS[action])
     # Back to the video the button was under, or to the channel page.
@@ -289,11 +283,7 @@ def notifications(request: HttpRequest, page: Page) -> HttpResponse:
 @require_POST
 @run_page
 def notification_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
-    if action not in NOTIFICATION_ACTIONS:
-        raise ActionRejected(
-            f"unknown notification action {action!r}; allowed: {', '.join(NOTIFICATION_ACTIONS)}",
-            404,
-        )
+    one_of(action, NOTIFICATION_ACTIONS, "notification action")
     notification_id = request.POST.get("notification_id", "")
     page.act(action, {"notification_id": notification_id})
     if action == "read_notification":
