@@ -23,10 +23,13 @@ from pydantic import Field
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import (
     FOLDERS,
+    Attachment,
     Email,
     EmailState,
     Mail,
+    attachment_shelf,
     with_emails,
+    with_favorite,
     with_state,
     without_email,
 )
@@ -98,6 +101,9 @@ class Compose(Payload):
     bcc: list[str] | None = Field(None, description="addresses")
     subject: str | None = None
     body: str | None = None
+    attachments: list[str] | None = Field(
+        None, description="ids of documents attached to mail in the mailbox"
+    )
     draft_id: str | None = Field(None, description="the draft this replaces")
 
 
@@ -127,18 +133,31 @@ def draft_to_replace(mail: Mail, payload: dict) -> dict:
     return {"draft_id": draft_id}
 
 
-def composed(payload: dict, *, check_addresses: bool) -> dict:
+def attached(mail: Mail, payload: dict) -> list[str]:
+    """The attachment ids, each once; every one must be a document of mail in the mailbox."""
+    ids = list(dict.fromkeys(payload.get("attachments") or ()))
+    available = {a.id for a in attachment_shelf(mail)}
+    for attachment_id in ids:
+        if attachment_id not in available:
+            raise ActionRejected(
+                f"no document {attachment_id!r} in this mailbox to put in attachments", status=404
+            )
+    return ids
+
+
+def composed(mail: Mail, payload: dict, *, check_addresses: bool) -> dict:
     return {
         "to": address_list(payload, "to", check=check_addresses),
         "cc": address_list(payload, "cc", check=check_addresses),
         "bcc": address_list(payload, "bcc", check=check_addresses),
         "subject": payload.get("subject") or "",
         "body": payload.get("body") or "",
+        "attachments": attached(mail, payload),
     }
 
 
 def decide_send(mail: Mail, payload: dict) -> dict:
-    message = composed(payload, check_addresses=True)
+    message = composed(mail, payload, check_addresses=True)
     if not message["to"]:
         raise ActionRejected("payload field 'to' needs at least one recipient")
     return {"id": new_message_id("sent"), **message, **draft_to_replace(mail, payload)}
@@ -146,17 +165,25 @@ def decide_send(mail: Mail, payload: dict) -> dict:
 
 def decide_save_draft(mail: Mail, payload: dict) -> dict:
     # Drafts are work in progress: addresses are checked when the draft is sent.
-    message = composed(payload, check_addresses=False)
+    message = composed(mail, payload, check_addresses=False)
     if not any(message.values()):
         raise ActionRejected(
-            "an empty draft has nothing to save: give to, cc, bcc, subject or body"
+            "an empty draft has nothing to save: give to, cc, bcc, subject, body or attachments"
         )
     replaced = draft_to_replace(mail, payload)
     return {"id": replaced.get("draft_id") or new_message_id("drafts"), **message, **replaced}
 
 
+def documents(mail: Mail, ids: list[str]) -> tuple[Attachment, ...]:
+    """The attachments logged by id, as the mailbox holds them at this point of the log (the
+    same point on every replay; an id gone meanwhile is skipped, never an error)."""
+    shelf = {a.id: a for a in attachment_shelf(mail)}
+    return tuple(shelf[i] for i in ids if i in shelf)
+
+
 def written_by_self(mail: Mail, event: LoggedEvent) -> Email:
     p = event.payload
+    attachments = documents(mail, p.get("attachments") or [])
     return Email(
         id=p["id"],
         subject=p["subject"],
@@ -166,16 +193,18 @@ def written_by_self(mail: Mail, event: LoggedEvent) -> Email:
         to=tuple(p["to"]),
         cc=tuple(p["cc"]),
         bcc=tuple(p["bcc"]),  # kept (upstream dropped it): the sender may look it up later
+        has_attachment=bool(attachments),
+        attachments=attachments,
         arrived_at=event.at,
     )
 
 
 def reduce_send(mail: Mail, event: LoggedEvent) -> Mail:
     """The message lands in Sent Items, read; a draft it was written from is removed."""
+    sent = written_by_self(mail, event)  # before the draft goes: its attachments come along
     draft_id = event.payload.get("draft_id")
     if draft_id:
         mail = without_email(mail, draft_id)
-    sent = written_by_self(mail, event)
     return with_emails(mail, [(sent, EmailState(folder="sent", is_read=True))])
 
 
@@ -183,6 +212,26 @@ def reduce_save_draft(mail: Mail, event: LoggedEvent) -> Mail:
     """Create a draft, or replace the content of the draft it edits (same id)."""
     draft = written_by_self(mail, event)
     return with_emails(mail, [(draft, EmailState(folder="drafts", is_read=True))])
+
+
+# --- favorites ------------------------------------------------------------------------------------
+
+
+class Favorite(Payload):
+    folder: Literal[FOLDERS]
+
+
+def decide_favorite(mail: Mail, payload: dict) -> dict:
+    return payload
+
+
+def favoring(on: bool) -> Callable[[Mail, LoggedEvent], Mail]:
+    """Add the folder to Favorites (at the end) or take it out; set, not toggled."""
+
+    def reduce(mail: Mail, event: LoggedEvent) -> Mail:
+        return with_favorite(mail, event.payload["folder"], on=on)
+
+    return reduce
 
 
 # --- where a person does it in the client (Action.page) ------------------------------------------
@@ -227,7 +276,14 @@ def compose_page(mail: Mail, payload: dict) -> PageStep:
     mode = {"mode": "draft", "email": draft_id} if draft_id else {"mode": "new"}
     form = {name: ", ".join(payload.get(name) or ()) for name in ("to", "cc", "bcc")}
     form.update(subject=payload.get("subject") or "", body=payload.get("body") or "")
+    if payload.get("attachments"):
+        form["attachments"] = list(payload["attachments"])
     return PageStep(f"compose?{urlencode(mode)}", form)
+
+
+def favorites_page(mail: Mail, payload: dict) -> PageStep:
+    """The star next to the folder in the folder pane (any mailbox screen has it)."""
+    return PageStep(MailboxQuery().querystring(), {"folder": payload["folder"]})
 
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
@@ -273,8 +329,23 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             Compose,
             decide_save_draft,
             reduce_save_draft,
-            help="Save a draft, or update the draft given by draft_id.",
+            help="Save a draft, or update the draft given by draft_id (the compose form also "
+            "saves on its own while one types).",
             page=compose_page,
+        ),
+        "add_favorite": Action(
+            Favorite,
+            decide_favorite,
+            favoring(True),
+            help="Add a folder to Favorites, at the top of the folder pane.",
+            page=favorites_page,
+        ),
+        "remove_favorite": Action(
+            Favorite,
+            decide_favorite,
+            favoring(False),
+            help="Take a folder out of Favorites.",
+            page=favorites_page,
         ),
     }
 )

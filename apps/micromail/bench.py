@@ -1,7 +1,7 @@
 """The MicroMail pages worth timing (`manage.py bench_pages --env micromail`), from the state.
 
 A pure function of the mailbox: every folder, every quick filter, a search in the folder and
-across folders, an open message, and each compose form. Paths are relative to the
+across folders, an open message, each compose form and an attachment preview. Paths are relative to the
 environment root (`/r/<token>/micromail/`).
 """
 
@@ -39,4 +39,8 @@ def sample_pages(mail: Mail) -> list[str]:
         MailboxQuery(email=newest).querystring(),
         *(compose_url("", mode, newest) for mode in ("reply", "reply_all", "forward")),
     ]
+    attached = next((i for i in inbox if mail.emails[i].attachments), None)
+    if attached is not None:  # an attachment preview over its message
+        first = mail.emails[attached].attachments[0].id
+        pages.append(MailboxQuery(email=attached, preview=first).querystring())
     return pages

@@ -27,6 +27,7 @@ class Composition:
     bcc: tuple[str, ...] = ()
     subject: str = ""
     body: str = ""
+    attachments: tuple[str, ...] = ()  # ids of documents in the mailbox (attachment_shelf)
     draft_id: str | None = None  # set when editing a draft: sending or saving replaces it
 
 
@@ -95,8 +96,13 @@ def prefill(mail: Mail, mode: str, email_id: str | None) -> Composition:
             subject=_prefixed("Re:", email.subject),
             body=_quoted(email),
         )
-    if mode == "forward":
-        return Composition(mode, subject=_prefixed("Fwd:", email.subject), body=_forwarded(email))
+    if mode == "forward":  # a forward carries the message's attachments, as in Outlook
+        return Composition(
+            mode,
+            subject=_prefixed("Fwd:", email.subject),
+            body=_forwarded(email),
+            attachments=tuple(a.id for a in email.attachments),
+        )
     if mode != "draft":
         raise ActionRejected(f"unknown compose mode {mode!r}; allowed: {', '.join(COMPOSE_MODES)}")
     if mail.folder_of(email.id) != "drafts":
@@ -108,5 +114,6 @@ def prefill(mail: Mail, mode: str, email_id: str | None) -> Composition:
         bcc=email.bcc,
         subject=email.subject,
         body=email.body,
+        attachments=tuple(a.id for a in email.attachments),
         draft_id=email.id,
     )

@@ -12,7 +12,7 @@ from urllib.parse import urlencode
 
 from apps.micromail import state as mailbox
 from apps.micromail.query import MailboxQuery
-from apps.micromail.state import FOLDER_TITLES, FOLDERS, Email, EmailState, Mail
+from apps.micromail.state import FOLDER_TITLES, FOLDERS, Attachment, Email, EmailState, Mail
 from events.derived import per_state
 
 FILTER_LABELS = {"all": "All", "unread": "Unread", "flagged": "Flagged", "mentions": "Mentions"}
@@ -25,6 +25,7 @@ class FolderLink:
     badge: int  # 0 = hidden
     url: str
     current: bool
+    favorite: bool  # listed under Favorites too
 
 
 @dataclass(frozen=True)
@@ -45,11 +46,31 @@ class Row:
 
 
 @dataclass(frozen=True)
+class AttachmentLink:
+    attachment: Attachment
+    url: str  # the preview overlay's own screen
+
+
+@dataclass(frozen=True)
+class Preview:
+    """An attachment shown over the page: a picture for images, spreadsheets and decks, the
+    text for documents, a notice for the rest (archives)."""
+
+    attachment: Attachment
+    kind: str  # "picture" | "document" | "none"
+    subject: str  # the picture's subject (apps/media), when kind == "picture"
+    title: str
+    lines: tuple[str, ...]  # the document's text, when kind == "document"
+    close_url: str  # back to the message
+
+
+@dataclass(frozen=True)
 class OpenEmail:
     email: Email
     state: EmailState
     written_by_self: bool  # show Bcc, which only the sender may see
     move_targets: tuple[str, ...]
+    attachments: tuple[AttachmentLink, ...]
 
 
 @dataclass(frozen=True)
@@ -59,6 +80,7 @@ class Screen:
     chips: tuple[FilterChip, ...]
     rows: tuple[Row, ...]
     opened: OpenEmail | None
+    preview: Preview | None
     close_url: str  # the same list without an open message
     back: str  # query string that actions return to
 
@@ -75,6 +97,67 @@ def row_url(root: str, query: MailboxQuery, email_id: str, state: EmailState) ->
     return root + query.opening(email_id)
 
 
+def row_label(email: Email, state: EmailState, ago: str) -> str:
+    """The row link's accessible name: read state, sender, subject, time, then the marks, each
+    its own sentence ("Unread. From Maya Okonjo. Subject: Q3 budget review. 5 min ago.
+    Flagged."), so a screen reader or an agent reading the name can tell the parts apart."""
+    parts = [
+        "Unread" if not state.is_read else "",
+        f"From {email.sender_name}",
+        f"Subject: {email.subject or '(no subject)'}",
+        ago,
+        "Flagged" if state.is_flagged else "",
+        "Pinned" if state.is_pinned else "",
+        {"high": "High importance", "low": "Low importance"}.get(email.importance, ""),
+        "Has attachments" if email.has_attachment else "",
+        "External sender" if email.is_external else "",
+        "Mentions you" if email.mentions_me else "",
+    ]
+    return " ".join(f"{part[:1].upper()}{part[1:].rstrip('.')}." for part in parts if part)
+
+
+_PICTURES = {
+    **dict.fromkeys(("png", "jpg", "jpeg", "gif", "webp", "svg"), "screenshot"),
+    **dict.fromkeys(("xlsx", "xls", "csv", "numbers"), "chart"),
+    **dict.fromkeys(("pptx", "ppt", "key"), "whiteboard"),
+}
+_DOCUMENTS = ("pdf", "docx", "doc", "txt", "md", "rtf", "odt")
+
+
+def document_title(name: str) -> str:
+    """ "board-deck-finance_draft.pptx" → "Board deck finance draft"."""
+    stem = name.rsplit(".", 1)[0] if "." in name else name
+    words = " ".join(stem.replace("_", " ").replace("-", " ").split())
+    return words[:1].upper() + words[1:]
+
+
+def document_lines(body: str) -> tuple[str, ...]:
+    """The message's paragraphs as a document's text: without the greeting ("Hi Sunita,") and
+    the signature ("Tobias"), which belong to the letter, not to the document."""
+    lines = [line.strip() for line in body.splitlines() if line.strip()]
+    if len(lines) > 2 and lines[0].endswith(",") and len(lines[0]) <= 40:
+        lines = lines[1:]
+    if len(lines) > 1 and len(lines[-1].split()) <= 3 and not lines[-1].endswith((".", "?", "!")):
+        lines = lines[:-1]
+    return tuple(lines)
+
+
+def preview_of(email: Email, attachment: Attachment, close_url: str) -> Preview:
+    """How the attachment previews, by its file type. A document shows the text it came with
+    (the message's paragraphs under the document's title): no file content exists."""
+    extension = attachment.name.rsplit(".", 1)[-1].lower() if "." in attachment.name else ""
+    title = document_title(attachment.name)
+    if extension in _PICTURES:
+        return Preview(attachment, "picture", _PICTURES[extension], title, (), close_url)
+    if extension in _DOCUMENTS:
+        return Preview(attachment, "document", "", title, document_lines(email.body), close_url)
+    return Preview(attachment, "none", "", title, (), close_url)
+
+
+def attachment_of(email: Email, attachment_id: str | None) -> Attachment | None:
+    return next((a for a in email.attachments if a.id == attachment_id), None)
+
+
 def heading(query: MailboxQuery) -> str:
     title = FOLDER_TITLES[query.folder]
     if not query.q:
@@ -85,6 +168,7 @@ def heading(query: MailboxQuery) -> str:
 
 @per_state()
 def folder_links(mail: Mail, current: str | None, root: str) -> tuple[FolderLink, ...]:
+    """Every folder of the account, in the original's order."""
     badges = mailbox.folder_badges(mail)
     return tuple(
         FolderLink(
@@ -93,14 +177,29 @@ def folder_links(mail: Mail, current: str | None, root: str) -> tuple[FolderLink
             badges[folder],
             root + MailboxQuery(folder=folder).querystring(),
             folder == current,
+            folder in mail.favorites,
         )
         for folder in FOLDERS
     )
 
 
 @per_state()
+def favorite_links(mail: Mail, current: str | None, root: str) -> tuple[FolderLink, ...]:
+    """The Favorites section: the favourite folders in the order they were added."""
+    by_folder = {link.folder: link for link in folder_links(mail, current, root)}
+    return tuple(by_folder[f] for f in mail.favorites if f in by_folder)
+
+
+@per_state()
+def attachment_choices(mail: Mail) -> tuple[Attachment, ...]:
+    """What the compose form's attachment picker offers: documents of mail in the mailbox."""
+    return mailbox.attachment_shelf(mail)
+
+
+@per_state()
 def mailbox_screen(mail: Mail, query: MailboxQuery, root: str) -> Screen:
-    """The screen for `query`; `query.email` must be in the mailbox (the view checks)."""
+    """The screen for `query`; `query.email` must be in the mailbox and `query.preview` one of
+    its attachments (the view checks)."""
     folder = None if query.searches_everywhere else query.folder
     searched = [
         i
@@ -130,22 +229,31 @@ def mailbox_screen(mail: Mail, query: MailboxQuery, root: str) -> Screen:
         )
         for i in ids
     )
-    opened = None
+    opened = preview = None
     if query.email:
         email, email_state = mail.emails[query.email], mail.states[query.email]
+        message = query.but(preview=None)
         opened = OpenEmail(
             email=email,
             state=email_state,
             written_by_self=email_state.folder in ("sent", "drafts")
             or email.sender_email.casefold() == mail.self_email.casefold(),
             move_targets=tuple(f for f in FOLDERS if f != email_state.folder),
+            attachments=tuple(
+                AttachmentLink(a, root + message.but(preview=a.id).querystring())
+                for a in email.attachments
+            ),
         )
+        shown = attachment_of(email, query.preview)
+        if shown is not None:
+            preview = preview_of(email, shown, root + message.querystring())
     return Screen(
         query=query,
         heading=heading(query),
         chips=chips,
         rows=rows,
         opened=opened,
-        close_url=root + query.but(email=None).querystring(),
+        preview=preview,
+        close_url=root + query.but(email=None, preview=None).querystring(),
         back=query.querystring(),
     )

@@ -1,7 +1,7 @@
 """The mailbox URL: folder, quick filter, search and open message live in the query string.
 
-`/r/<token>/micromail/?folder=inbox&filter=unread&q=budget&scope=all&email=<id>` — every
-screen is a stable, shareable URL, canonical (defaults left out, `folder` always kept).
+`/r/<token>/micromail/?folder=inbox&filter=unread&q=budget&scope=all&email=<id>&preview=<att>`:
+every screen is a stable, shareable URL, canonical (defaults left out, `folder` always kept).
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ class MailboxQuery(QueryState):
     q: str = text()
     scope: str = choice(SCOPES, default="folder", requires="q")
     email: str | None = item()
+    preview: str | None = item()  # an attachment of the open message, shown over the page
 
     @property
     def searches_everywhere(self) -> bool:

@@ -29,6 +29,8 @@ FOLDER_TITLES: Mapping[str, str] = MappingProxyType(
     }
 )
 QUICK_FILTERS: tuple[str, ...] = ("all", "unread", "flagged", "mentions")
+# The original's Favorites section, top of the folder pane; the user may add and remove folders.
+DEFAULT_FAVORITES: tuple[str, ...] = ("inbox", "sent", "archive", "deleted")
 PREVIEW_LENGTH = 140
 
 # Used only when a catalog has no user marked isSelf (e.g. a minimal test catalog).
@@ -95,6 +97,7 @@ class Mail:
     )
     emails: Mapping[str, Email] = field(default_factory=lambda: EMPTY)  # in delivery order
     states: Mapping[str, EmailState] = field(default_factory=lambda: EMPTY)
+    favorites: tuple[str, ...] = DEFAULT_FAVORITES  # folders, in the order they were added
 
     @property
     def self_name(self) -> str:
@@ -137,6 +140,24 @@ def without_email(mail: Mail, email_id: str) -> Mail:
     emails = {k: v for k, v in mail.emails.items() if k != email_id}
     states = {k: v for k, v in mail.states.items() if k != email_id}
     return replace(mail, emails=MappingProxyType(emails), states=MappingProxyType(states))
+
+
+def with_favorite(mail: Mail, folder: str, *, on: bool) -> Mail:
+    """Add `folder` to the end of Favorites, or take it out; already so: `mail` itself."""
+    if (folder in mail.favorites) == on:
+        return mail
+    kept = tuple(f for f in mail.favorites if f != folder)
+    return replace(mail, favorites=(*kept, folder) if on else kept)
+
+
+def attachment_shelf(mail: Mail) -> tuple[Attachment, ...]:
+    """Every document attached to mail in the mailbox, newest mail first, one per id: what the
+    compose form offers to attach (mail not arrived yet shows nothing, purged mail neither)."""
+    shelf: dict[str, Attachment] = {}
+    for email_id in newest_first(mail, mail.emails):
+        for attachment in mail.emails[email_id].attachments:
+            shelf.setdefault(attachment.id, attachment)
+    return tuple(shelf.values())
 
 
 # --- counts (baselines and badges) ---------------------------------------------------------------

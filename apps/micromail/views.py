@@ -9,10 +9,10 @@ smoother. Opening a message marks it read: declared with the environment (`impli
 from __future__ import annotations
 
 from django.contrib import messages
-from django.http import Http404, HttpRequest, HttpResponse
+from django.http import Http404, HttpRequest, HttpResponse, JsonResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
-from apps.agent_site.pages import Page, run_page
+from apps.agent_site.pages import Page, one_of, run_page
 from apps.agent_site.rendering import is_fragment, redirect_to, render_screen
 from apps.micromail.actions import existing_email
 from apps.micromail.compose import (
@@ -22,7 +22,14 @@ from apps.micromail.compose import (
     prefill,
     split_addresses,
 )
-from apps.micromail.listing import compose_url, folder_links, mailbox_screen
+from apps.micromail.listing import (
+    attachment_choices,
+    attachment_of,
+    compose_url,
+    favorite_links,
+    folder_links,
+    mailbox_screen,
+)
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import FOLDER_TITLES, FOLDERS
 from events.registry import ActionRejected
@@ -31,6 +38,7 @@ EMAIL_ACTIONS = ("mark_read", "mark_unread", "flag", "unflag", "pin", "unpin", "
 # After these the message leaves the screen it was open on (marking unread closes it, or the
 # redirect would open it — and mark it read — again).
 CLOSES_THE_MESSAGE = ("mark_unread", "move", "delete")
+COMPOSE_INTENTS = ("send", "save_draft", "discard", "discard_confirmed", "edit")
 DONE = {
     "mark_read": "marked as read",
     "mark_unread": "marked as unread",
@@ -46,7 +54,13 @@ def root_url(page: Page) -> str:
     return page.root + "/"
 
 
-def base_context(page: Page, current_folder: str | None) -> dict:
+FAVORITE_ACTIONS = ("add_favorite", "remove_favorite")
+# Sent by the compose form's own saving (micromail/compose.js): answered with the draft's id.
+AUTOSAVE_HEADER = "X-MicroMail-Autosave"
+
+
+def base_context(page: Page, current_folder: str | None, back: str = "") -> dict:
+    """What the chrome shows on every page; `back` = the screen the folder stars return to."""
     mail = page.state
     return {
         "token": page.run.token,
@@ -54,6 +68,8 @@ def base_context(page: Page, current_folder: str | None) -> dict:
         "self_first_name": mail.self_name.split()[0] if mail.self_name.split() else mail.self_name,
         "self_email": mail.self_email,
         "folders": folder_links(mail, current_folder, root_url(page)),
+        "favorites": favorite_links(mail, current_folder, root_url(page)),
+        "folders_back": back,
         "current_folder": current_folder,
         "compose_url": compose_url(root_url(page), "new"),
         "all_folders": [(f, FOLDER_TITLES[f]) for f in FOLDERS],
@@ -65,7 +81,7 @@ def render_mailbox(
 ) -> HttpResponse:
     screen = mailbox_screen(page.state, query, root_url(page))
     context = {
-        **base_context(page, query.folder),
+        **base_context(page, query.folder, screen.back),
         "screen": screen,
         "query": query,
         "self_url": root_url(page) + query.querystring(),
@@ -75,7 +91,7 @@ def render_mailbox(
 
 def back_to(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpResponse:
     if query.email and not page.state.has(query.email):
-        query = query.but(email=None)  # the open message was purged meanwhile
+        query = query.but(email=None, preview=None)  # the open message was purged meanwhile
     if is_fragment(request):
         return render_mailbox(request, page, query)
     return redirect_to(page, query.querystring())
@@ -88,6 +104,10 @@ def mailbox(request: HttpRequest, page: Page) -> HttpResponse:
     query = MailboxQuery.from_params(request.GET)
     if query.email is not None and not page.state.has(query.email):
         raise Http404("no such email")  # unknown, purged, or not arrived yet: all alike
+    if query.preview is not None and (
+        query.email is None or attachment_of(page.state.emails[query.email], query.preview) is None
+    ):
+        raise Http404("no such attachment on the open email")
     return render_mailbox(request, page, query)
 
 
@@ -99,10 +119,7 @@ def _payload(action: str, email_id: str, request: HttpRequest) -> dict:
 
 
 def _check_action(action: str | None) -> str:
-    if action not in EMAIL_ACTIONS:
-        raise ActionRejected(
-            f"unknown email action {action!r}; allowed: {', '.join(EMAIL_ACTIONS)}", 404
-        )
+    one_of(action, EMAIL_ACTIONS, "email action")
     return action
 
 
@@ -118,7 +135,7 @@ def _confirmation(action: str, request: HttpRequest, count: int, permanent: bool
 def _returning(request: HttpRequest, action: str, acted_on: list[str]) -> MailboxQuery:
     back = MailboxQuery.from_querystring(request.POST.get("back", ""))
     if action in CLOSES_THE_MESSAGE and back.email in acted_on:
-        back = back.but(email=None)
+        back = back.but(email=None, preview=None)
     return back
 
 
@@ -154,6 +171,20 @@ def bulk_action(request: HttpRequest, page: Page) -> HttpResponse:
     return back_to(request, page, _returning(request, action, ids))
 
 
+@require_POST
+@run_page
+def favorite_action(request: HttpRequest, page: Page) -> HttpResponse:
+    """`POST favorites` (`action` = add_favorite|remove_favorite, `folder`), then back."""
+    action = request.POST.get("action")
+    one_of(action, FAVORITE_ACTIONS, "favorites action")
+    folder = request.POST.get("folder", "")
+    page.act(action, {"folder": folder})
+    title = FOLDER_TITLES[folder]
+    verb = "added to" if action == "add_favorite" else "removed from"
+    messages.success(request, f"{title} {verb} Favorites")
+    return back_to(request, page, MailboxQuery.from_querystring(request.POST.get("back", "")))
+
+
 def _typed(request: HttpRequest) -> dict:
     payload = {
         "to": split_addresses(request.POST.get("to", "")),
@@ -161,10 +192,20 @@ def _typed(request: HttpRequest) -> dict:
         "bcc": split_addresses(request.POST.get("bcc", "")),
         "subject": request.POST.get("subject", ""),
         "body": request.POST.get("body", ""),
+        "attachments": request.POST.getlist("attachments"),
     }
     if request.POST.get("draft_id"):
         payload["draft_id"] = request.POST["draft_id"]
     return payload
+
+
+def address_fields(composition: Composition) -> dict:
+    """The address fields as typed: one text per field."""
+    return {
+        "to": join_addresses(composition.to),
+        "cc": join_addresses(composition.cc),
+        "bcc": join_addresses(composition.bcc),
+    }
 
 
 def render_compose(
@@ -175,12 +216,12 @@ def render_compose(
     error: str = "",
     status: int = 200,
 ) -> HttpResponse:
+    chosen = set(composition.attachments)
     context = {
         **base_context(page, None),
+        **address_fields(composition),
         "composition": composition,
-        "to": join_addresses(composition.to),
-        "cc": join_addresses(composition.cc),
-        "bcc": join_addresses(composition.bcc),
+        "attachment_choices": [(a, a.id in chosen) for a in attachment_choices(page.state)],
         "error": error,
     }
     return render_screen(request, page, "micromail/compose.html", context, status=status)
@@ -192,7 +233,10 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
     """GET: the compose form (`mode` = new|reply|reply_all|forward|draft, `email` = about which).
 
     POST: `intent` = send|save_draft with to/cc/bcc (comma or semicolon separated), subject,
-    body and optional draft_id. A rejected message comes back with the typed text kept.
+    body, attachments (ids, repeated) and optional draft_id. A rejected message comes back with
+    the typed text kept. `intent=discard` asks for confirmation (a page holding what was typed);
+    from there `discard_confirmed` deletes the auto-saved draft, `edit` returns to the form.
+    The compose form's own saving sends save_draft with the AUTOSAVE_HEADER: answered in JSON.
     """
     if request.method == "GET":
         mode = request.GET.get("mode") or "new"
@@ -200,22 +244,27 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
             raise ActionRejected(f"mode={mode!r} is not valid; allowed: {', '.join(COMPOSE_MODES)}")
         return render_compose(request, page, prefill(page.state, mode, request.GET.get("email")))
     intent = request.POST.get("intent", "send")
-    if intent not in ("send", "save_draft"):
-        raise ActionRejected(f"intent={intent!r} is not valid; allowed: send, save_draft")
+    if intent not in COMPOSE_INTENTS:
+        raise ActionRejected(
+            f"intent={intent!r} is not valid; allowed: {', '.join(COMPOSE_INTENTS)}"
+        )
     payload = _typed(request)
+    typed = _as_typed(payload)
+    if intent == "edit":  # back from the discard confirmation: the form as it was
+        return render_compose(request, page, typed)
+    if intent == "discard":
+        context = {**base_context(page, None), **address_fields(typed), "typed": typed}
+        return render_screen(request, page, "micromail/discard.html", context)
+    if intent == "discard_confirmed":
+        return discard(request, page, typed)
     try:
         event = page.act(intent, payload)
     except ActionRejected as exc:
-        typed = Composition(
-            mode="draft" if payload.get("draft_id") else "new",
-            to=tuple(payload["to"]),
-            cc=tuple(payload["cc"]),
-            bcc=tuple(payload["bcc"]),
-            subject=payload["subject"],
-            body=payload["body"],
-            draft_id=payload.get("draft_id"),
-        )
+        if request.headers.get(AUTOSAVE_HEADER):
+            return JsonResponse({"error": str(exc)}, status=exc.status)
         return render_compose(request, page, typed, error=str(exc), status=exc.status)
+    if request.headers.get(AUTOSAVE_HEADER):
+        return JsonResponse({"draft_id": event.payload["id"]})
     if intent == "send":
         messages.success(request, "Message sent")
         return redirect_to(
@@ -223,3 +272,29 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
         )
     messages.success(request, "Draft saved")
     return redirect_to(page, MailboxQuery(folder="drafts").querystring())
+
+
+def _as_typed(payload: dict) -> Composition:
+    """What was typed in the compose form, to show it again."""
+    return Composition(
+        mode="draft" if payload.get("draft_id") else "new",
+        to=tuple(payload["to"]),
+        cc=tuple(payload["cc"]),
+        bcc=tuple(payload["bcc"]),
+        subject=payload["subject"],
+        body=payload["body"],
+        attachments=tuple(payload["attachments"]),
+        draft_id=payload.get("draft_id"),
+    )
+
+
+def discard(request: HttpRequest, page: Page, typed: Composition) -> HttpResponse:
+    """Confirmed: the auto-saved draft is deleted for good (a draft deleted from Drafts is
+    purged), and the user is back in the inbox."""
+    draft_id = typed.draft_id
+    if draft_id and page.state.has(draft_id) and page.state.folder_of(draft_id) == "drafts":
+        page.act("delete", {"email_id": draft_id})
+        messages.success(request, "Draft discarded")
+    else:
+        messages.success(request, "Message discarded")
+    return redirect_to(page, MailboxQuery(folder="inbox").querystring())

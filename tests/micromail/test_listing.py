@@ -147,3 +147,23 @@ def test_replying_twice_does_not_stack_prefixes():
 def test_editing_a_non_draft_is_rejected():
     with pytest.raises(ActionRejected, match="not a draft"):
         prefill(preloaded_mail(), "draft", "budget-review")
+
+
+def test_a_rows_accessible_name_says_state_sender_subject_time_and_marks_apart():
+    from apps.micromail.listing import row_label
+
+    mail = act(preloaded_mail(), "flag", {"email_id": "budget-review"})
+    email, email_state = mail.emails["budget-review"], mail.states["budget-review"]
+    assert row_label(email, email_state, "5 min ago") == (
+        "Unread. From Priya Nair. Subject: Q3 budget review. 5 min ago. Flagged. "
+        "High importance. Has attachments. Mentions you."
+    )
+
+
+def test_a_read_row_without_subject_says_so():
+    from apps.micromail.listing import row_label
+
+    mail = act(preloaded_mail(), "save_draft", {"body": "x"})
+    (draft_id,) = [i for i, s in mail.states.items() if s.folder == "drafts"]
+    label = row_label(mail.emails[draft_id], mail.states[draft_id], "just now")
+    assert label == "From Robin Vale. Subject: (no subject). Just now."

@@ -10,7 +10,7 @@ from django.utils.safestring import SafeString, mark_safe
 from apps.agent_site import simclock
 from apps.agent_site.fragments import render_fragment
 from apps.agent_site.templatetags.simtime import sim_ago, sim_clock
-from apps.micromail.listing import Row
+from apps.micromail.listing import Row, row_label
 from apps.micromail.state import FOLDER_TITLES
 
 register = template.Library()
@@ -22,6 +22,23 @@ register.filter("sim_clock", sim_clock)
 @register.filter
 def folder_title(folder: str) -> str:
     return FOLDER_TITLES.get(folder, folder.title())
+
+
+_FILE_KINDS = {
+    "pdf": "pdf",
+    **dict.fromkeys(("doc", "docx", "txt", "md", "rtf", "odt"), "doc"),
+    **dict.fromkeys(("xls", "xlsx", "csv", "numbers"), "sheet"),
+    **dict.fromkeys(("ppt", "pptx", "key"), "slides"),
+    **dict.fromkeys(("png", "jpg", "jpeg", "gif", "webp", "svg"), "image"),
+    **dict.fromkeys(("zip", "7z", "tar", "gz"), "archive"),
+}
+
+
+@register.filter
+def file_kind(name: str) -> str:
+    """The colour class of a file's icon, from its extension (Office's: red PDF, blue Word…)."""
+    extension = name.rsplit(".", 1)[-1].lower() if "." in name else ""
+    return _FILE_KINDS.get(extension, "file")
 
 
 @register.simple_tag(takes_context=True)
@@ -39,9 +56,7 @@ def message_rows(context: template.Context, rows: tuple[Row, ...]) -> SafeString
     for row in rows:
         arrived = row.email.arrived_at
         page.changes_at(simclock.ago_changes_at(arrived, page.now))
-        html.append(
-            render_fragment(
-                "micromail/_row.html", row=row, ago=simclock.ago(arrived, page.now), **inputs
-            )
-        )
+        ago = simclock.ago(arrived, page.now)
+        label = row_label(row.email, row.state, ago)
+        html.append(render_fragment("micromail/_row.html", row=row, ago=ago, label=label, **inputs))
     return mark_safe("".join(html))
