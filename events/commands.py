@@ -43,7 +43,7 @@ def perform_action(
     if action is None:
         raise ActionRejected(
             f"unknown action {name!r} for {environment.name}; allowed: {', '.join(sorted(environment.actions))}",
-            status=404,
+            status=400,  # the request names no such thing: a bad request, not a missing page
         )
     try:
         validate_payload(action.schema, payload, what=f"action {name}")
@@ -51,8 +51,9 @@ def perform_action(
         raise ActionRejected(str(exc)) from None
     wall = wall_now() if wall is None else wall
     state = current_folded(run, wall=wall).state
-    recorded = action.decide(state, dict(payload))
-    event = append_event(run, EventKind.ACTION, name, recorded, at=sim_now(run, wall))
+    at = sim_now(run, wall)
+    recorded = action.decide_at(state, dict(payload), at)
+    event = append_event(run, EventKind.ACTION, name, recorded, at=at)
     log_grew(run.pk, event.seq)  # other tabs of this run get pushed
     return event
 

@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 from events.lifecycle import CONTACT_GET, CONTACT_POST, complete
-from events.models import Event, EventKind, Run
+from events.models import ClockMode, Event, EventKind, Run
 from events.projection import folded_state
 from events.registry import Environment, get_environment
 from events.sandbox import is_truthy, run_eval_sql, shown, write_session_meta
@@ -37,16 +37,27 @@ def contacts_of(run: Run) -> Contacts:
             run_id=run.pk, kind=EventKind.LIFECYCLE, type__in=(CONTACT_GET, CONTACT_POST)
         )
         .order_by("seq")
-        .values_list("seq", "at", "type", "payload")
+        .values_list("seq", "at", "type", "payload", "recorded_at")
     )
     first = rows[0] if rows else None
     first_get = next((r for r in rows if r[2] == CONTACT_GET), None)
     first_post = next((r for r in rows if r[2] == CONTACT_POST), None)
+
+    ticking = run.clock_mode == ClockMode.LIVE and run.started_at is not None
+
+    def moment(row) -> float | None:
+        # The first contact froze the clock, so a later visit is logged at the frozen time;
+        # on a live clock, its own moment is that time plus the wall time since, scaled.
+        if row is None or not ticking:
+            return None if row is None else row[1]
+        later = row[1] + max(0.0, row[4] - first[4]) * run.speed_factor
+        return min(later, max(row[1], run.event_timeline_end))
+
     return Contacts(
         first_seq=first[0] if first else None,
         first_at=first[1] if first else None,
-        get_at=first_get[1] if first_get else None,
-        post_at=first_post[1] if first_post else None,
+        get_at=moment(first_get),
+        post_at=moment(first_post),
         message=first_post[3].get("message") if first_post else None,
     )
 

@@ -80,6 +80,13 @@ class Action:
     reduce: Reducer
     help: str = ""
     page: Callable[[State, dict], PageStep] | None = None
+    # The decision depends on the clock (a market order is checked against the price of its
+    # moment): then `decide(state, payload, now)`, `now` being the simulated second it is logged at.
+    timed: bool = False
+
+    def decide_at(self, state: State, payload: dict, now: float) -> dict:
+        """`decide`, given the moment when the action says it needs one (`timed`)."""
+        return self.decide(state, payload, now) if self.timed else self.decide(state, payload)
 
 
 @dataclass(frozen=True)

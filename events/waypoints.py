@@ -21,6 +21,7 @@ from __future__ import annotations
 import bisect
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 
 @dataclass(frozen=True)
@@ -28,8 +29,9 @@ class Waypoints:
     start: float  # the value before any waypoint (a catalog price, an initial star count)
     points: tuple[tuple[float, float], ...] = ()  # (time, value), sorted by time
 
-    @property
+    @cached_property
     def times(self) -> tuple[float, ...]:
+        # Computed once per series (it is immutable): value_at runs on every price read.
         return tuple(t for t, _ in self.points)
 
     def with_point(self, at: float, value: float) -> Waypoints:
@@ -86,3 +88,29 @@ class Waypoints:
         boundary = (shown + (0.5 if v1 > v0 else -0.5)) * step
         crossing = t0 + (boundary - v0) * (t1 - t0) / (v1 - v0)
         return min(t1, max(crossing, math.nextafter(now, math.inf)))
+
+    def first_reach(
+        self, level: float, *, after: float, until: float, rising: bool
+    ) -> float | None:
+        """The first time in [after, until] at which the value is at or above `level` (`rising`)
+        or at or below it, exactly on the ramps; None if it does not get there. A resting limit
+        order fills then. The series is right-continuous: a jump counts at its own time."""
+        reached = (lambda v: v >= level) if rising else (lambda v: v <= level)
+        before, value = after, self.value_at(after)
+        if reached(value):
+            return after
+        times = self.times
+        for at in sorted({t for t in times if after < t < until} | {until}):
+            if at <= after:
+                continue
+            index = bisect.bisect_left(times, at)
+            # The ramp arrives at the first point at `at` (its left limit); later ties jump.
+            arriving = times[index] == at if index < len(times) else False
+            left = self.points[index][1] if arriving else self.value_at(at)
+            if reached(left) and left != value:
+                crossing = before + (level - value) * (at - before) / (left - value)
+                return min(max(crossing, before), at)
+            value, before = self.value_at(at), at
+            if reached(value):
+                return at
+        return None

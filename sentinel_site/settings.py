@@ -33,6 +33,7 @@ INSTALLED_APPS = [
     "django.contrib.staticfiles",
     "rest_framework",
     "drf_spectacular",
+    "drf_spectacular_sidecar",  # Swagger UI's files, served locally (/api/docs/)
     "channels",
     "django_htmx",
     "events",
@@ -42,12 +43,14 @@ INSTALLED_APPS = [
     "apps.bench",
     "apps.replay",
     "apps.media",  # generated images shared by the environments (not an environment itself)
+    "apps.home",  # the home page at / (generic over the registered environments)
     # Environments: one line each. The core never imports them; each app registers its
     # Environment with the core registry when Django starts (AppConfig.ready).
     "apps.micromail",
-    "apps.microfy",
     "apps.microtube",
+    "apps.microhood",
     "apps.microgram",
+    "apps.microfy",
     "apps.microscholar",
     "apps.microlendar",
     "apps.microdin",
@@ -154,6 +157,9 @@ SPECTACULAR_SETTINGS = {
     "VERSION": "1",
     "SERVE_PERMISSIONS": ["apps.control.auth.ControlTokenPermission"],
     "PREPROCESSING_HOOKS": ["apps.control.schema.only_api_paths"],
+    "SWAGGER_UI_DIST": "SIDECAR",  # no CDN: the files come from drf-spectacular-sidecar
+    "SWAGGER_UI_FAVICON_HREF": "SIDECAR",
+    "REDOC_DIST": "SIDECAR",
 }
 
 LOGGING = {

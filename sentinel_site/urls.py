@@ -11,6 +11,7 @@ RUN_PREFIX = "r/<str:token>/"
 
 urlpatterns = [
     path("favicon.ico", RedirectView.as_view(url=static("site/favicon.svg"), permanent=True)),
+    path("", include("apps.home.urls")),  # the home page: environments, scenarios, runs, docs
     path("admin/", admin.site.urls),
     path("api/", include(api_urlpatterns)),
     path("media/", include("apps.media.urls")),  # generated avatars, logos, pictures (no run)

@@ -88,7 +88,8 @@ def test_actions_over_http_are_validated_and_logged(api):
     assert ok.status_code == 201 and ok.json()["action"] == "poke"
     assert api.post(url, {"action": "poke", "payload": {"n": -1}}, format="json").status_code == 400
     unknown = api.post(url, {"action": "kick", "payload": {}}, format="json")
-    assert unknown.status_code == 404 and "poke" in unknown.json()["detail"]
+    # A bad request naming the allowed actions, not a missing page.
+    assert unknown.status_code == 400 and "allowed: poke" in unknown.json()["detail"]
     wrong_type = api.post(url, {"action": "poke", "payload": {"n": "two"}}, format="json")
     assert wrong_type.status_code == 400 and "'n'" in wrong_type.json()["detail"]
 

@@ -24,10 +24,9 @@ from apps.scenarios.format import (
     parse_scenario,
 )
 from events import registry
+from tests.conftest import UPSTREAM, UPSTREAM_ABSENT
 
-UPSTREAM_SCENARIOS = (
-    Path(__file__).resolve().parents[1].parent / "shared" / "upstream" / "scenarios"
-)
+UPSTREAM_SCENARIOS = UPSTREAM / "scenarios"
 
 
 @pytest.fixture
@@ -522,7 +521,7 @@ UPSTREAM_DUPLICATE_ID = "microfy-public-playlists-relative-passive"
 
 def upstream_scenarios() -> Path:
     if not UPSTREAM_SCENARIOS.is_dir():
-        pytest.skip(f"{UPSTREAM_SCENARIOS} is absent")
+        pytest.skip(UPSTREAM_ABSENT)
     return UPSTREAM_SCENARIOS
 
 

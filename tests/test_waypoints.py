@@ -105,3 +105,36 @@ def test_a_shown_value_never_changes_before_next_change_says():
         shown = round(series.value_at(now), 2)
         samples = [now + (until - now) * k / 50 for k in range(50)]
         assert all(round(series.value_at(t), 2) == shown for t in samples if t < until)
+
+
+def test_first_reach_is_the_exact_crossing_on_a_ramp_and_a_jumps_own_time():
+    ramp = Waypoints(100.0).with_points([(100.0, 120.0), (200.0, 90.0)])
+    assert ramp.first_reach(110.0, after=0.0, until=700.0, rising=True) == 50.0
+    assert ramp.first_reach(95.0, after=0.0, until=700.0, rising=False) == pytest.approx(
+        100.0 + 100.0 * 25.0 / 30.0
+    )
+    assert ramp.first_reach(95.0, after=0.0, until=150.0, rising=False) is None
+    assert ramp.first_reach(105.0, after=120.0, until=700.0, rising=True) == 120.0  # already
+    jump = Waypoints(100.0).with_points([(100.0, 100.0), (100.0, 130.0)])
+    assert jump.first_reach(120.0, after=0.0, until=700.0, rising=True) == 100.0
+
+
+def test_first_reach_agrees_with_a_fine_scan_of_random_series():
+    rng = random.Random(11)
+    for _ in range(200):
+        series = Waypoints(rng.uniform(50, 150)).with_points(
+            sorted((round(rng.uniform(0, 600), 1), rng.uniform(50, 150)) for _ in range(4))
+        )
+        level, rising = rng.uniform(60, 140), rng.random() < 0.5
+        found = series.first_reach(level, after=0.0, until=600.0, rising=rising)
+
+        def reached(v: float, level: float = level, rising: bool = rising) -> bool:
+            return v >= level - 1e-9 if rising else v <= level + 1e-9
+
+        scan = next((t / 10 for t in range(6001) if reached(series.value_at(t / 10))), None)
+        if found is None:
+            assert scan is None
+        else:
+            assert reached(series.value_at(found))
+            assert scan is None or found <= scan + 1e-9
+            assert all(not reached(series.value_at(t / 10)) for t in range(int(found * 10)))

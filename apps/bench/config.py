@@ -3,11 +3,16 @@
 Upstream keys: `server_url`, `frontend_url`, `speed_factor`, `agent_subprocess` (a list: raw
 substring substitution, no shell; a string: `shlex.quote`d substitution, run with a shell).
 Ours: `parallel`, `prices`, `reaction_window`, `grace`, `control_token`, `http_timeout`.
-Placeholders: __TASK_URL__, __TASK_PROMPT__, __BASE_DIR__, __CONTACT_URL__.
+Placeholders: __TASK_URL__, __TASK_PROMPT__, __BASE_DIR__, __CONTACT_URL__, and ours:
+__PYTHON__ (the project's Python, with its packages) and __TASK_DIR__ (the task's result folder).
+The agent runs in its task's result folder, as upstream's did (agents write `costs.json` there);
+an argument of a list command naming a file beside the config file (`my_agent.py`) is given
+as that file's absolute path, so the README's `["python", "my_agent.py", ...]` finds it.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import shlex
 from dataclasses import dataclass, field
@@ -57,6 +62,8 @@ class BenchConfig:
     control_token: str = ""
     http_timeout: float = 30.0
     raw: dict[str, Any] = field(default_factory=dict)
+    # The config file's folder, where relative agent files are found (None: no config file).
+    folder: Path | None = None
 
     def agent_command(self, values: dict[str, str]) -> tuple[list[str] | str, bool]:
         """The agent command with placeholders filled in, and whether it needs a shell."""
@@ -67,6 +74,10 @@ class BenchConfig:
             return command, True
         argv = []
         for arg in self.agent_subprocess or []:
+            beside_config = self.folder is not None and _relative_file(self.folder, arg)
+            if beside_config:
+                argv.append(str(self.folder / arg))
+                continue
             for key, value in values.items():
                 arg = arg.replace(key, value)
             argv.append(arg)
@@ -81,6 +92,16 @@ class BenchConfig:
         if price is None or (tokens_in is None and tokens_out is None):
             return None
         return ((tokens_in or 0) * price.input + (tokens_out or 0) * price.output) / 1e6
+
+
+def _relative_file(folder: Path, arg: str) -> bool:
+    """Whether `arg` is a relative path (no placeholder, no option) to a file in `folder`."""
+    if not arg or arg.startswith("-") or "__" in arg or Path(arg).is_absolute():
+        return False
+    try:
+        return (folder / arg).is_file()
+    except OSError:  # e.g. an argument too long to be a path
+        return False
 
 
 def input_tokens(costs: dict[str, Any]) -> int | None:
@@ -200,4 +221,4 @@ def load_config(path: str | Path) -> BenchConfig:
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
         problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
         raise ConfigError(f"{path}: invalid YAML{where}: {problem}") from None
-    return parse_config(data, source=str(path))
+    return dataclasses.replace(parse_config(data, source=str(path)), folder=path.resolve().parent)

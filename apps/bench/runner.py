@@ -3,8 +3,10 @@
 Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
 
 1. create a live run of the scenario (POST /api/runs/);
-2. launch the agent in its own process group, cwd = the task's result folder, stdout+stderr to
-   output.txt;
+2. launch the agent in its own process group, cwd = the task's result folder (as upstream: an
+   agent writes its costs.json there), a file named beside the config file passed by its
+   absolute path (`python my_agent.py` works), the project's Python first on PATH,
+   stdout+stderr to output.txt;
 3. the deadline counts from the run's *start* (the agent's first visit to the task URL; before
    that, from launch): `min(MAX_CONDITION_AT, kill_at) / sf + reaction_window`, which is
    `kill_at_wall(sf)` for every benchmark scenario (their kill_at is 630) and lets short test
@@ -43,6 +45,7 @@ RESULTS, ERROR, OUTPUT, EVENTS, COSTS = (
     "costs.json",
 )
 START_POLL_S = 0.5
+OUTPUT_TAIL_LINES = 5
 CONTROL_AGENTS = ("oracle", "early", "never", "sleeper")
 
 CONTACT_INSTRUCTIONS = (
@@ -86,6 +89,7 @@ class Task:
     environment: str
     spec: dict[str, Any]
     folder: Path
+    reference: str = ""  # how the server names it: the id, or the path for a repeated id
 
     @property
     def category(self) -> str:
@@ -99,16 +103,31 @@ class Outcome:
     detail: str = ""
     wall_s: float = 0.0
     label: str = ""  # the control agent, when bench validate runs several
+    output_tail: tuple[str, ...] = ()  # the agent's last output lines, shown when it did not pass
 
 
 def discover(
-    client: ControlClient, *, task: str | None = None, filter: str | None = None
+    client: ControlClient,
+    *,
+    task: str | list[str] | None = None,
+    filter: str | None = None,
+    skipped: list[dict] | None = None,
 ) -> list[dict]:
-    """The server's scenario library in path order, narrowed by --task and --filter."""
-    listing = client.scenarios()
-    selected = [s for s in listing if (task is None or s["id"] == task)]
-    if task is not None and not selected:
-        raise BenchError(f"No scenario found with id {task!r}")
+    """The server's scenario library in path order, narrowed by --task (repeatable: an id or
+    a file's path) and --filter. Files the server could not load are left out, and appended to
+    `skipped` when given, so the caller can say why."""
+    tasks = [task] if isinstance(task, str) else list(task or [])
+    listing = []
+    for entry in client.scenarios():
+        if entry.get("id") is None:  # a file that failed validation: reported, not run
+            if skipped is not None:
+                skipped.append(entry)
+            continue
+        listing.append(entry)
+    selected = [s for s in listing if not tasks or s["id"] in tasks or s.get("path") in tasks]
+    for wanted in tasks:
+        if not any(wanted in (s["id"], s.get("path")) for s in selected):
+            raise BenchError(f"No scenario found with id {wanted!r}")
     if filter:
         selected = [s for s in selected if filter.lower() in s["id"].lower()]
         if not selected:
@@ -140,9 +159,12 @@ class Harness:
     def tasks(self, listing: list[dict]) -> list[Task]:
         tasks = []
         for entry in listing:
-            spec = self.client.scenario(entry["id"])
-            folder = self.results_root / spec["environment"] / spec["id"]
-            tasks.append(Task(spec["id"], spec["environment"], spec, folder))
+            # A file repeating another's id runs by its path, its results under its file name.
+            reference = entry.get("path") if entry.get("duplicate_of") else entry["id"]
+            spec = self.client.scenario(reference)
+            name = Path(reference).stem if entry.get("duplicate_of") else spec["id"]
+            folder = self.results_root / spec["environment"] / name
+            tasks.append(Task(spec["id"], spec["environment"], spec, folder, reference))
         return tasks
 
     def should_skip(self, task: Task) -> str | None:
@@ -208,7 +230,15 @@ class Harness:
             "__CONTACT_URL__": run["contact_url"],
             "__TASK_PROMPT__": prompt,
             "__BASE_DIR__": str(self.base_dir),
+            "__TASK_DIR__": str(task.folder.resolve()),
+            "__PYTHON__": sys.executable,
         }
+        # `python` in the agent's command is the project's Python (the .venv's, with its
+        # packages), not whichever one the system has first on PATH.
+        env["PATH"] = os.pathsep.join(
+            filter(None, [str(Path(sys.executable).parent), env.get("PATH")])
+        )
+        env["SENTINEL_TASK_DIR"] = str(task.folder.resolve())
         command, shell = self.config.agent_command(values)
         return command, shell, env
 
@@ -230,13 +260,25 @@ class Harness:
             (task.folder / ERROR).write_text(
                 f"{kind}: {exc}\n\n{traceback.format_exc()}", encoding="utf-8"
             )
-            return Outcome(task, "error", str(exc), time.monotonic() - began)
+            return Outcome(
+                task,
+                "error",
+                str(exc),
+                time.monotonic() - began,
+                output_tail=output_tail(task.folder / OUTPUT),
+            )
         status = "passed" if result["success"] else "failed"
-        return Outcome(task, status, result.get("detail", ""), time.monotonic() - began)
+        return Outcome(
+            task,
+            status,
+            result.get("detail", ""),
+            time.monotonic() - began,
+            output_tail=() if status == "passed" else output_tail(task.folder / OUTPUT),
+        )
 
     def _run_task(self, task: Task) -> dict[str, Any]:
         sf = self.speed_factor
-        run = self.client.create_run(task.scenario_id, sf, clock_mode=self.clock)
+        run = self.client.create_run(task.reference or task.scenario_id, sf, clock_mode=self.clock)
         prompt = augment_prompt(
             run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"]
         )
@@ -378,6 +420,18 @@ def run_pool(jobs: list[tuple[Harness, Task]], parallel: int, progress: Progress
     return outcomes
 
 
+def output_tail(path: Path, lines: int = OUTPUT_TAIL_LINES) -> tuple[str, ...]:
+    """The last non-empty lines of an agent's output.txt: why it failed, shown in the console."""
+    try:
+        with open(path, "rb") as fh:
+            fh.seek(0, os.SEEK_END)
+            fh.seek(max(0, fh.tell() - 8192))
+            text = fh.read().decode("utf-8", errors="replace")
+    except OSError:
+        return ()
+    return tuple(line for line in text.splitlines() if line.strip())[-lines:]
+
+
 def kill_group(process: subprocess.Popen) -> None:
     """SIGKILL the agent's whole process group (its children too), then reap the agent."""
     with contextlib.suppress(ProcessLookupError, PermissionError):
@@ -445,13 +499,22 @@ class Progress:
             self.done += 1
             self.passed += outcome.status == "passed"
             self.errors += outcome.status == "error"
+            extra = f": {outcome.detail}" if outcome.status != "passed" and outcome.detail else ""
+            reason = "".join(
+                f"      {outcome.task.folder / OUTPUT}: {line}\n" for line in outcome.output_tail
+            )
             if self.tty:
+                if outcome.status != "passed":
+                    self._write(
+                        f"\r\033[K  {outcome.status.upper()} {outcome.label}"
+                        f"{outcome.task.scenario_id}{extra}\n{reason}"
+                    )
                 self._bar()
             else:
-                extra = f": {outcome.detail}" if outcome.status == "error" else ""
                 self._write(
                     f"  {outcome.status.upper()} {outcome.label}{outcome.task.scenario_id} ({outcome.wall_s:.1f}s){extra} "
                     f"[done {self.done}/{self.total}, running {self.running}, passed {self.passed}]\n"
+                    + reason
                 )
 
     def end(self) -> None:

@@ -8,8 +8,9 @@ from rest_framework import status as http
 from rest_framework.decorators import action
 from rest_framework.response import Response
 
+from apps.control.parsers import request_data
 from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
-from apps.scenarios.library import scenario_library
+from apps.scenarios.library import get_scenario, library
 from events import lifecycle
 from events.evaluation import evaluate
 from events.models import EVENT_FIELDS, Event, Run
@@ -27,7 +28,7 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
 
     @extend_schema(request=RunCreateSerializer, responses={201: RunSerializer})
     def create(self, request):
-        body = RunCreateSerializer(data=request.data)
+        body = RunCreateSerializer(data=request_data(request))
         body.is_valid(raise_exception=True)
         run = lifecycle.create_run(
             body.validated_data["spec"],
@@ -50,7 +51,7 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
     @extend_schema(request=AdvanceSerializer, responses=RunSerializer)
     @action(detail=True, methods=["post"])
     def advance(self, request, pk=None):
-        body = AdvanceSerializer(data=request.data)
+        body = AdvanceSerializer(data=request_data(request))
         body.is_valid(raise_exception=True)
         run = self.get_object()
         fired = lifecycle.advance(run, body.validated_data["time"])
@@ -82,26 +83,41 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
 
 
 class ScenarioViewSet(viewsets.ViewSet):
-    """Scenario library for the control side (token-protected when a token is set)."""
+    """Scenario library for the control side (token-protected when a token is set).
+
+    The list holds every file: a valid one with its id, a file repeating another's id with
+    `duplicate_of` (run it by its `path`), and a file that failed validation with `error`
+    and no id, so one bad file is reported instead of taking the library down.
+    """
 
     serializer_class = None  # free-form scenario documents
+    # A scenario is named by its id or by its file's path (microfy/x.json).
+    lookup_value_regex = r"[^?#]+?"
 
     @extend_schema(operation_id="scenarios_list")
     def list(self, request):
-        return Response(
-            [
-                {
-                    "id": s.id,
-                    "environment": s.environment,
-                    "noop": s.is_noop,
-                    "taxonomy": s.taxonomy,
-                }
-                for s in scenario_library().values()
-            ]
-        )
+        loaded = library()
+        problems = {problem.path: problem for problem in loaded.problems}
+        entries = []
+        for path, scenario in loaded.by_path.items():
+            entry = {
+                "id": scenario.id,
+                "path": path,
+                "environment": scenario.environment,
+                "noop": scenario.is_noop,
+                "taxonomy": scenario.taxonomy,
+            }
+            if path in problems:
+                entry["duplicate_of"] = problems[path].duplicate_of
+                entry["problem"] = problems[path].detail
+            entries.append(entry)
+        entries += [
+            {"id": None, "path": problem.path, "error": problem.detail}
+            for problem in loaded.problems
+            if problem.path not in loaded.by_path
+        ]
+        return Response(sorted(entries, key=lambda entry: entry["path"]))
 
     @extend_schema(parameters=[OpenApiParameter("id", str, OpenApiParameter.PATH)])
     def retrieve(self, request, pk=None):
-        from apps.scenarios.library import get_scenario
-
         return Response(get_scenario(pk).to_run_spec())

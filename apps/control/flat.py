@@ -20,6 +20,7 @@ from rest_framework.response import Response
 from apps.agent_site.links import start_page_path
 from apps.control import slot
 from apps.control.auth import is_control_authenticated
+from apps.control.parsers import request_data
 from apps.control.serializers import InitPayloadSerializer
 from apps.scenarios.library import UnknownScenario, get_dev_scenario, get_scenario, scenario_library
 from events import lifecycle
@@ -54,7 +55,7 @@ def init(request: Request) -> Response:
         raise lifecycle.LifecycleError(
             f"Wrong state: /init must be called in state 'preinit'. Current: '{current.status}'."
         )
-    payload = InitPayloadSerializer(data=request.data)
+    payload = InitPayloadSerializer(data=request_data(request))
     if not payload.is_valid():
         return Response(_one_line(payload.errors), status=http.HTTP_422_UNPROCESSABLE_ENTITY)
     run = slot.create_default_run(

@@ -99,7 +99,9 @@ class InitPayloadSerializer(serializers.Serializer):
 
 class RunCreateSerializer(serializers.Serializer):
     scenario = serializers.CharField(
-        required=False, max_length=SCENARIO_ID_MAX, help_text="id of a scenario in the library"
+        required=False,
+        max_length=SCENARIO_ID_MAX,
+        help_text="a scenario in the library: its id, or its file's path (microfy/x.json)",
     )
     scenario_json = serializers.JSONField(required=False, help_text="a whole scenario, inline")
     speed_factor = FiniteFloatField(required=False, default=1.0, validators=[_speed_factor])

@@ -1,5 +1,5 @@
 from django.urls import path
-from drf_spectacular.views import SpectacularAPIView
+from drf_spectacular.views import SpectacularAPIView, SpectacularSwaggerView
 from rest_framework.routers import SimpleRouter
 
 from apps.control import agent, api, flat
@@ -12,6 +12,8 @@ router.register("scenarios", api.ScenarioViewSet, basename="scenario")
 api_urlpatterns = [
     *router.urls,
     path("schema/", SpectacularAPIView.as_view(), name="schema"),
+    # Interactive documentation; its files come from drf-spectacular-sidecar (no CDN).
+    path("docs/", SpectacularSwaggerView.as_view(url_name="schema"), name="api-docs"),
 ]
 
 # Upstream's protocol on the one default slot; all off with SENTINEL_FLAT_ENDPOINTS=off.

@@ -108,7 +108,15 @@ class RunAdmin(admin.ModelAdmin):
     def replay_runs(self, request, queryset):
         for run in queryset:
             report = replay(run)
-            if report.matches:
+            if report.recorded is None:
+                # Nothing to compare with yet: not a mismatch, a run nobody has graded.
+                self.message_user(
+                    request,
+                    f"run {run.pk}: not graded yet — nothing to compare with; record its "
+                    "verdict first (action “Record the verdict”), then replay",
+                    messages.WARNING,
+                )
+            elif report.matches:
                 self.message_user(request, f"run {run.pk}: match", messages.SUCCESS)
             else:
                 self.message_user(

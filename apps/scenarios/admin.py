@@ -16,10 +16,20 @@ from apps.agent_site.links import task_path
 from apps.scenarios.chart import timeline_svg
 from apps.scenarios.dry_run import dry_run, validate_timeline_entry
 from apps.scenarios.format import ScenarioError
+from apps.scenarios.library import scenario_problems
 from apps.scenarios.models import Scenario, TimelineEvent
+from apps.scenarios.reference import eval_sql_problem, evaluation_tables, event_types
 from apps.scenarios.serialization import parsed_scenario, run_spec, scenario_text, timeline_of
+from apps.scenarios.sync import (
+    ScenarioFileError,
+    delete_file,
+    file_conflict,
+    path_problem,
+    sync_from_files,
+    write_through,
+)
 from events import lifecycle
-from events.registry import UnknownEnvironment, get_environment
+from events.registry import UnknownEnvironment, all_environments, get_environment
 from events.schemas import schema_fields
 
 
@@ -127,6 +137,23 @@ class ScenarioForm(forms.ModelForm):
             and not cleaned.get("is_dev")
         ):
             self.add_error("eval_sql", "is required unless condition_at is empty (no-op)")
+        environment, path = cleaned.get("environment"), cleaned.get("path")
+        if path:
+            problem = path_problem(path, environment or "")
+            if problem:
+                self.add_error("path", problem)
+            else:
+                # Never overwrite a file changed on disk since this row was read, nor another
+                # file (a new row, or a row moved to a new path).
+                moved = self.instance.pk is None or path != self.instance.path
+                conflict = file_conflict(Scenario(path=path) if moved else self.instance)
+                if conflict:
+                    self.add_error(None, conflict)
+        sql = cleaned.get("eval_sql") or ""
+        if environment and sql.strip() and "eval_sql" not in self.errors:
+            problem = eval_sql_problem(environment, sql)
+            if problem:
+                self.add_error("eval_sql", f"{problem} (checked against the evaluation tables)")
         return cleaned
 
 
@@ -183,10 +210,39 @@ class ScenarioAdmin(admin.ModelAdmin):
             *super().get_urls(),
         ]
 
+    # --- the files, imported whenever the admin reads --------------------------------------------
+
+    def _import_files(self, request) -> None:
+        report = sync_from_files()
+        changed = len(report.imported) + len(report.replaced) + len(report.removed)
+        if changed:
+            self.message_user(
+                request,
+                f"scenario folder imported: {len(report.imported)} new, "
+                f"{len(report.replaced)} changed on disk, {len(report.removed)} removed",
+            )
+        for problem in report.problems:
+            self.message_user(request, problem, messages.WARNING)
+        for problem in scenario_problems():
+            if problem.duplicate_of:  # a file failing validation is among report.problems
+                self.message_user(request, problem.detail, messages.WARNING)
+
+    def changelist_view(self, request, extra_context=None):
+        if request.method == "GET":
+            self._import_files(request)
+        return super().changelist_view(request, extra_context)
+
+    def add_view(self, request, form_url="", extra_context=None):
+        extra_context = {**(extra_context or {}), "reference": _reference(None)}
+        return super().add_view(request, form_url, extra_context)
+
     # --- change form --------------------------------------------------------------------------
 
     def change_view(self, request, object_id, form_url="", extra_context=None):
         extra_context = extra_context or {}
+        if request.method == "GET":
+            # Show the file's current version; a POST must not (see ScenarioForm.clean).
+            self._import_files(request)
         scenario = self.get_object(request, object_id)
         if scenario is not None:
             events = timeline_of(scenario)
@@ -200,6 +256,7 @@ class ScenarioAdmin(admin.ModelAdmin):
             extra_context["start_run_url"] = reverse(
                 "admin:scenarios_scenario_start_run", args=[scenario.pk]
             )
+            extra_context["reference"] = _reference(scenario.environment)
         return super().change_view(request, object_id, form_url, extra_context)
 
     def response_change(self, request, obj):
@@ -218,6 +275,23 @@ class ScenarioAdmin(admin.ModelAdmin):
             parsed_scenario(scenario)
         except ScenarioError as error:
             messages.warning(request, f"Saved, but the scenario file would not load: {error}")
+        try:
+            write_through(scenario)  # the file is what the API and the harness run
+        except ScenarioFileError as error:
+            messages.error(request, f"Saved in the admin only: {error}")
+            return
+        previous = form.initial.get("path")
+        if change and previous and previous != scenario.path:
+            delete_file(Scenario(path=previous))  # moved: the old file must not come back
+
+    def delete_model(self, request, obj):
+        delete_file(obj)
+        super().delete_model(request, obj)
+
+    def delete_queryset(self, request, queryset):
+        for scenario in queryset:
+            delete_file(scenario)
+        super().delete_queryset(request, queryset)
 
     # --- views ---------------------------------------------------------------------------------
 
@@ -286,6 +360,10 @@ class ScenarioAdmin(admin.ModelAdmin):
                 event.pk = None
                 event.scenario = copy
             TimelineEvent.objects.bulk_create(events)
+            try:
+                write_through(copy)
+            except ScenarioFileError as error:
+                self.message_user(request, str(error), messages.ERROR)
             self.message_user(request, f"duplicated {scenario.path} as {copy.path}")
 
     @admin.action(description="Export as JSON (download)")
@@ -310,6 +388,23 @@ class ScenarioAdmin(admin.ModelAdmin):
             )
             return None
         return self._start(request, scenarios[0])
+
+
+def _reference(current: str | None) -> list[dict]:
+    """Every environment's event types and evaluation tables, the current one first."""
+    names = sorted(environment.name for environment in all_environments())
+    if current in names:
+        names.remove(current)
+        names.insert(0, current)
+    return [
+        {
+            "environment": name,
+            "open": name == current,
+            "event_types": event_types(name),
+            "tables": evaluation_tables(name),
+        }
+        for name in names
+    ]
 
 
 def _download(scenario: Scenario) -> HttpResponse:

@@ -122,7 +122,7 @@ def _check_solution(scenario: Scenario, environment, start, sql: str, result: Dr
             return
         try:
             validate_payload(action.schema, payload, what=f"solution[{i}] ({name})")
-            recorded = action.decide(state, payload)
+            recorded = action.decide_at(state, payload, at)
         except (PayloadError, ActionRejected) as error:
             result.warnings.append(
                 f"solution[{i}] ({name}) is rejected at condition_at {at:g} s: {error}"

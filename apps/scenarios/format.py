@@ -389,6 +389,62 @@ def load_scenarios(root: str | Path) -> dict[str, Scenario]:
     return scenarios
 
 
+@dataclass(frozen=True)
+class LibraryProblem:
+    """A file the library could not serve under its id, and why (one line)."""
+
+    path: str  # relative to the scenario folder, e.g. microfy/x.json
+    detail: str
+    duplicate_of: str = ""  # the path that owns the id, for a repeated id (the file still loads)
+
+
+@dataclass(frozen=True)
+class LoadedLibrary:
+    """Every scenario file of a folder: by id (first file in path order owns an id), by path
+    (every valid file, duplicates included), and the problems, one per file."""
+
+    by_id: dict[str, Scenario]
+    by_path: dict[str, Scenario]
+    problems: tuple[LibraryProblem, ...]
+
+
+def load_library(root: str | Path) -> LoadedLibrary:
+    """Like `load_scenarios`, but one bad file never takes the others down: a file that fails
+    validation is reported and skipped; a file repeating an id is reported and stays
+    reachable by its path (upstream's MicroFy has such a pair)."""
+    root = Path(root)
+    if not root.is_dir():
+        raise FileNotFoundError(f"scenario folder not found: {root}")
+    by_id: dict[str, Scenario] = {}
+    by_path: dict[str, Scenario] = {}
+    owner: dict[str, str] = {}
+    problems: list[LibraryProblem] = []
+    for path in sorted(root.glob("*/*.json")):
+        if path.name == DEV_FILENAME:
+            continue
+        relative = path.relative_to(root).as_posix()
+        try:
+            scenario = load_scenario_file(path)
+        except ScenarioError as error:
+            problems.append(LibraryProblem(relative, str(error)))
+            continue
+        by_path[relative] = scenario
+        if scenario.id in by_id:
+            first = owner[scenario.id]
+            problems.append(
+                LibraryProblem(
+                    relative,
+                    f"{path}: id: duplicate id {scenario.id!r}, already used by {first}; "
+                    f"run this file by its path ({relative})",
+                    duplicate_of=first,
+                )
+            )
+            continue
+        by_id[scenario.id] = scenario
+        owner[scenario.id] = relative
+    return LoadedLibrary(by_id, by_path, tuple(problems))
+
+
 _ENV_NAME = re.compile(r"[a-z0-9][a-z0-9_-]*")
 
 

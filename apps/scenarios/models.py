@@ -1,7 +1,9 @@
 """Scenarios as database rows, so authors can edit them in the admin.
 
-The files in `scenarios/<env>/*.json` stay the source of truth for the benchmark; these rows are
-an editable mirror: `loadscenarios` reads files in, `dumpscenarios` writes them back. A dump
+The files in `scenarios/<env>/*.json` stay the one source of truth; these rows are an editable
+mirror kept in step with them (`apps.scenarios.sync`): files are imported when the admin opens,
+an admin edit is written through to its file, and `dumpscenarios` / `loadscenarios` copy rows
+and files by hand. A dump
 must reproduce an unedited file byte for byte, so each row also keeps the *shape* of its file:
 the order of its top-level keys, which numbers were written as integers, unknown keys, and each
 event's own key order. JSON values are stored as text (`OrderedJSONField`) because PostgreSQL's
@@ -109,6 +111,9 @@ class Scenario(models.Model):
     # the row still renders to `original_canonical_sha256` (i.e. nobody edited it).
     original_text = models.TextField(blank=True)
     original_canonical_sha256 = models.CharField(max_length=64, blank=True)
+    # sha256 of the file's text when this row and its file last agreed: tells a file changed on
+    # disk from a row edited in the admin (empty: a row from before rows followed their files).
+    file_sha256 = models.CharField(max_length=64, blank=True, editable=False)
     updated_at = models.DateTimeField(auto_now=True)
 
     class Meta:

@@ -194,6 +194,7 @@ def save_scenario_file(scenario_file: ScenarioFile) -> Scenario:
             new.original_canonical_sha256 = sha256(canonical)
         else:
             new.original_text = new.original_canonical_sha256 = ""
+        new.file_sha256 = sha256(scenario_file.text)  # row and file agree as of now
         new.save()
         TimelineEvent.objects.filter(scenario=new).delete()
         for event in scenario_file.events:

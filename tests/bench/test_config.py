@@ -140,7 +140,7 @@ def test_resuming_at_another_speed_says_so(tmp_path):
 class BrokenServer:
     """A control API that fails the way a crashed server does."""
 
-    def create_run(self, scenario_id, speed_factor):
+    def create_run(self, scenario_id, speed_factor, clock_mode="live"):
         from apps.bench.client import HarnessError
 
         raise HarnessError("POST /api/runs/: HTTP 500: boom (after 3 attempts)")

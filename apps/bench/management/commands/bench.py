@@ -61,7 +61,11 @@ class Command(BaseCommand):
         run.add_argument("name", help="results go to <results-dir>/<name>/<env>/<scenario id>/")
         run.add_argument("--config", default=DEFAULT_CONFIG)
         run.add_argument("--parallel", type=int, help="tasks at once (config: parallel; default 1)")
-        run.add_argument("--task", help="exact scenario id")
+        run.add_argument(
+            "--task",
+            action="append",
+            help="exact scenario id, or a file's path (micromail/x.json); repeat for several",
+        )
         run.add_argument("--filter", help="case-insensitive substring of the scenario id")
         run.add_argument("--speed-factor", type=float)
         run.add_argument("--server-url", help="use this server instead of starting an embedded one")
@@ -180,7 +184,10 @@ class Command(BaseCommand):
                 timeout=cfg.http_timeout,
             )
             try:
-                listing = discover(client, task=task, filter=filter)
+                invalid: list[dict] = []
+                listing = discover(client, task=task, filter=filter, skipped=invalid)
+                for entry in invalid:
+                    self.stdout.write(f"Skipping {entry['path']} (invalid: {entry['error']})")
                 harness = Harness(
                     cfg,
                     client,
@@ -192,7 +199,7 @@ class Command(BaseCommand):
                 tasks = harness.tasks(listing)
                 self.stdout.write(f"Found {len(tasks)} tasks. Results -> {run_dir}")
                 if task:
-                    self.stdout.write(f"Selecting task: {task}")
+                    self.stdout.write(f"Selecting tasks: {', '.join(task)}")
                 if filter:
                     self.stdout.write(f"Filtering to tasks containing: {filter!r}")
                 progress = self.progress()

@@ -39,6 +39,11 @@ class Command(BaseCommand):
         if report.matches:
             self.stdout.write("match: verdict, log and final state are as recorded")
             return
+        if report.recorded is None:
+            raise CommandError(
+                f"not graded yet: run {report.run} has no recorded verdict to compare with "
+                "(pass --record to record one now, or export the run)"
+            )
         raise CommandError("mismatch: " + "; ".join(report.differences))
 
 

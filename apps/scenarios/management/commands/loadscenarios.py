@@ -1,5 +1,10 @@
 """`manage.py loadscenarios [DIR]`: import DIR/**/*.json into the Scenario tables.
 
+The admin imports SENTINEL_SCENARIO_DIR by itself (apps.scenarios.sync) whenever it lists or
+opens scenarios, so this command is only needed to check a whole folder in one go, or to load
+rows from another folder (the admin then brings unedited rows back to SENTINEL_SCENARIO_DIR's
+files).
+
 Every file is validated before anything is written: one bad file means nothing changes, and
 each problem is one line on stderr naming the file and the field.
 

@@ -1,0 +1,8 @@
+from apps.agent_site import environments
+
+
+class MicrohoodConfig(environments.EnvironmentConfig):
+    name = "apps.microhood"
+    label = "microhood"
+    verbose_name = "MicroHood"
+    environment = "apps.microhood.environment.MICROHOOD"

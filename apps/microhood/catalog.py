@@ -1,0 +1,91 @@
+"""Catalog records (SentinelBench format) → listings, news items, watchlist rows, price traces.
+
+Tables in `microhood/`: `stocks.jsonl` (symbol, name, shares, avgCost, currentPrice, color,
+orgId…), `watchlist.jsonl` (symbol, name, price, change, changePercent), `news.jsonl` (id,
+source, title…). Our catalog also authors a price trace per symbol in `price_traces.json`
+(symbol → [[time, price], …], times from the preload): waypoints the price ramps through when a
+scenario does not set its own for that symbol. The original's current handler has no traces (its
+obsolete `stock_price_traces.json` is a bare list of prices and is not read).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from typing import Any
+
+from apps.microhood.state import ENVIRONMENT, NewsItem, Stock
+
+TRACES = "price_traces"
+
+
+def _number(value: Any) -> float | None:
+    return float(value) if isinstance(value, int | float) and not isinstance(value, bool) else None
+
+
+def listing(record: Mapping[str, Any]) -> Stock:
+    return Stock(
+        symbol=str(record["symbol"]),
+        name=str(record.get("name") or record["symbol"]),
+        color=str(record.get("color") or "#333"),
+        org_id=record.get("orgId"),
+        asset_class=str(record.get("assetClass") or "stock"),
+        sector=str(record.get("sector") or ""),
+        description=str(record.get("description") or ""),
+        catalog_avg_cost=_number(record.get("avgCost")) or 0.0,
+        market_cap=_number(record.get("marketCap")),
+        pe_ratio=_number(record.get("peRatio")),
+        dividend_yield=_number(record.get("dividendYield")),
+    )
+
+
+def stock_record(catalog: Any, symbol: str) -> Mapping[str, Any] | None:
+    return catalog.table(ENVIRONMENT, "stocks").get(symbol)
+
+
+def starting_price(record: Mapping[str, Any]) -> float:
+    return _number(record.get("currentPrice")) or 0.0
+
+
+def trace(catalog: Any, symbol: str) -> list[tuple[float, float]]:
+    """Our catalog's authored waypoints for `symbol` ([] without a trace document)."""
+    traces = catalog.documents.get(ENVIRONMENT, {}).get(TRACES) or {}
+    points = traces.get(symbol) if isinstance(traces, dict) else None
+    return [(float(t), float(p)) for t, p in points or ()]
+
+
+def news_item(
+    catalog: Any, news_id: str, *, arrived_at: float, preloaded: bool = False
+) -> NewsItem | None:
+    """The catalog story; a preloaded one is dated `ageMinutes` before its arrival, one that
+    arrives during the task is dated then."""
+    record = catalog.table(ENVIRONMENT, "news").get(news_id)
+    if record is None:
+        return None
+    age = (_number(record.get("ageMinutes")) or 0.0) * 60 if preloaded else 0.0
+    return NewsItem(
+        id=news_id,
+        source=str(record.get("source") or ""),
+        title=str(record.get("title") or ""),
+        summary=str(record.get("summary") or ""),
+        symbols=tuple(str(s) for s in record.get("symbols") or ()),
+        published_at=arrived_at - age,
+        data=json.dumps(dict(record)),
+    )
+
+
+def watch_row(catalog: Any, symbol: str) -> Mapping[str, Any] | None:
+    """The catalog's watchlist row, or one built from the listing (the original's toggle)."""
+    row = catalog.table(ENVIRONMENT, "watchlist").get(symbol)
+    if row is not None:
+        return dict(row)
+    record = stock_record(catalog, symbol)
+    if record is None:
+        return None
+    return {
+        "symbol": symbol,
+        "name": record.get("name"),
+        "price": record.get("currentPrice"),
+        "change": record.get("change"),
+        "changePercent": record.get("changePercent"),
+    }

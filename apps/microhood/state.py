@@ -1,0 +1,197 @@
+"""The brokerage account as immutable values, and the questions pages, baselines and grading ask.
+
+`Hood` is what the reducers build. Prices are not stored as numbers: each loaded symbol has a
+`Waypoints` series (its starting price, the catalog's authored trace or the scenario's
+`price_waypoints`, and any `set_price` points), and every reader asks `price(hood, symbol, now)`
+with the one `now` of its operation — page, live push and evaluation alike.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from types import MappingProxyType
+from typing import Any
+
+from events.waypoints import Waypoints
+
+ENVIRONMENT = "microhood"
+DEFAULT_BUYING_POWER = 10_000.0
+SIDES = ("buy", "sell")
+ORDER_TYPES = ("market", "limit")
+EMPTY: Mapping = MappingProxyType({})
+
+
+@dataclass(frozen=True)
+class Stock:
+    """A listing from the catalog (equity or crypto); what never moves."""
+
+    symbol: str
+    name: str
+    color: str = "#333"
+    org_id: str | None = None
+    asset_class: str = "stock"  # "stock" | "crypto"
+    sector: str = ""
+    description: str = ""
+    catalog_avg_cost: float = 0.0  # the `stocks.avgCost` column: the catalog's, not the live one
+    market_cap: float | None = None
+    pe_ratio: float | None = None
+    dividend_yield: float | None = None
+
+
+@dataclass(frozen=True)
+class Holding:
+    shares: int = 0
+    avg_cost: float = 0.0
+
+
+@dataclass(frozen=True)
+class NewsItem:
+    id: str
+    source: str
+    title: str
+    summary: str = ""
+    symbols: tuple[str, ...] = ()
+    published_at: float = 0.0  # simulated seconds (negative: before the task started)
+    data: str = "{}"  # the catalog row as JSON: the `news.data` column
+
+
+@dataclass(frozen=True)
+class Order:
+    """An order as placed. A market order fills when placed; a limit order rests until the
+    price reaches its limit (`orders.settle`), or is cancelled."""
+
+    id: str
+    symbol: str
+    side: str  # "buy" | "sell"
+    quantity: int
+    type: str  # "market" | "limit"
+    placed_at: float
+    limit_price: float | None = None
+    status: str = "filled"  # "filled" | "pending" | "cancelled"
+    price: float | None = None  # the fill price, rounded to the cent
+    filled_at: float | None = None
+
+    @property
+    def reserved(self) -> float:
+        """Buying power a resting buy holds back (its limit × quantity)."""
+        if self.status == "pending" and self.side == "buy" and self.limit_price is not None:
+            return self.limit_price * self.quantity
+        return 0.0
+
+
+@dataclass(frozen=True)
+class Hood:
+    catalog: Any
+    self_name: str = "Me"
+    self_username: str = "me"
+    stocks: Mapping[str, Stock] = field(
+        default_factory=lambda: EMPTY
+    )  # loaded listings, in preload order
+    prices: Mapping[str, Waypoints] = field(
+        default_factory=lambda: EMPTY
+    )  # symbol → price series (start = starting price)
+    holdings: Mapping[str, Holding] = field(
+        default_factory=lambda: EMPTY
+    )  # every symbol ever held or traded
+    watch_items: Mapping[str, Mapping[str, Any]] = field(
+        default_factory=lambda: EMPTY
+    )  # stored watchlist rows, never removed
+    watching: Mapping[str, bool] = field(default_factory=lambda: EMPTY)  # symbol → on the list now
+    news: tuple[NewsItem, ...] = ()  # arrival order
+    buying_power: float = DEFAULT_BUYING_POWER
+    orders: tuple[Order, ...] = ()  # placement order
+    settled_to: float = 0.0  # resting orders are decided up to this simulated second
+    opening_value: float = 0.0  # the portfolio value when the preload applied ("Today" vs it)
+
+    def has_stock(self, symbol: str) -> bool:
+        return symbol in self.stocks
+
+    def holding(self, symbol: str) -> Holding:
+        return self.holdings.get(symbol) or Holding()
+
+
+def empty_hood(catalog: Any) -> Hood:
+    me = catalog.self_user or {}
+    return Hood(
+        catalog=catalog,
+        self_name=str(me.get("name") or "Me"),
+        self_username=str(me.get("username") or "me"),
+    )
+
+
+def changed(hood: Hood, **fields: Any) -> Hood:
+    """A new `Hood` with `fields` replaced; mappings are frozen so no reader can mutate them."""
+    frozen = {k: MappingProxyType(v) if isinstance(v, dict) else v for k, v in fields.items()}
+    return replace(hood, **frozen)
+
+
+# --- prices -----------------------------------------------------------------------------------
+
+
+def price(hood: Hood, symbol: str, now: float) -> float:
+    """The price of `symbol` at `now`, unrounded (the `current_prices` column); 0 for a symbol
+    that was never loaded, as the original."""
+    series = hood.prices.get(symbol)
+    return series.value_at(now) if series is not None else 0.0
+
+
+def quote(hood: Hood, symbol: str, now: float) -> float:
+    """The price as shown and traded: rounded to the cent."""
+    return round(price(hood, symbol, now), 2)
+
+
+def starting_price(hood: Hood, symbol: str) -> float:
+    series = hood.prices.get(symbol)
+    return series.start if series is not None else 0.0
+
+
+def change(hood: Hood, symbol: str, now: float) -> tuple[float, float]:
+    """(change, percent) of the shown price since the start of the task."""
+    start = starting_price(hood, symbol)
+    delta = quote(hood, symbol, now) - start
+    return delta, (delta / start * 100 if start else 0.0)
+
+
+# --- the account --------------------------------------------------------------------------------
+
+
+def positions_value(hood: Hood, now: float) -> float:
+    return sum(h.shares * price(hood, s, now) for s, h in hood.holdings.items() if h.shares)
+
+
+def portfolio_value(hood: Hood, now: float) -> float:
+    """Buying power plus the positions at the price of `now` (the original's definition; what a
+    resting buy holds back still counts, as Robinhood's total does)."""
+    return total_cash(hood) + positions_value(hood, now)
+
+
+def total_cash(hood: Hood) -> float:
+    return hood.buying_power + sum(o.reserved for o in hood.orders)
+
+
+def shares_available(hood: Hood, symbol: str) -> int:
+    """Shares not promised to a resting sell."""
+    promised = sum(
+        o.quantity
+        for o in hood.orders
+        if o.status == "pending" and o.side == "sell" and o.symbol == symbol
+    )
+    return hood.holding(symbol).shares - promised
+
+
+def watchlist_symbols(hood: Hood) -> list[str]:
+    return [s for s, on in hood.watching.items() if on]
+
+
+def mcro_price(hood: Hood, now: float) -> float:
+    """The original's `baseline_mcro_price` (its flagship listing; 0 when not loaded)."""
+    return price(hood, "MCRO", now)
+
+
+def pending_orders(hood: Hood) -> list[Order]:
+    return [o for o in hood.orders if o.status == "pending"]
+
+
+def filled_orders(hood: Hood) -> list[Order]:
+    return [o for o in hood.orders if o.status == "filled"]

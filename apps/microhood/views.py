@@ -1,0 +1,216 @@
+"""MicroHood pages: thin views over `screens`, actions through `page.act`, post/redirect/get.
+
+Each page registers when what it shows next changes with the clock (`watch`): a moving price
+at the next cent, capped to once per simulated second, and a resting order's fill.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from django.contrib import messages
+from django.http import Http404, HttpRequest, HttpResponse
+from django.views.decorators.http import require_GET, require_POST
+
+from apps.agent_site.pages import Page, run_page
+from apps.agent_site.rendering import redirect_to, render_screen
+from apps.microhood import screens
+from apps.microhood import state as account
+from apps.microhood.query import RANGES, ChartQuery, InvalidQuery, SearchQuery, StockQuery
+from events.registry import ActionRejected
+
+SESSION_SPAN = 720.0  # the 1D chart's width in simulated seconds (the usual timeline end)
+
+
+def span(page: Page) -> float:
+    return max(SESSION_SPAN, float(page.run.event_timeline_end or 0.0))
+
+
+def watch(page: Page, symbols: Iterable[str]) -> None:
+    page.changes_at(screens.next_shown_change(page.state, symbols, page.now, span(page)))
+
+
+def base_context(page: Page, tab: str) -> dict:
+    hood = screens.settled(page.state, page.now)
+    return {
+        "root": page.root + "/",
+        "tab": tab,
+        "self_name": hood.self_name,
+        "buying_power": screens.money(hood.buying_power),
+        "ranges": RANGES,
+    }
+
+
+def sidebar(page: Page) -> dict:
+    return {
+        "holdings": screens.holding_rows(page.state, page.now),
+        "watchlist": screens.watch_rows(page.state, page.now),
+    }
+
+
+def bad_query(exc: InvalidQuery) -> HttpResponse:
+    return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
+
+
+@require_GET
+@run_page
+def home(request: HttpRequest, page: Page) -> HttpResponse:
+    try:
+        query = ChartQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    hood = page.state
+    watch(page, [*hood.holdings, *account.watchlist_symbols(hood)])
+    context = {
+        **base_context(page, "investing"),
+        **sidebar(page),
+        "query": query,
+        "portfolio": screens.portfolio(hood, page.now, query.range, span(page)),
+        "news": screens.newest_first(hood.news)[:8],
+    }
+    return render_screen(request, page, "microhood/home.html", context)
+
+
+def listed(page: Page, symbol: str) -> str:
+    if not page.state.has_stock(symbol):
+        raise Http404("no such stock")  # unknown, or not loaded: alike
+    return symbol
+
+
+@require_GET
+@run_page
+def stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
+    try:
+        query = StockQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    listed(page, symbol)
+    watch(page, [symbol, *page.state.holdings, *account.watchlist_symbols(page.state)])
+    hood = screens.settled(page.state, page.now)
+    context = {
+        **base_context(page, "investing"),
+        **sidebar(page),
+        "query": query,
+        "screen": screens.stock_screen(page.state, symbol, page.now, query.range, span(page)),
+        "resting": screens.resting_orders(page.state, symbol, page.now),
+        "buying_power_value": hood.buying_power,
+        "self_url": f"{page.root}/stocks/{symbol}?{query.querystring()}".rstrip("?"),
+    }
+    return render_screen(request, page, "microhood/stock.html", context)
+
+
+def _quantity(text: str) -> int:
+    try:
+        return int(text.strip())
+    except ValueError:
+        raise ActionRejected(f"quantity {text!r} is not a whole number of shares") from None
+
+
+def _limit(text: str) -> float | None:
+    text = text.strip().lstrip("$").replace(",", "")
+    if not text:
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        raise ActionRejected(f"limit_price {text!r} is not a price") from None
+
+
+@require_POST
+@run_page
+def place_order(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
+    """The order ticket: side, type (market|limit), quantity, limit_price."""
+    listed(page, symbol)
+    order_type = request.POST.get("type", "market")
+    payload = {
+        "symbol": symbol,
+        "side": request.POST.get("side", "buy"),
+        "quantity": _quantity(request.POST.get("quantity", "")),
+        "type": order_type,
+    }
+    if order_type == "limit":
+        payload["limit_price"] = _limit(request.POST.get("limit_price", ""))
+    event = page.act("place_order", payload)
+    placed = next((o for o in page.state.orders if o.id == event.payload["id"]), None)
+    if placed is not None and placed.status == "filled":
+        verb = "Bought" if placed.side == "buy" else "Sold"
+        messages.success(
+            request,
+            f"{verb} {screens.shares_text(placed.quantity)} of {symbol} at {screens.money(placed.price)}",
+        )
+    else:
+        messages.success(
+            request,
+            f"Limit order placed: {payload['side']} {payload['quantity']} {symbol} at {screens.money(payload.get('limit_price') or 0)}",
+        )
+    return redirect_to(page, f"stocks/{symbol}?side={payload['side']}")
+
+
+@require_POST
+@run_page
+def watch_stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
+    listed(page, symbol)
+    intent = request.POST.get("intent", "add")
+    if intent not in ("add", "remove"):
+        raise ActionRejected(f"intent={intent!r} is not valid; allowed: add, remove")
+    action = "add_to_watchlist" if intent == "add" else "remove_from_watchlist"
+    page.act(action, {"symbol": symbol})
+    messages.success(
+        request, f"{symbol} {'added to' if intent == 'add' else 'removed from'} your watchlist"
+    )
+    back = request.POST.get("back") or f"stocks/{symbol}"
+    return redirect_to(page, back if not back.startswith("/") else f"stocks/{symbol}")
+
+
+@require_GET
+@run_page
+def market(request: HttpRequest, page: Page) -> HttpResponse:
+    hood = page.state
+    watch(page, hood.stocks)
+    equities, coins = screens.market(hood, page.now)
+    context = {**base_context(page, "market"), "equities": equities, "coins": coins}
+    return render_screen(request, page, "microhood/market.html", context)
+
+
+@require_GET
+@run_page
+def watchlist(request: HttpRequest, page: Page) -> HttpResponse:
+    watch(page, account.watchlist_symbols(page.state))
+    context = {**base_context(page, "lists"), "rows": screens.watch_rows(page.state, page.now)}
+    return render_screen(request, page, "microhood/watchlist.html", context)
+
+
+@require_GET
+@run_page
+def news(request: HttpRequest, page: Page) -> HttpResponse:
+    context = {**base_context(page, "news"), "news": screens.newest_first(page.state.news)}
+    return render_screen(request, page, "microhood/news.html", context)
+
+
+@require_GET
+@run_page
+def orders(request: HttpRequest, page: Page) -> HttpResponse:
+    watch(page, [])
+    context = {**base_context(page, "orders"), "orders": screens.order_rows(page.state, page.now)}
+    return render_screen(request, page, "microhood/orders.html", context)
+
+
+@require_POST
+@run_page
+def cancel_order(request: HttpRequest, page: Page) -> HttpResponse:
+    page.act("cancel_order", {"order_id": request.POST.get("order_id", "")})
+    messages.success(request, "Order cancelled")
+    return redirect_to(page, "orders")
+
+
+@require_GET
+@run_page
+def search(request: HttpRequest, page: Page) -> HttpResponse:
+    try:
+        query = SearchQuery.from_params(request.GET)
+    except InvalidQuery as exc:
+        return bad_query(exc)
+    results = screens.search(page.state, query.q, page.now)
+    watch(page, [r.symbol for r in results])
+    context = {**base_context(page, "search"), "query": query, "results": results}
+    return render_screen(request, page, "microhood/search.html", context)
