@@ -47,6 +47,7 @@ INSTALLED_APPS = [
     # Environments: one line each. The core never imports them; each app registers its
     # Environment with the core registry when Django starts (AppConfig.ready).
     "apps.micromail",
+    "apps.microhub",
     "apps.microtube",
     "apps.microhood",
     "apps.microgram",

@@ -1,0 +1,8 @@
+from apps.agent_site import environments
+
+
+class MicrohubConfig(environments.EnvironmentConfig):
+    name = "apps.microhub"
+    label = "microhub"
+    verbose_name = "MicroHub"
+    environment = "apps.microhub.environment.MICROHUB"

@@ -1,0 +1,97 @@
+"""Template tags for MicroHub pages.
+
+`{% rows "microhub/_issue_row.html" rows "row" stamp="issue.opened_at" %}` renders each item
+once per distinct input (apps.agent_site.fragments): the row gets the item, the environment root
+and its age in words ("3 hours ago") as `ago`, and nothing else of the page; the page is told
+when each age next reads differently. `label_style` colours a label pill as GitHub does (dark
+text on light labels, white on dark).
+"""
+
+from __future__ import annotations
+
+from operator import attrgetter
+
+from django import template
+from django.utils.html import format_html
+from django.utils.safestring import SafeString, mark_safe
+
+from apps.agent_site.fragments import render_fragment
+from apps.agent_site.simclock import long_ago, units_changes_at
+from apps.microhub.markup import render_markdown
+
+register = template.Library()
+
+
+@register.simple_tag(takes_context=True)
+def rows(context: template.Context, template_name: str, items, name: str, stamp: str) -> SafeString:
+    page, root = context["page"], context["root"]
+    read_time = attrgetter(stamp)
+    html = []
+    for item in items:
+        at = read_time(item)
+        page.changes_at(units_changes_at(at, page.now))
+        html.append(
+            render_fragment(
+                template_name, **{name: item, "root": root, "ago": long_ago(at, page.now)}
+            )
+        )
+    return mark_safe("".join(html))
+
+
+@register.filter
+def label_style(color: str) -> str:
+    """Inline style of a label pill: its colour, and text that stays readable on it."""
+    hex_color = color.lstrip("#")
+    if len(hex_color) != 6:
+        return "background:#ededed;color:#1f2328"
+    r, g, b = (int(hex_color[i : i + 2], 16) for i in (0, 2, 4))
+    light = (0.299 * r + 0.587 * g + 0.114 * b) > 150
+    return format_html("background:#{};color:{}", hex_color, "#1f2328" if light else "#fff")
+
+
+@register.filter
+def filesize(size: int) -> str:
+    return f"{size} Bytes" if size < 1024 else f"{size / 1024:.1f} KB"
+
+
+@register.filter
+def duration(seconds: int) -> str:
+    minutes, rest = divmod(int(seconds), 60)
+    return f"{minutes}m {rest}s" if minutes else f"{rest}s"
+
+
+@register.filter
+def thousands(number: int) -> str:
+    """1,847 — counts as GitHub prints them."""
+    return f"{int(number):,}"
+
+
+@register.filter
+def markdown(text: str) -> SafeString:
+    """Comment and issue text through the safe Markdown subset (apps.microhub.markup)."""
+    return render_markdown(text)
+
+
+# Reactions by GitHub's names (our catalog) or as the emoji the original stored; drawn as icons
+# because emoji render as empty boxes without an emoji font.
+REACTIONS = {
+    "+1": "thumbs-up",
+    "👍": "thumbs-up",
+    "-1": "thumbs-down",
+    "👎": "thumbs-down",
+    "rocket": "rocket",
+    "🚀": "rocket",
+    "hooray": "party-popper",
+    "🎉": "party-popper",
+    "heart": "heart",
+    "❤️": "heart",
+    "laugh": "laugh",
+    "😄": "laugh",
+    "eyes": "eye",
+    "👀": "eye",
+}
+
+
+@register.filter
+def reaction(emoji: str) -> str:
+    return REACTIONS.get(emoji, "smile")

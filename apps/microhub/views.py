@@ -1,0 +1,358 @@
+"""MicroHub pages: thin views over `page.state` (screens.py says what each shows), actions
+through `page.act`, post/redirect/get back to the screen the form was on.
+
+Every repository page shows the star count, which moves with the clock: `repo_header`
+reads it at `page.now` and registers when it next changes, so a kept or live page is never
+stale. Opening an issue marks it viewed: declared with the environment (`implicit_actions`).
+"""
+
+from __future__ import annotations
+
+from django.contrib import messages
+from django.http import Http404, HttpRequest, HttpResponse
+from django.views.decorators.http import require_GET, require_http_methods, require_POST
+
+from apps.agent_site.pages import Page, run_page
+from apps.agent_site.rendering import redirect_to, render_screen
+from apps.microhub import screens
+from apps.microhub.markup import render_markdown
+from apps.microhub.query import ActionsQuery, InvalidQuery, IssuesQuery, PullsQuery
+from apps.microhub.state import MERGE_STRATEGIES, Hub, star_count, stars_change_at
+from events.registry import ActionRejected
+
+REPO_ACTIONS = ("star", "unstar", "watch", "unwatch", "fork")
+ISSUE_ACTIONS = {"comment": "comment_issue", "close": "close_issue", "reopen": "reopen_issue"}
+PR_ACTIONS = {"comment": "comment_pr", "merge": "merge_pr"}
+STRATEGY_LABELS = {
+    "merge": "Create a merge commit",
+    "squash": "Squash and merge",
+    "rebase": "Rebase and merge",
+}
+
+
+def repo_header(page: Page) -> dict:
+    """The repository header every repository page shows: names, counters, the tab badges."""
+    hub: Hub = page.state
+    page.changes_at(stars_change_at(hub, page.now))
+    return {
+        "hub": hub,
+        "me": hub.self_username,
+        "me_name": hub.self_name,
+        "stars": star_count(hub, page.now),
+        "counts": screens.counts(hub),
+    }
+
+
+def show(request: HttpRequest, page: Page, template: str, tab: str, **context) -> HttpResponse:
+    return render_screen(
+        request, page, f"microhub/{template}", {**repo_header(page), "tab": tab, **context}
+    )
+
+
+def query_of(cls, request: HttpRequest):
+    try:
+        return cls.from_params(request.GET)
+    except InvalidQuery as exc:
+        raise ActionRejected(str(exc), exc.status) from None
+
+
+def acted(request: HttpRequest, page: Page, path: str, done: str = "") -> HttpResponse:
+    if done:
+        messages.success(request, done)
+    return redirect_to(page, path)
+
+
+# --- code -----------------------------------------------------------------------------------------
+
+
+@require_GET
+@run_page
+def code(request: HttpRequest, page: Page, path: str = "") -> HttpResponse:
+    hub = page.state
+    if path:
+        folder = screens.file_at(hub, path)
+        if folder is None or not folder.is_folder:
+            raise Http404("no such folder")
+    readme = screens.readme(hub, path)
+    return show(
+        request,
+        page,
+        "code.html",
+        "code",
+        path=path,
+        crumbs=crumbs(path),
+        entries=screens.folder_entries(hub, path),
+        readme=readme,
+        readme_html=render_markdown(readme.content) if readme else "",
+        latest=screens.latest_commit(hub),
+        contributors=screens.contributors(hub)[:12],
+    )
+
+
+def crumbs(path: str) -> list[tuple[str, str]]:
+    """(name, path) of each folder on the way to `path`."""
+    parts = path.split("/") if path else []
+    return [(part, "/".join(parts[: k + 1])) for k, part in enumerate(parts)]
+
+
+@require_GET
+@run_page
+def blob(request: HttpRequest, page: Page, path: str) -> HttpResponse:
+    found = screens.file_at(page.state, path)
+    if found is None or found.is_folder:
+        raise Http404("no such file")
+    markdown = found.name.lower().endswith(".md")
+    return show(
+        request,
+        page,
+        "blob.html",
+        "code",
+        file=found,
+        crumbs=crumbs(path),
+        rendered=render_markdown(found.content) if markdown else "",
+        lines=found.content.split("\n"),
+    )
+
+
+@require_GET
+@run_page
+def commits(request: HttpRequest, page: Page) -> HttpResponse:
+    return show(request, page, "commits.html", "code", history=screens.commit_history(page.state))
+
+
+# --- issues ---------------------------------------------------------------------------------------
+
+
+@require_GET
+@run_page
+def issues(request: HttpRequest, page: Page) -> HttpResponse:
+    query = query_of(IssuesQuery, request)
+    hub = page.state
+    open_count, closed_count = screens.search_counts(hub, query.q)
+    return show(
+        request,
+        page,
+        "issues.html",
+        "issues",
+        query=query,
+        rows=screens.issue_rows(hub, query.state, query.q, query.sort),
+        open_count=open_count,
+        closed_count=closed_count,
+        open_url=query.but(state="open").querystring(),
+        closed_url=query.but(state="closed").querystring(),
+        sorts=[(s, query.but(sort=s).querystring()) for s in ("newest", "oldest", "comments")],
+    )
+
+
+@require_http_methods(["GET", "POST"])
+@run_page
+def new_issue(request: HttpRequest, page: Page) -> HttpResponse:
+    if request.method == "POST":
+        event = page.act(
+            "create_issue",
+            {"title": request.POST.get("title", ""), "body": request.POST.get("body", "")},
+        )
+        issue_id = event.payload["id"] if event else ""
+        return acted(request, page, f"issues/{issue_id}" if issue_id else "issues/")
+    return show(request, page, "new_issue.html", "issues")
+
+
+@require_GET
+@run_page
+def issue(request: HttpRequest, page: Page, issue_id: str) -> HttpResponse:
+    hub = page.state
+    found = hub.issue(issue_id)
+    if found is None:
+        raise Http404("no such issue")  # unknown or not filed yet: alike
+    return show(
+        request,
+        page,
+        "issue.html",
+        "issues",
+        issue=found,
+        state=hub.issue_state(issue_id),
+        thread=screens.comments_on(hub, "issue", issue_id),
+        body_html=render_markdown(found.body) if found.body else "",
+    )
+
+
+@require_POST
+@run_page
+def issue_action(request: HttpRequest, page: Page, issue_id: str, verb: str) -> HttpResponse:
+    action = ISSUE_ACTIONS.get(verb)
+    if action is None:
+        raise ActionRejected(
+            f"unknown issue action {verb!r}; allowed: {', '.join(ISSUE_ACTIONS)}", 404
+        )
+    payload = {"issue_id": issue_id}
+    if verb == "comment":
+        payload["body"] = request.POST.get("body", "")
+    page.act(action, payload)
+    return acted(request, page, f"issues/{issue_id}")
+
+
+# --- pull requests ----------------------------------------------------------------------------------
+
+
+@require_GET
+@run_page
+def pulls(request: HttpRequest, page: Page) -> HttpResponse:
+    query = query_of(PullsQuery, request)
+    return show(
+        request,
+        page,
+        "pulls.html",
+        "pulls",
+        query=query,
+        rows=screens.pr_rows(page.state, query.state),
+    )
+
+
+@require_GET
+@run_page
+def pull(request: HttpRequest, page: Page, pr_id: str) -> HttpResponse:
+    hub = page.state
+    pr = hub.prs.get(pr_id)
+    if pr is None:
+        raise Http404("no such pull request")
+    return show(
+        request,
+        page,
+        "pull.html",
+        "pulls",
+        pr=pr,
+        state=hub.pr_state(pr_id),
+        thread=screens.comments_on(hub, "pr", pr_id),
+        body_html=render_markdown(pr.body) if pr.body else "",
+        strategies=[(s, STRATEGY_LABELS[s]) for s in MERGE_STRATEGIES],
+    )
+
+
+@require_POST
+@run_page
+def pull_action(request: HttpRequest, page: Page, pr_id: str, verb: str) -> HttpResponse:
+    action = PR_ACTIONS.get(verb)
+    if action is None:
+        raise ActionRejected(f"unknown pull request action {verb!r}; allowed: comment, merge", 404)
+    payload = {"pr_id": pr_id}
+    if verb == "comment":
+        payload["body"] = request.POST.get("body", "")
+    else:
+        payload["strategy"] = request.POST.get("strategy", "merge")
+    page.act(action, payload)
+    return acted(
+        request,
+        page,
+        f"pulls/{pr_id}",
+        "Pull request successfully merged and closed" if verb == "merge" else "",
+    )
+
+
+# --- actions ----------------------------------------------------------------------------------------
+
+
+@require_GET
+@run_page
+def actions(request: HttpRequest, page: Page) -> HttpResponse:
+    query = query_of(ActionsQuery, request)
+    hub = page.state
+    return show(
+        request,
+        page,
+        "actions.html",
+        "actions",
+        query=query,
+        runs=screens.workflow_runs(hub, query.workflow),
+        workflows=screens.workflows(hub),
+    )
+
+
+@require_GET
+@run_page
+def run(request: HttpRequest, page: Page, run_id: str) -> HttpResponse:
+    found = page.state.runs.get(run_id)
+    if found is None:
+        raise Http404("no such workflow run")
+    return show(request, page, "run.html", "actions", run=found)
+
+
+# --- the repository's buttons, settings, the user's repositories and profiles -------------------
+
+
+@require_POST
+@run_page
+def repo_action(request: HttpRequest, page: Page, verb: str) -> HttpResponse:
+    if verb not in REPO_ACTIONS:
+        raise ActionRejected(f"unknown action {verb!r}; allowed: {', '.join(REPO_ACTIONS)}", 404)
+    page.act(verb, {})
+    back = request.POST.get("back", "")
+    return redirect_to(
+        page, back if back and not back.startswith(("/", "\\")) and "://" not in back else ""
+    )
+
+
+@require_http_methods(["GET", "POST"])
+@run_page
+def settings(request: HttpRequest, page: Page) -> HttpResponse:
+    if request.method == "POST":
+        changes = {
+            name: request.POST[name].strip()
+            for name in ("name", "description", "visibility")
+            if name in request.POST
+            and request.POST[name].strip() != str(page.state.repo.get(name, ""))
+        }
+        if "visibility" in changes and changes["visibility"] == page.state.visibility:
+            del changes["visibility"]
+        page.act("update_repository", changes)
+        return acted(request, page, "settings", "Repository settings saved")
+    return show(request, page, "settings.html", "settings")
+
+
+@require_http_methods(["GET", "POST"])
+@run_page
+def new_repository(request: HttpRequest, page: Page) -> HttpResponse:
+    if request.method == "POST":
+        page.act(
+            "create_repository",
+            {
+                "name": request.POST.get("name", ""),
+                "description": request.POST.get("description", ""),
+                "visibility": request.POST.get("visibility", "public"),
+                "add_readme": "add_readme" in request.POST,
+                "add_gitignore": "add_gitignore" in request.POST,
+            },
+        )
+        return acted(request, page, "repositories/", "Repository created")
+    return show(request, page, "new_repository.html", "")
+
+
+@require_GET
+@run_page
+def repositories(request: HttpRequest, page: Page) -> HttpResponse:
+    return show(request, page, "repositories.html", "", repos=page.state.user_repos)
+
+
+@require_http_methods(["GET", "POST"])
+@run_page
+def profile(request: HttpRequest, page: Page, username: str) -> HttpResponse:
+    hub = page.state
+    person = next((u for u in hub.catalog.users.values() if u.get("username") == username), None)
+    if person is None and username == hub.owner:
+        return show(request, page, "organization.html", "", org=screens.organization(hub))
+    if person is None:
+        raise Http404("no such user")
+    if request.method == "POST":
+        verb = "unfollow_user" if username in hub.following else "follow_user"
+        page.act(verb, {"username": username})
+        return redirect_to(page, f"users/{username}")
+    return show(
+        request,
+        page,
+        "profile.html",
+        "",
+        person=person,
+        is_self=username == hub.self_username,
+        following=username in hub.following,
+        activity=screens.person_activity(hub, username),
+        repos=hub.user_repos if username == hub.self_username else (),
+    )

@@ -1,0 +1,25 @@
+"""Fixtures for MicroHub: a run over the cast with a virtual clock, and its URLs."""
+
+from __future__ import annotations
+
+import pytest
+
+from events import lifecycle
+from events.models import ClockMode
+from tests.microhub.cast import cast_scenario
+
+
+@pytest.fixture
+def hub_run(db):
+    """A run of the cast scenario, preloaded, its virtual clock at 0."""
+    return lifecycle.create_run(cast_scenario(), clock_mode=ClockMode.VIRTUAL)
+
+
+@pytest.fixture
+def hub_url(hub_run):
+    """`hub_url("issues/")` → /r/<token>/microhub/issues/."""
+
+    def url(rest: str = "") -> str:
+        return f"/r/{hub_run.token}/microhub/{rest}"
+
+    return url
