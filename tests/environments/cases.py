@@ -15,6 +15,7 @@ its own tests when they load it, instead of breaking the collection.
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import shutil
@@ -49,44 +50,15 @@ UPSTREAM_ABSENT = (
 )
 
 
-# Original files whose condition_at is not when their condition first holds (reference
-# upstream-scenarios.md, "Which files are probably not part of the current benchmark"): every
-# other generic test still plays them; the timing test is skipped, saying why.
-STALE_CONDITION_AT: dict[str, dict[str, str]] = {
-    "microfy": {
-        "lyric-golden-relative-active": "condition_at 513.25, but the third golden track "
-        "fires at 479.03",
-        "lyric-whiskey-absolute-active": "condition_at 217.93, but the whiskey track fires at "
-        "174.34 (lyric-whiskey-relative-active, same timeline, has 174.34)",
-        "playlists-relative-passive": "stale duplicate of public-playlists-relative-passive "
-        "(same id): condition_at 439.05, but the third new playlist arrives at 380.51",
-    },
-    # Under the original's price formula (upstream-env-microhood.md §3; tests/microhood/
-    # test_price_model.py checks ours against it) the thresholds are crossed on the ramp
-    # before the waypoint time that the files give as condition_at.
-    "microhood": {
-        "buy-dip-relative-active": "condition_at 348.67, but VOLT is at or below 223.58 from "
-        "t=327.82",
-        "orders-absolute-active": "condition_at 100.52, but a market buy is filled at $42.20 "
-        "(rounded to the cent, as the original does) from t=100.37",
-        "portfolio-relative-passive": "condition_at 409.93, but the portfolio is 5% up from "
-        "t=378.14",
-        "price-absolute-passive": "condition_at 457.08, but CHIP reaches 520.0 at t=439.36",
-        "rebalance-relative-active": "condition_at 120.45, but NEOS reaches 106.15 at t=113.49",
-        "sell-order-absolute-active": "condition_at 226.68, but MCRO reaches 480.0 at t=212.51",
-        "portfolio-absolute-passive": "the portfolio never reaches $108,837: without waypoints "
-        "every price is flat (it did under the obsolete 11-point trace model)",
-    },
-    # The original rounds its ramping star count (upstream-env-microhub.md §3), so the count
-    # reads the threshold half a star before the waypoint time the files give as condition_at
-    # (tests/microhub/test_stars.py checks ours against the reference model).
-    "microhub": {
-        "stars-absolute-passive": "condition_at 587.31, but the rounded star count reads 2,000 "
-        "from t=585.39",
-        "stars-relative-passive": "condition_at 565.42, but the rounded star count is 200 up "
-        "from t=564.01",
-    },
-}
+UPSTREAM_DEFECTS = (
+    HERE / "upstream_defects.json"
+)  # original files that cannot be checked as they are
+
+
+@functools.cache
+def upstream_defects() -> dict[str, dict[str, dict[str, str]]]:
+    """environment → file stem → {"condition_at" | "unreachable": why} (see the file's _about)."""
+    return json.loads(UPSTREAM_DEFECTS.read_text(encoding="utf-8"))
 
 
 def upstream_solutions(environment: str) -> dict[str, list[dict[str, Any]]]:
@@ -120,12 +92,13 @@ class Case:
             return upstream_solutions(self.environment).get(data.get("id"), [])
         return data.get("solution") or []
 
-    @property
-    def stale_condition_at(self) -> str | None:
-        """Why this original file's condition_at cannot be checked (None: it can)."""
+    def defect(self, kind: str) -> str | None:
+        """Why this original file cannot be checked for `kind` ("condition_at": its timing;
+        "unreachable": its condition at all) — None when it can (all of ours can)."""
         if not self.upstream:
             return None
-        return STALE_CONDITION_AT.get(self.environment, {}).get(self.path.stem)
+        known = upstream_defects().get(self.environment, {}).get(self.path.stem, {})
+        return known.get(kind) or (known.get("unreachable") if kind == "condition_at" else None)
 
     @property
     def noop(self) -> bool:
