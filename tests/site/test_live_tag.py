@@ -140,6 +140,7 @@ def test_render_update_returns_the_recorded_regions_and_next_change(run):
     update = render_update(run, f"/r/{run.token}/micromail/?folder=inbox")
     assert [region_id for region_id, _ in update.regions] == [
         "sim-clock",
+        "favorites",
         "folders",
         "message-list",
         "reading-pane",

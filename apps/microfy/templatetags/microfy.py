@@ -19,12 +19,6 @@ def clock(seconds: float) -> str:
     return clock_text(seconds)
 
 
-@register.filter
-def thousands(number: int) -> str:
-    """`1234567` → `"1,234,567"` (as the product prints counts)."""
-    return f"{number:,}"
-
-
 @register.simple_tag
 def audio_src(track_id: str) -> str:
     """The generated clip the player plays for a track."""

@@ -1,41 +1,17 @@
-"""Template tags for MicroHub pages.
-
-`{% rows "microhub/_issue_row.html" rows "row" stamp="issue.opened_at" %}` renders each item
-once per distinct input (apps.agent_site.fragments): the row gets the item, the environment root
-and its age in words ("3 hours ago") as `ago`, and nothing else of the page; the page is told
-when each age next reads differently. `label_style` colours a label pill as GitHub does (dark
-text on light labels, white on dark).
+"""Template tags for MicroHub pages. `label_style` colours a label pill as GitHub does (dark
+text on light labels, white on dark). Repeated rows come from the kit (`{% load rows %}`,
+`ago="long"`: "3 hours ago").
 """
 
 from __future__ import annotations
 
-from operator import attrgetter
-
 from django import template
 from django.utils.html import format_html
-from django.utils.safestring import SafeString, mark_safe
+from django.utils.safestring import SafeString
 
-from apps.agent_site.fragments import render_fragment
-from apps.agent_site.simclock import long_ago, units_changes_at
 from apps.microhub.markup import render_markdown
 
 register = template.Library()
-
-
-@register.simple_tag(takes_context=True)
-def rows(context: template.Context, template_name: str, items, name: str, stamp: str) -> SafeString:
-    page, root = context["page"], context["root"]
-    read_time = attrgetter(stamp)
-    html = []
-    for item in items:
-        at = read_time(item)
-        page.changes_at(units_changes_at(at, page.now))
-        html.append(
-            render_fragment(
-                template_name, **{name: item, "root": root, "ago": long_ago(at, page.now)}
-            )
-        )
-    return mark_safe("".join(html))
 
 
 @register.filter
@@ -58,12 +34,6 @@ def filesize(size: int) -> str:
 def duration(seconds: int) -> str:
     minutes, rest = divmod(int(seconds), 60)
     return f"{minutes}m {rest}s" if minutes else f"{rest}s"
-
-
-@register.filter
-def thousands(number: int) -> str:
-    """1,847 — counts as GitHub prints them."""
-    return f"{int(number):,}"
 
 
 @register.filter
