@@ -56,7 +56,7 @@ def test_init_reports_times_scaled_to_wall_seconds(
         "environment": "tally",
         "event_timeline_end": end,
         "condition_at": condition_at,
-        "events": [{"time": t, "type": "noop"} for t in events],
+        "events": [{"time": t, "type": "ping", "payload": {"n": 1}} for t in events],
         "eval_sql": "SELECT 1",
     }
     if sf is not None:

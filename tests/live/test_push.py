@@ -84,7 +84,7 @@ def test_a_fired_event_is_pushed_to_its_own_run_only():
     message = run_async(story)
     assert message["type"] == "regions" and message["url"] == inbox(ours)
     pushed = regions(message)
-    assert set(pushed) == {"sim-clock", "folders", "message-list", "reading-pane"}
+    assert set(pushed) == {"sim-clock", "favorites", "folders", "message-list", "reading-pane"}
     assert REPORT in pushed["message-list"] and 'hx-swap-oob="true"' in pushed["message-list"]
     assert message["seq"] == last_live_seq(ours.pk)
 
