@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shutil
 from pathlib import Path
 
 import pytest
@@ -99,6 +100,18 @@ def site_ticker(settings):
             yield "celery"
     else:
         yield "inprocess"
+
+
+@pytest.fixture
+def own_scenarios(settings, tmp_path) -> Path:
+    """SENTINEL_SCENARIO_DIR: this test's own copy of scenarios/. An admin save is written
+    through to its file (apps.scenarios.sync), so a test that edits a scenario must never edit
+    the copy every other test of the session plays. Ask for it before `live_site`, whose
+    server is started with the folder."""
+    root = tmp_path / "scenarios"
+    shutil.copytree(REPO / "scenarios", root)
+    settings.SENTINEL_SCENARIO_DIR = root
+    return root
 
 
 @pytest.fixture

@@ -18,7 +18,7 @@ INBOX = "micromail/inbox-relative-passive.json"
 
 
 @pytest.fixture
-def scenarios():
+def scenarios(own_scenarios):
     call_command(
         "loadscenarios", str(REPO / "scenarios"), stdout=io.StringIO(), stderr=io.StringIO()
     )

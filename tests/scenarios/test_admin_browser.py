@@ -17,7 +17,7 @@ AUTHOR, PASSWORD = "ada", "correct horse battery staple"
 
 
 @pytest.fixture
-def inbox_scenario(live_site):
+def inbox_scenario(own_scenarios, live_site):
     """Our scenarios loaded, and an author who may log in. Set up before the browser starts:
     Playwright's sync API runs an event loop in this thread, where the ORM refuses to work."""
     get_user_model().objects.create_superuser(AUTHOR, "ada@example.test", PASSWORD)
