@@ -1,6 +1,6 @@
 """Which scenarios the generic tests play: every registered environment's, found by folder.
 
-- Ours, with their `solution` steps: `<SENTINEL_SCENARIO_DIR>/<env>/*.json` (the benchmark's)
+- Ours, with their `solution` steps: the repository's `scenarios/<env>/*.json` (the benchmark's)
   and `tests/environments/scenarios/<env>/*.json` (test-only ones), over our catalog.
 - The original SentinelBench's: `../shared/upstream/scenarios/<env>/*.json`, over the original
   catalog (marker `upstream`; skipped when ../shared/upstream is absent). Their files carry no
@@ -25,7 +25,6 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from django.conf import settings
 
 from apps.scenarios.format import (
     DEV_FILENAME,
@@ -128,8 +127,14 @@ def scenario_files(folder: Path) -> list[Path]:
     return sorted(p for p in folder.glob("*.json") if p.name != DEV_FILENAME)
 
 
+OUR_SCENARIOS = HERE.parents[1] / "scenarios"  # the repository's own, never edited by a test
+
+
 def our_cases(environment: str) -> list[Case]:
-    folders = (Path(settings.SENTINEL_SCENARIO_DIR) / environment, TEST_SCENARIOS / environment)
+    # The repository's files, not SENTINEL_SCENARIO_DIR: tests that edit scenarios (the admin
+    # writes edits through to files) work on copies, and these cases must stay as authored
+    # whatever ran before them.
+    folders = (OUR_SCENARIOS / environment, TEST_SCENARIOS / environment)
     return [Case(environment, path) for folder in folders for path in scenario_files(folder)]
 
 
