@@ -1,0 +1,155 @@
+"""`wait_for(condition, timeout)`: block until a page changes in a way a model says meets a
+natural-language condition, as in the paper's appendix (Algorithm "WaitFor").
+
+The page's markdown is diffed against a baseline taken when the wait starts; each unified-diff
+hunk (a "block") is one contiguous changed region. Only blocks the model has not seen yet are
+sent to it, at most once per check interval, which doubles after every "no" (10 s up to 60 s)
+so a busy page cannot make the wait expensive. The page is reloaded on a schedule that also
+doubles (180 s up to 480 s), for pages that never update by themselves. When the timeout runs
+out, the page is reloaded and the model sees every block once more, so a change that arrived
+while it was rate-limited is not lost.
+
+Every page of the site shows the simulated time to the minute, and mail lists say "5 min ago":
+both change as time passes, so a long wait sees a new block about once a simulated minute even
+when nothing else happens. That is what a person watching the page sees, and what the paper's
+tool saw on real sites; the back-off is what keeps it cheap, so those blocks are not filtered.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Protocol
+
+
+class Clock(Protocol):
+    def now(self) -> float: ...
+
+    def sleep(self, seconds: float) -> None: ...
+
+
+class _SystemClock:
+    def now(self) -> float:
+        return time.monotonic()
+
+    def sleep(self, seconds: float) -> None:
+        time.sleep(seconds)
+
+
+SYSTEM_CLOCK: Clock = _SystemClock()
+
+
+class WatchedPage(Protocol):
+    def markdown(self) -> str: ...
+
+    def reload(self) -> None: ...
+
+
+# (condition, diff blocks not shown before) -> (met, the model's explanation)
+Judge = Callable[[str, list[str]], tuple[bool, str]]
+
+
+@dataclass(frozen=True)
+class WaitSchedule:
+    """How often wait_for looks, asks and reloads, in seconds (defaults: the paper's)."""
+
+    poll: float = 1.0  # a fresh snapshot this often
+    first_check: float = 10.0  # the least time between two questions to the model …
+    max_check: float = 60.0  # … doubling after each "no", up to this
+    first_reload: float = 180.0  # the first reload this long after the wait starts …
+    max_reload: float = 480.0  # … the gap doubling after each reload, up to this
+
+
+PAPER_SCHEDULE = WaitSchedule()
+
+NO_CHANGES = "no changes detected before the timeout"
+
+
+@dataclass(frozen=True)
+class WaitResult:
+    met: bool
+    explanation: str
+    checks: int  # questions put to the model, the final one included
+    reloads: int
+    waited_s: float
+
+
+def wait_for(
+    condition: str,
+    timeout: float,
+    *,
+    page: WatchedPage,
+    judge: Judge,
+    clock: Clock = SYSTEM_CLOCK,
+    schedule: WaitSchedule = PAPER_SCHEDULE,
+) -> WaitResult:
+    """Wait up to `timeout` seconds for `page` to change so that `judge` says `condition` holds.
+
+    The clock is read again after each step that takes time (a reload, a snapshot, the
+    model's answer), as the algorithm does: a slow model must not eat into the rate limit.
+    """
+    if not (math.isfinite(timeout) and timeout >= 0):
+        raise ValueError(f"timeout must be a finite number of seconds ≥ 0, got {timeout!r}")
+    start = clock.now()
+    base = page.markdown()
+    reload_interval = schedule.first_reload
+    next_reload = start + reload_interval
+    check_interval = schedule.first_check
+    last_check = -math.inf
+    shown: set[str] = set()
+    checks = reloads = 0
+
+    def result(met: bool, explanation: str) -> WaitResult:
+        return WaitResult(met, explanation, checks, reloads, waited_s=clock.now() - start)
+
+    while (now := clock.now()) - start < timeout:
+        if now >= next_reload:
+            page.reload()
+            reloads += 1
+            reload_interval = min(2 * reload_interval, schedule.max_reload)
+            next_reload = clock.now() + reload_interval
+        blocks = unified_diff_blocks(base, page.markdown())
+        # In page order; the same text in two places is one block, like a block seen before.
+        new = [block for block in dict.fromkeys(blocks) if block not in shown]
+        if new and clock.now() - last_check >= check_interval:
+            met, why = judge(condition, new)
+            checks += 1
+            last_check = clock.now()
+            shown.update(new)
+            if met:
+                return result(True, why)
+            check_interval = min(2 * check_interval, schedule.max_check)
+        clock.sleep(schedule.poll)
+
+    # The final check sees every block, those already shown included: the model judges the
+    # page's whole change since the start, not only what arrived after its last answer.
+    page.reload()
+    reloads += 1
+    blocks = unified_diff_blocks(base, page.markdown())
+    if not blocks:
+        return result(False, NO_CHANGES)
+    met, why = judge(condition, blocks)
+    checks += 1
+    return result(met, why)
+
+
+def unified_diff_blocks(base: str, current: str) -> list[str]:
+    """The hunks of difflib's unified diff from `base` to `current`, one string per hunk, in
+    page order: context lines (" ") and changed lines ("-", "+"), without the hunk header.
+
+    The header ("@@ -12,3 +14,4 @@") only says where the hunk sits. The paper drops "blocks
+    seen in previous iterations" because those changes were already evaluated; a block pushed
+    down by something inserted above it is still the same change, so a block is its text alone
+    and the same text is the same block wherever it is.
+    """
+    blocks: list[list[str]] = []
+    diff = difflib.unified_diff(base.splitlines(), current.splitlines(), lineterm="")
+    for line in diff:
+        if line.startswith("@@"):
+            blocks.append([])
+        elif blocks:  # the "---" / "+++" file header comes before the first hunk
+            blocks[-1].append(line)
+    return ["\n".join(lines) for lines in blocks]
