@@ -2,7 +2,10 @@
 
 Upstream keys: `server_url`, `frontend_url`, `speed_factor`, `agent_subprocess` (a list: raw
 substring substitution, no shell; a string: `shlex.quote`d substitution, run with a shell).
-Ours: `parallel`, `prices`, `reaction_window`, `grace`, `control_token`, `http_timeout`.
+Ours: `parallel`, `prices`, `reaction_window`, `grace`, `control_token`, `http_timeout`, and
+`agent` — one of the built-in reference agents (`apps.browser_agent`) instead of
+`agent_subprocess`: `{kind: wait_for | sleep, model, base_url, api_key_env, max_steps,
+max_tokens, max_wall}`.
 Placeholders: __TASK_URL__, __TASK_PROMPT__, __BASE_DIR__, __CONTACT_URL__, and ours:
 __PYTHON__ (the project's Python, with its packages) and __TASK_DIR__ (the task's result folder).
 The agent runs in its task's result folder, as upstream's did (agents write `costs.json` there);
@@ -35,7 +38,10 @@ KNOWN_KEYS = (
     "control_token",
     "http_timeout",
     "api_url",
+    "agent",
 )
+REFERENCE_KINDS = ("wait_for", "sleep")
+REFERENCE_KEYS = ("kind", "model", "base_url", "api_key_env", "max_steps", "max_tokens", "max_wall")
 DEFAULT_GRACE = 90.0  # wall seconds an agent gets to exit once its run is completed (upstream)
 
 
@@ -50,8 +56,35 @@ class Price:
 
 
 @dataclass(frozen=True)
+class ReferenceAgent:
+    """A built-in reference agent (`python -m apps.browser_agent`) on an OpenAI-compatible model."""
+
+    kind: str  # "wait_for" | "sleep": the waiting tool it is given
+    model: str
+    base_url: str | None = None  # None: the official API, or $OPENAI_BASE_URL
+    api_key_env: str = "OPENAI_API_KEY"  # the key's environment variable, never the key itself
+    max_steps: int | None = None
+    max_tokens: int | None = None  # input + output tokens per task
+    max_wall: float | None = None  # wall seconds per task (the harness's deadline still holds)
+
+    def arguments(self) -> list[str]:
+        """Its command-line options, apart from the task's own."""
+        argv = ["--kind", self.kind, "--model", self.model, "--api-key-env", self.api_key_env]
+        if self.base_url:
+            argv += ["--base-url", self.base_url]
+        if self.max_steps is not None:
+            argv += ["--max-steps", str(self.max_steps)]
+        if self.max_tokens is not None:
+            argv += ["--max-tokens-total", str(self.max_tokens)]
+        if self.max_wall is not None:
+            argv += ["--max-wall", repr(self.max_wall)]
+        return argv
+
+
+@dataclass(frozen=True)
 class BenchConfig:
     agent_subprocess: list[str] | str | None
+    reference_agent: ReferenceAgent | None = None
     server_url: str | None = None
     frontend_url: str | None = None
     speed_factor: float = 1.0
@@ -160,6 +193,42 @@ def _prices(data: dict, source: str) -> dict[str, Price]:
     return prices
 
 
+def _reference_agent(data: dict, source: str) -> ReferenceAgent | None:
+    raw = data.get("agent")
+    if raw is None:
+        return None
+    if not isinstance(raw, dict):
+        raise ConfigError(
+            f"{source}: agent: must be a mapping {{kind: wait_for | sleep, model: …, base_url: …}}"
+        )
+    unknown = sorted(set(raw) - set(REFERENCE_KEYS))
+    if unknown:
+        raise ConfigError(
+            f"{source}: agent.{unknown[0]}: unknown key; allowed: {', '.join(REFERENCE_KEYS)}"
+        )
+    if raw.get("kind") not in REFERENCE_KINDS:
+        raise ConfigError(
+            f"{source}: agent.kind: must be one of {', '.join(REFERENCE_KINDS)}, "
+            f"got {raw.get('kind')!r}"
+        )
+    for key in ("model", "api_key_env"):
+        value = raw.get(key, "OPENAI_API_KEY" if key == "api_key_env" else None)
+        if not isinstance(value, str) or not value.strip():
+            raise ConfigError(f"{source}: agent.{key}: must be a non-empty string, got {value!r}")
+    limits = {
+        key: _positive(raw, key, None, f"{source}: agent", integer=key != "max_wall")
+        for key in ("max_steps", "max_tokens", "max_wall")
+        if raw.get(key) is not None
+    }
+    return ReferenceAgent(
+        kind=raw["kind"],
+        model=raw["model"],
+        base_url=_url(raw, "base_url", f"{source}: agent"),
+        api_key_env=raw.get("api_key_env", "OPENAI_API_KEY"),
+        **limits,
+    )
+
+
 def parse_config(data: Any, *, source: str = "config", require_agent: bool = True) -> BenchConfig:
     if data is None:
         data = {}  # upstream: an empty file is {}
@@ -169,10 +238,16 @@ def parse_config(data: Any, *, source: str = "config", require_agent: bool = Tru
     if unknown:
         raise ConfigError(f"{source}: {unknown[0]}: unknown key; allowed: {', '.join(KNOWN_KEYS)}")
     agent = data.get("agent_subprocess")
+    reference = _reference_agent(data, source)
+    if agent is not None and reference is not None:
+        raise ConfigError(
+            f"{source}: agent: and agent_subprocess: are exclusive; keep the one to run"
+        )
     if agent is None:
-        if require_agent:
+        if require_agent and reference is None:
             raise ConfigError(
-                f"{source}: agent_subprocess: is required (a list of arguments or a shell string)"
+                f"{source}: agent_subprocess: is required (a list of arguments or a shell string),"
+                " or agent: {kind: wait_for | sleep, model: …} for a built-in reference agent"
             )
     elif isinstance(agent, list):
         if not agent or not all(isinstance(a, (str, int, float)) for a in agent):
@@ -193,6 +268,7 @@ def parse_config(data: Any, *, source: str = "config", require_agent: bool = Tru
         raise ConfigError(f"{source}: control_token: must be a string")
     return BenchConfig(
         agent_subprocess=agent,
+        reference_agent=reference,
         server_url=_url(data, "server_url", source) or _url(data, "api_url", source),
         frontend_url=_url(data, "frontend_url", source),
         speed_factor=speed_factor,

@@ -192,10 +192,15 @@ class Harness:
         self, task: Task, run: dict[str, Any], prompt: str
     ) -> tuple[list[str] | str, bool, dict]:
         env = dict(os.environ)
-        if self.agent:
+        if self.agent or self.config.reference_agent:
+            # Built-in agents are modules of this project, run from the task's folder.
             env["PYTHONPATH"] = os.pathsep.join(
                 filter(None, [str(self.base_dir), env.get("PYTHONPATH")])
             )
+            env["PYTHONUNBUFFERED"] = "1"  # output.txt shows each step as it happens
+        if self.config.reference_agent:
+            return self._reference_command(task, run), False, env
+        if self.agent:
             condition = task.spec.get("condition_at")
             argv = [
                 sys.executable,
@@ -241,6 +246,27 @@ class Harness:
         env["SENTINEL_TASK_DIR"] = str(task.folder.resolve())
         command, shell = self.config.agent_command(values)
         return command, shell, env
+
+    def _reference_command(self, task: Task, run: dict[str, Any]) -> list[str]:
+        """A built-in reference agent: the project's Python, the task's URLs and its prompt file.
+
+        Its wall budget defaults to the task's deadline, so it stops by itself (leaving its
+        costs and transcript complete) rather than being killed mid-call.
+        """
+        agent = self.config.reference_agent
+        argv = [sys.executable, "-m", "apps.browser_agent", *agent.arguments()]
+        argv += ["--task-url", run["task_url"], "--contact-url", run["contact_url"]]
+        argv += ["--prompt-file", str((task.folder / "prompt.txt").resolve())]
+        argv += [
+            "--task-dir",
+            str(task.folder.resolve()),
+            "--speed-factor",
+            repr(self.speed_factor),
+        ]
+        if agent.max_wall is None:
+            limit = deadline_s(task.spec, self.speed_factor, self.config.reaction_window)
+            argv += ["--max-wall", repr(limit)]
+        return argv
 
     # --- one task --------------------------------------------------------------------------
 

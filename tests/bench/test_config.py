@@ -179,3 +179,78 @@ def test_the_progress_bar_redraws_one_line_on_a_tty():
     text = stream.getvalue()
     assert "\r\033[K[###############...............] done 1/2 running 0 passed 1" in text
     assert "Running" not in text  # plain lines are for logs, not terminals
+
+
+REFERENCE = {"kind": "wait_for", "model": "gpt-4o", "base_url": "http://127.0.0.1:9/v1/"}
+
+
+def test_a_reference_agent_is_configured_instead_of_a_command(tmp_path):
+    config = parse_config({"agent": {**REFERENCE, "max_steps": 40}, "speed_factor": 4})
+    agent = config.reference_agent
+    assert (agent.kind, agent.model, agent.base_url, agent.api_key_env) == (
+        "wait_for",
+        "gpt-4o",
+        "http://127.0.0.1:9/v1",
+        "OPENAI_API_KEY",
+    )
+    task = Task("t", "micromail", {"condition_at": 60, "kill_at": 630}, tmp_path / "t")
+    task.folder.mkdir()
+    harness = Harness(config, client=None, results_root=tmp_path, base_dir=tmp_path)
+    run = {"task_url": "http://h/r/t/start", "contact_url": "http://h/r/t/contact"}
+    argv, shell, env = harness.command_for(task, run, "the prompt")
+    assert not shell and argv[1:3] == ["-m", "apps.browser_agent"]
+    options = dict(zip(argv[3::2], argv[4::2], strict=False))
+    assert options == {
+        "--kind": "wait_for",
+        "--model": "gpt-4o",
+        "--api-key-env": "OPENAI_API_KEY",
+        "--base-url": "http://127.0.0.1:9/v1",
+        "--max-steps": "40",
+        "--task-url": "http://h/r/t/start",
+        "--contact-url": "http://h/r/t/contact",
+        "--prompt-file": str((task.folder / "prompt.txt").resolve()),
+        "--task-dir": str(task.folder.resolve()),
+        "--speed-factor": "4.0",
+        "--max-wall": repr(deadline_s(task.spec, 4.0, 30.0)),  # stops itself by the deadline
+    }
+    assert str(tmp_path) in env["PYTHONPATH"].split(":")
+
+
+@pytest.mark.parametrize(
+    "data, message",
+    [
+        ({"agent": {"kind": "nap", "model": "m"}}, "agent.kind: must be one of wait_for, sleep"),
+        ({"agent": {"kind": "sleep"}}, "agent.model: must be a non-empty string"),
+        ({"agent": {**REFERENCE, "temperature": 0}}, "agent.temperature: unknown key"),
+        ({"agent": {**REFERENCE, "base_url": "localhost"}}, "base_url: must be an http"),
+        ({"agent": {**REFERENCE, "max_steps": 0}}, "max_steps: must be a positive integer"),
+        ({"agent": REFERENCE, "agent_subprocess": ["a"]}, "are exclusive"),
+        ({"agent": "wait_for"}, "agent: must be a mapping"),
+    ],
+)
+def test_a_bad_reference_agent_is_named(data, message):
+    with pytest.raises(ConfigError, match=message):
+        parse_config(data, source="eval_config.yaml")
+
+
+def test_the_command_line_picks_the_reference_agent_and_overrides_its_model():
+    from django.core.management.base import CommandError
+
+    from apps.bench.management.commands.bench import reference_changes
+
+    configured = parse_config({"agent": REFERENCE})
+    changed = reference_changes(configured, "sleep", "qwen3.5:9b", "http://127.0.0.1:11434/v1")
+    assert changed["agent_subprocess"] is None
+    agent = changed["reference_agent"]
+    assert (agent.kind, agent.model, agent.base_url) == (
+        "sleep",
+        "qwen3.5:9b",
+        "http://127.0.0.1:11434/v1",
+    )
+    assert reference_changes(configured, None, None, None) == {}  # the config's own agent
+    command_only = parse_config({"agent_subprocess": ["a"]})
+    assert reference_changes(command_only, "oracle", None, None) == {}
+    with pytest.raises(CommandError, match="--agent wait_for needs a model"):
+        reference_changes(command_only, "wait_for", None, None)
+    with pytest.raises(CommandError, match="not --agent oracle"):
+        reference_changes(command_only, "oracle", "gpt-4o", None)

@@ -18,7 +18,13 @@ from django.db.migrations.executor import MigrationExecutor
 from django.utils import timezone
 
 from apps.bench.client import ControlClient, HarnessError
-from apps.bench.config import BenchConfig, ConfigError, load_config
+from apps.bench.config import (
+    REFERENCE_KINDS,
+    BenchConfig,
+    ConfigError,
+    ReferenceAgent,
+    load_config,
+)
 from apps.bench.runner import CONTROL_AGENTS, BenchError, Harness, Progress, discover, run_pool
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
 from sentinel_site.site_server import ServerDidNotStart, site_server
@@ -47,6 +53,36 @@ def _usage(message: str) -> CommandError:
     return CommandError(message, returncode=2)
 
 
+def reference_changes(
+    cfg: BenchConfig, agent: str | None, model: str | None, model_url: str | None
+) -> dict:
+    """Config changes that make `bench run` use a reference agent, from --agent/--model/--model-url.
+
+    `--agent wait_for|sleep` picks the kind (the config's `agent:` gives the rest, or --model);
+    --model and --model-url override the config's `agent:` alone.
+    """
+    if agent not in REFERENCE_KINDS and not (model or model_url):
+        return {}
+    if agent is not None and agent not in REFERENCE_KINDS:
+        raise _usage(f"--model and --model-url are for the reference agents, not --agent {agent}")
+    base = cfg.reference_agent
+    kind = agent or (base.kind if base else None)
+    if kind is None:
+        raise _usage("--model/--model-url need --agent wait_for|sleep or an agent: in the config")
+    chosen_model = model or (base.model if base else None)
+    if not chosen_model:
+        raise _usage(f"--agent {kind} needs a model: pass --model or set agent.model in the config")
+    if model_url and not model_url.startswith(("http://", "https://")):
+        raise _usage(f"--model-url must be an http:// or https:// URL, got {model_url!r}")
+    reference = dataclasses.replace(
+        base or ReferenceAgent(kind, chosen_model),
+        kind=kind,
+        model=chosen_model,
+        base_url=(model_url.rstrip("/") if model_url else None) or (base and base.base_url),
+    )
+    return {"reference_agent": reference, "agent_subprocess": None}
+
+
 class Command(BaseCommand):
     help = (
         "Benchmark harness: run an agent over the scenarios, grade the results, validate scenarios."
@@ -71,8 +107,14 @@ class Command(BaseCommand):
         run.add_argument("--server-url", help="use this server instead of starting an embedded one")
         run.add_argument(
             "--agent",
-            choices=CONTROL_AGENTS,
-            help="a built-in control agent instead of agent_subprocess",
+            choices=CONTROL_AGENTS + REFERENCE_KINDS,
+            help="a built-in agent instead of the config's: a control agent, or a reference "
+            "agent (wait_for | sleep) on the config's agent.model or --model",
+        )
+        run.add_argument("--model", help="the reference agent's model (overrides agent.model)")
+        run.add_argument(
+            "--model-url",
+            help="the reference agent's OpenAI-compatible base URL (overrides agent.base_url)",
         )
         run.add_argument(
             "--retry-errors", action="store_true", help="rerun tasks that have error.txt"
@@ -157,14 +199,18 @@ class Command(BaseCommand):
         speed_factor,
         server_url,
         agent,
+        model,
+        model_url,
         retry_errors,
         results_dir,
         **_,
     ):
         cfg = load_config(config) if agent is None or Path(config).exists() else BenchConfig(None)
-        if agent is None and cfg.agent_subprocess is None:
+        if agent is None and cfg.agent_subprocess is None and cfg.reference_agent is None:
             raise _usage(f"{config}: agent_subprocess: is required (or pass --agent)")
-        changes = {}
+        changes = reference_changes(cfg, agent, model, model_url)
+        if changes:
+            agent = None  # the reference agent replaces whatever the config named
         if speed_factor is not None:
             changes["speed_factor"] = validate_speed_factor(speed_factor)
         if parallel is not None:
@@ -209,7 +255,9 @@ class Command(BaseCommand):
                 client.close()
         from apps.bench.records import record_benchmark
 
-        record_benchmark(name, run_dir, cfg, agent=agent, started_at=started_at, raw_config=cfg.raw)
+        reference = cfg.reference_agent
+        label = agent or (f"{reference.kind} on {reference.model}" if reference else None)
+        record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=cfg.raw)
         counts = {s: sum(o.status == s for o in outcomes) for s in ("passed", "failed", "error")}
         self.stdout.write(
             f"Done. ran={len(outcomes)} passed={counts['passed']} failed={counts['failed']} "
