@@ -1,8 +1,15 @@
-"""`bench grade`: read a results tree and summarise it.
+"""`bench grade`: read a results tree and summarise it; or compare several side by side.
 
 First the upstream table, summary lines and CSV (upstream-protocol.md §6 "grade"), then the
 paper's breakdown: success by category, reaction time of successful non-no-op tasks, USD cost
 from costs.json × prices, tool-call statistics and server-measured agent activity.
+
+Several result sets give the paper's comparison instead (one row per set), plus *timely
+success*: a pass whose reaction time is within a window, so an agent that contacts just before
+the deadline on every passive task does not look as good as one that reacts at once.
+
+Times are those of results.json: simulated seconds ÷ the run's speed factor, i.e. wall seconds
+on a live clock (and what they would have been, on `bench validate`'s virtual clocks).
 """
 
 from __future__ import annotations
@@ -11,12 +18,14 @@ import csv
 import io
 import json
 import statistics
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from apps.bench.config import BenchConfig, input_tokens, output_tokens
 from apps.bench.runner import COSTS, ERROR, RESULTS, BenchError
+from events.timing import REACTION_WINDOW
 
 COLUMNS = (
     "name",
@@ -51,6 +60,7 @@ class Row:
     run: int | None
     result: dict[str, Any] = field(default_factory=dict)
     costs: dict[str, Any] | None = None
+    folder: Path | None = None  # the task's result folder (transcript, screenshots, output)
 
     @property
     def is_noop(self) -> bool:
@@ -62,6 +72,24 @@ class Row:
         if group == "noop":
             return self.is_noop
         return not self.is_noop and group in self.category.split("-")
+
+    def timely(self, window: float) -> bool:
+        """Passed and, on a targeted task, contacted within `window` s of the condition.
+
+        A passed no-op is timely: it has no condition to be late for. A pass without a known
+        reaction time is not, since lateness cannot be ruled out.
+        """
+        if not self.success:
+            return False
+        if self.is_noop:
+            return True
+        return self.reaction_time is not None and self.reaction_time <= window
+
+    @property
+    def total_tokens(self) -> int | None:
+        if self.prompt_tokens is None and self.completion_tokens is None:
+            return None
+        return (self.prompt_tokens or 0) + (self.completion_tokens or 0)
 
     @property
     def completion_time(self) -> float | None:
@@ -133,6 +161,7 @@ def load_rows(
                 run=_int(result.get("run")),
                 result=result,
                 costs=costs,
+                folder=path.parent,
             )
         )
     if not rows and (task or filter):
@@ -185,12 +214,20 @@ class Rate:
         )
 
 
-def success_by_group(rows: list[Row]) -> dict[str, Rate]:
+def rates_by_group(rows: list[Row], passed: Callable[[Row], bool]) -> dict[str, Rate]:
     rates = {}
     for group in GROUPS:
         members = [r for r in rows if r.in_group(group)]
-        rates[group] = Rate(sum(r.success for r in members), len(members))
+        rates[group] = Rate(sum(passed(r) for r in members), len(members))
     return rates
+
+
+def success_by_group(rows: list[Row]) -> dict[str, Rate]:
+    return rates_by_group(rows, lambda r: r.success)
+
+
+def timely_by_group(rows: list[Row], window: float) -> dict[str, Rate]:
+    return rates_by_group(rows, lambda r: r.timely(window))
 
 
 @dataclass(frozen=True)
@@ -205,14 +242,20 @@ class Summary:
     costs: list[float]
     views_per_min: list[float]
     actions_per_min: list[float]
+    timely: dict[str, Rate]
+    unpriced: int  # tasks without a USD cost: no costs.json, or its model has no price
+    total_tokens: list[float]
 
 
-def summarise(rows: list[Row]) -> Summary:
+def summarise(rows: list[Row], window: float = REACTION_WINDOW) -> Summary:
     successful = [r for r in rows if r.success]
     return Summary(
         total=len(rows),
         successes=len(successful),
         rates=success_by_group(rows),
+        timely=timely_by_group(rows, window),
+        unpriced=sum(r.cost_usd is None for r in rows),
+        total_tokens=_values(rows, "total_tokens"),
         # Reaction time: successful non-no-op tasks (a no-op has no condition to react to).
         reaction=_values([r for r in successful if not r.is_noop], "reaction_time"),
         prompt_tokens=_values(rows, "prompt_tokens"),
@@ -255,17 +298,18 @@ def _avg_median(values: list[float], unit: str = "", digits: int = 1) -> str:
     return f"avg {mean(values):.{digits}f}{unit}, median {median(values):.{digits}f}{unit}"
 
 
+def aligned(header: list[str], lines: list[list[str]]) -> list[str]:
+    """A plain-text table: columns padded to their widest cell, a rule under the header."""
+    widths = [max(len(line[i]) for line in [header, *lines]) for i in range(len(header))]
+
+    def joined(line: list[str]) -> str:
+        return " | ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip()
+
+    return [joined(header), "-+-".join("-" * w for w in widths), *(joined(x) for x in lines)]
+
+
 def render_table(rows: list[Row], errors: list[str] | None = None) -> str:
-    cells = [list(COLUMNS)] + [[_cell(v) for v in row_values(r)] for r in rows]
-    widths = [max(len(line[i]) for line in cells) for i in range(len(COLUMNS))]
-    out = [
-        " | ".join(c.ljust(w) for c, w in zip(cells[0], widths, strict=True)).rstrip(),
-        "-+-".join("-" * w for w in widths),
-    ]
-    out += [
-        " | ".join(c.ljust(w) for c, w in zip(line, widths, strict=True)).rstrip()
-        for line in cells[1:]
-    ]
+    out = aligned(list(COLUMNS), [[_cell(v) for v in row_values(r)] for r in rows])
     s = summarise(rows)
     out += [
         "",
@@ -349,4 +393,194 @@ def render_csv(rows: list[Row]) -> str:
         ("Average Actions Per Minute", _fmt1(mean(s.actions_per_min))),
     ]
     writer.writerows(pairs)
+    return buffer.getvalue()
+
+
+# --- several result sets, side by side ------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ResultSet:
+    """One named results tree (`<results-dir>/<name>/`), read for grading."""
+
+    name: str
+    rows: list[Row]
+    errors: list[str]
+
+
+def load_result_sets(
+    results_dir: Path,
+    names: list[str],
+    config: BenchConfig | None = None,
+    *,
+    task: str | None = None,
+    filter: str | None = None,
+) -> list[ResultSet]:
+    """Every named set, in the order given; a missing name fails before any output."""
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise BenchError(f"result set named twice: {repeated[0]}")
+    missing = [n for n in names if not (results_dir / n).is_dir()]
+    if missing:
+        present = (
+            sorted(p.name for p in results_dir.iterdir() if p.is_dir())
+            if results_dir.is_dir()
+            else []
+        )
+        raise BenchError(
+            f"results folder not found: {results_dir / missing[0]} "
+            f"(result sets in {results_dir}: {', '.join(present) or 'none'})"
+        )
+    return [
+        ResultSet(
+            name,
+            load_rows(results_dir / name, config, task=task, filter=filter),
+            [] if task or filter else error_tasks(results_dir / name),
+        )
+        for name in names
+    ]
+
+
+CATEGORY_HEADERS = {"noop": "no-op"}
+
+
+def _rate_cells(rates: dict[str, Rate]) -> list[str]:
+    return [str(rates[g]) for g in GROUPS[1:]]
+
+
+def stat_cells(values: list[float], fmt: Callable[[float], str]) -> list[str]:
+    """n, mean, median, q1, q3, min, max — the paper's tool-call table, for any values."""
+    if not values:
+        return ["0"] + ["N/A"] * 6
+    q1, q3 = quartiles(values)
+    return [str(len(values))] + [
+        fmt(v) for v in (mean(values), median(values), q1, q3, min(values), max(values))
+    ]
+
+
+STAT_HEADERS = ["n", "mean", "median", "q1", "q3", "min", "max"]
+
+
+def unpriced_models(sets: list[ResultSet]) -> list[str]:
+    """Models named in a costs.json that the config has no price for."""
+    return sorted(
+        {
+            str(r.costs["model"])
+            for rs in sets
+            for r in rs.rows
+            if r.costs and r.cost_usd is None and r.costs.get("model")
+        }
+    )
+
+
+def render_comparison(sets: list[ResultSet], window: float) -> str:
+    """The console comparison: one row per result set in every table."""
+    summaries = [(rs, summarise(rs.rows, window)) for rs in sets]
+    groups = [CATEGORY_HEADERS.get(g, g) for g in GROUPS[1:]]
+    out = [f"Comparing {len(sets)} result sets: {', '.join(rs.name for rs in sets)}", ""]
+    out.append(
+        f"Success by category (timely = passed with reaction time <= {window:g} s; "
+        "a passed no-op is timely)"
+    )
+    out += aligned(
+        ["result set", "tasks", "success", "timely", *groups],
+        [
+            [
+                rs.name,
+                str(s.total),
+                str(s.rates["overall"]),
+                str(s.timely["overall"]),
+                *_rate_cells(s.rates),
+            ]
+            for rs, s in summaries
+        ],
+    )
+    out += ["", f"Timely success by category (reaction time <= {window:g} s)"]
+    out += aligned(
+        ["result set", "timely", *groups],
+        [[rs.name, str(s.timely["overall"]), *_rate_cells(s.timely)] for rs, s in summaries],
+    )
+    out += ["", "Cost per task (USD; costs.json tokens x config prices)"]
+    out += aligned(
+        ["result set", *STAT_HEADERS, "unpriced"],
+        [
+            [rs.name, *stat_cells(s.costs, lambda v: f"${v:.4f}"), str(s.unpriced)]
+            for rs, s in summaries
+        ],
+    )
+    out += ["", "Tokens per task (input + output, costs.json)"]
+    out += aligned(
+        ["result set", *STAT_HEADERS],
+        [[rs.name, *stat_cells(s.total_tokens, lambda v: f"{v:.0f}")] for rs, s in summaries],
+    )
+    out += ["", "Tool calls per task (costs.json)"]
+    out += aligned(
+        ["result set", *STAT_HEADERS],
+        [[rs.name, *stat_cells(s.tool_calls, lambda v: f"{v:.1f}")] for rs, s in summaries],
+    )
+    out += [
+        "",
+        "Reaction time (passed targeted tasks; seconds = simulated seconds / speed factor)",
+    ]
+    out += aligned(
+        ["result set", "n", "mean", "median"],
+        [
+            [
+                rs.name,
+                str(len(s.reaction)),
+                _seconds(mean(s.reaction)),
+                _seconds(median(s.reaction)),
+            ]
+            for rs, s in summaries
+        ],
+    )
+    if unpriced_models(sets):
+        out += ["", f"No price in the config for model(s): {', '.join(unpriced_models(sets))}"]
+    for rs in sets:
+        if rs.errors:
+            out.append(
+                f"{rs.name}: harness errors (not graded): {len(rs.errors)} — {', '.join(rs.errors)}"
+            )
+    return "\n".join(out) + "\n"
+
+
+def _seconds(value: float | None) -> str:
+    return "N/A" if value is None else f"{value:.1f}s"
+
+
+def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
+    """One CSV row per result set; rates are fractions, empty where undefined."""
+
+    def fraction(rate: Rate) -> str:
+        return "" if rate.fraction is None else f"{rate.fraction:.4f}"
+
+    def stats(values: list[float]) -> list[str]:
+        if not values:
+            return ["0"] + [""] * 6
+        q1, q3 = quartiles(values)
+        return [str(len(values))] + [
+            f"{v:.4f}" for v in (mean(values), median(values), q1, q3, min(values), max(values))
+        ]
+
+    header = ["result_set", "tasks", "success_rate", "timely_success_rate"]
+    header += [f"success_{g}" for g in GROUPS[1:]] + [f"timely_{g}" for g in GROUPS[1:]]
+    for prefix in ("cost_usd", "tool_calls", "tokens"):
+        header += [f"{prefix}_{h}" for h in STAT_HEADERS]
+    header += ["unpriced_tasks", "reaction_n", "reaction_mean_s", "reaction_median_s"]
+    header += ["timely_window_s"]
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(header)
+    for rs in sets:
+        s = summarise(rs.rows, window)
+        writer.writerow(
+            [rs.name, s.total, fraction(s.rates["overall"]), fraction(s.timely["overall"])]
+            + [fraction(s.rates[g]) for g in GROUPS[1:]]
+            + [fraction(s.timely[g]) for g in GROUPS[1:]]
+            + stats(s.costs)
+            + stats(s.tool_calls)
+            + stats(s.total_tokens)
+            + [s.unpriced, len(s.reaction), _fmt1(mean(s.reaction)), _fmt1(median(s.reaction))]
+            + [f"{window:g}"]
+        )
     return buffer.getvalue()

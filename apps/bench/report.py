@@ -2,7 +2,12 @@
 
 No scripts, fonts or stylesheets from the network: the file opens anywhere, offline. Plots (the
 paper's evaluation figures): success by category, cost per task, task completion time vs
-target time (with the y = x diagonal), cost vs target time.
+target time (with the y = x diagonal), cost vs target time. Several result sets give the
+paper's comparison instead: success (and timely success) by category side by side, a per-task
+cost box plot on a log axis, tool-call and reaction-time tables.
+
+Both end with a per-task table whose rows link to the task's transcript, rendered as its own
+page in `<report stem>-transcripts/` beside the report (apps/bench/transcripts.py).
 """
 
 from __future__ import annotations
@@ -11,7 +16,24 @@ import math
 from html import escape
 from pathlib import Path
 
-from apps.bench.grading import GROUPS, Row, mean, median, render_table, summarise
+from apps.bench.grading import (
+    GROUPS,
+    STAT_HEADERS,
+    ResultSet,
+    Row,
+    mean,
+    median,
+    quartiles,
+    render_table,
+    stat_cells,
+    summarise,
+    unpriced_models,
+)
+from apps.bench.transcripts import has_transcript, relative_href, render_transcript_page
+from events.timing import REACTION_WINDOW
+
+TranscriptLinks = dict[tuple[str, str, str], str]  # (result set, environment, task) -> href
+
 
 W, H = 560, 340
 M_LEFT, M_RIGHT, M_TOP, M_BOTTOM = 64, 20, 44, 56  # top: room for the title and bar labels
@@ -253,10 +275,20 @@ h1{font-size:20px} .plots{display:flex;flex-wrap:wrap;gap:16px}
 svg.plot{border:1px solid #ddd;background:#fff} svg text{font-size:11px;fill:#333}
 svg text.title{font-size:13px;font-weight:600} .grid{stroke:#eee} .axis{stroke:#666}
 pre{background:#f6f6f6;padding:12px;overflow:auto;font-size:12px}
+table{border-collapse:collapse;margin:8px 0 16px} th,td{padding:3px 10px;text-align:left}
+thead th{border-bottom:1px solid #999} tbody tr{border-bottom:1px solid #eee}
+tr.fail td:nth-child(5){color:#c8322d}
+.swatch{display:inline-block;width:10px;height:10px;margin:0 6px 0 2px;border-radius:2px}
+.note{color:#555} svg text.note{font-size:10px;fill:#777}
 """
 
 
-def render_report(name: str, rows: list[Row]) -> str:
+def render_report(
+    name: str,
+    rows: list[Row],
+    window: float = REACTION_WINDOW,
+    links: TranscriptLinks | None = None,
+) -> str:
     plots = [success_plot(rows), cost_plot(rows), time_plot(rows), cost_time_plot(rows)]
     return (
         '<!doctype html>\n<html lang="en"><head><meta charset="utf-8">'
@@ -264,10 +296,347 @@ def render_report(name: str, rows: list[Row]) -> str:
         f"<h1>Benchmark report: {escape(name)}</h1>"
         f'<div class="plots">{"".join(plots)}</div>'
         f"<h2>Tasks</h2><pre>{escape(render_table(rows))}</pre>"
+        f"<h2>Per task</h2>{_timely_note(window)}"
+        f"{tasks_table([ResultSet(name, rows, [])], window, links or {})}"
         "</body></html>\n"
     )
 
 
-def write_report(path: Path, name: str, rows: list[Row]) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(render_report(name, rows), encoding="utf-8")
+def write_report(path: Path, name: str, rows: list[Row], window: float = REACTION_WINDOW) -> None:
+    links = write_transcripts(path, [ResultSet(name, rows, [])], window)
+    path.write_text(render_report(name, rows, window, links), encoding="utf-8")
+
+
+def write_comparison_report(path: Path, sets: list[ResultSet], window: float) -> None:
+    links = write_transcripts(path, sets, window)
+    path.write_text(render_comparison_report(sets, window, links), encoding="utf-8")
+
+
+# --- several result sets ---------------------------------------------------------------------
+
+SET_COLORS = ("#1f6fb4", "#e07b00", "#2a9d4b", "#8e44ad", "#c8322d", "#17a2b8", "#7f6a00", "#555")
+COMPARED_GROUPS = ("overall", "timely", *GROUPS[1:])
+BOX_W, BOX_ROW, BOX_LEFT = 720, 56, 180  # the cost box plot: one row per result set
+
+
+def set_color(index: int) -> str:
+    return SET_COLORS[index % len(SET_COLORS)]
+
+
+def _swatch(index: int) -> str:
+    return f'<span class="swatch" style="background:{set_color(index)}"></span>'
+
+
+def comparison_success_plot(sets: list[ResultSet], window: float) -> str:
+    """Grouped bars: for each category (and timely success), one bar per result set."""
+    summaries = [summarise(rs.rows, window) for rs in sets]
+    plot = Plot(
+        "plot-compare-success",
+        "Success rate by category",
+        "category",
+        "success (%)",
+        (0, len(COMPARED_GROUPS)),
+        (0, 100),
+    )
+    plot.x0, plot.x1 = 0, len(COMPARED_GROUPS)
+    band = (W - M_LEFT - M_RIGHT) / len(COMPARED_GROUPS)
+    bar = band * 0.8 / len(sets)
+    for g, group in enumerate(COMPARED_GROUPS):
+        left = M_LEFT + g * band + band * 0.1
+        plot.add(
+            f'<text x="{left + band * 0.4:.1f}" y="{H - M_BOTTOM + 16}" text-anchor="middle">'
+            f"{GROUP_LABELS.get(group, group)}</text>"
+        )
+        for i, (rs, summary) in enumerate(zip(sets, summaries, strict=True)):
+            rate = summary.timely["overall"] if group == "timely" else summary.rates[group]
+            if not rate.total:
+                continue
+            top = plot.sy(100 * rate.fraction)
+            plot.add(
+                f'<rect class="mark bar" data-set="{escape(rs.name)}" x="{left + i * bar:.1f}" '
+                f'y="{top:.1f}" width="{bar * 0.92:.1f}" height="{plot.sy(0) - top:.1f}" '
+                f'fill="{set_color(i)}"><title>{escape(rs.name)}, '
+                f"{GROUP_LABELS.get(group, group)}: {rate}</title></rect>"
+            )
+    return plot.render(x_categories=list(COMPARED_GROUPS))
+
+
+def _decades(values: list[float]) -> tuple[int, int]:
+    """Powers of ten enclosing every positive value (a log axis shows no zero)."""
+    positive = [v for v in values if v > 0]
+    if not positive:
+        return -2, 0
+    low = math.floor(math.log10(min(positive)))
+    high = math.ceil(math.log10(max(positive)))
+    return low, max(high, low + 1)
+
+
+def _tokens_label(value: float) -> str:
+    for size, suffix in ((1e9, "G"), (1e6, "M"), (1e3, "k")):
+        if value >= size:
+            return f"{value / size:g}{suffix}"
+    return f"{value:g}"
+
+
+def cost_box_plot(sets: list[ResultSet]) -> str:
+    """Per-task cost, one box per result set, log axis: min–max whiskers, Q1–Q3 box, median bar,
+    mean diamond (the paper's figure). USD when any task is priced, else tokens per task."""
+    in_usd = any(r.cost_usd is not None for rs in sets for r in rs.rows)
+    attribute = "cost_usd" if in_usd else "total_tokens"
+    values = [[v for r in rs.rows if (v := getattr(r, attribute)) is not None] for rs in sets]
+    label = (lambda v: "$" + _fmt(v)) if in_usd else _tokens_label
+    title = (
+        "API cost per task (USD, log scale)"
+        if in_usd
+        else "Tokens per task (input + output, log scale): no task has a priced model"
+    )
+    low, high = _decades([v for vs in values for v in vs])
+    height = M_TOP + BOX_ROW * len(sets) + M_BOTTOM
+    right = BOX_W - M_RIGHT
+
+    def sx(v: float) -> float:
+        v = max(v, 10.0**low)  # a zero cost sits on the axis's left edge
+        return BOX_LEFT + (math.log10(v) - low) / (high - low) * (right - BOX_LEFT)
+
+    parts = [
+        f'<svg id="plot-compare-cost" class="plot" xmlns="http://www.w3.org/2000/svg" '
+        f'width="{BOX_W}" height="{height}" viewBox="0 0 {BOX_W} {height}" role="img" '
+        f'aria-label="{escape(title)}">',
+        f'<text x="{BOX_W / 2}" y="18" text-anchor="middle" class="title">{escape(title)}</text>',
+    ]
+    bottom = height - M_BOTTOM
+    for decade in range(low, high + 1):
+        x = sx(10.0**decade)
+        parts.append(f'<line class="grid" x1="{x:.1f}" x2="{x:.1f}" y1="{M_TOP}" y2="{bottom}"/>')
+        parts.append(
+            f'<text x="{x:.1f}" y="{bottom + 16}" text-anchor="middle">{label(10.0**decade)}</text>'
+        )
+    parts.append(f'<line class="axis" x1="{BOX_LEFT}" x2="{right}" y1="{bottom}" y2="{bottom}"/>')
+    parts.append(
+        f'<text x="{(BOX_LEFT + right) / 2}" y="{height - 12}" text-anchor="middle">'
+        f"{'USD per task' if in_usd else 'tokens per task'}</text>"
+    )
+    for i, (rs, vs) in enumerate(zip(sets, values, strict=True)):
+        y = M_TOP + BOX_ROW * i + BOX_ROW / 2
+        unpriced = len(rs.rows) - len(vs)
+        note = f"n={len(vs)}" + (
+            f", {unpriced} without a {'price' if in_usd else 'costs.json'}" if unpriced else ""
+        )
+        parts.append(
+            f'<text x="{BOX_LEFT - 8}" y="{y - 2:.1f}" text-anchor="end" class="set">'
+            f"{escape(rs.name)}</text>"
+            f'<text x="{BOX_LEFT - 8}" y="{y + 12:.1f}" text-anchor="end" class="note">'
+            f"{note}</text>"
+        )
+        if not vs:
+            parts.append(
+                f'<text class="empty" x="{BOX_LEFT + 8}" y="{y + 4:.1f}">'
+                f"{'no priced task' if in_usd else 'no costs.json'}</text>"
+            )
+            continue
+        q1, q3 = quartiles(vs)
+        tip = (
+            f"{rs.name}: median {label(median(vs))}, mean {label(mean(vs))}, "
+            f"Q1 {label(q1)}, Q3 {label(q3)}, min {label(min(vs))}, max {label(max(vs))}; {note}"
+        )
+        low_x, q1_x, mid_x, q3_x, high_x, mean_x = (
+            sx(v) for v in (min(vs), q1, median(vs), q3, max(vs), mean(vs))
+        )
+        parts.append(
+            f'<g class="mark box" data-set="{escape(rs.name)}"><title>{escape(tip)}</title>'
+            f'<path class="whisker" d="M{low_x:.1f},{y:.1f}H{high_x:.1f}'
+            f"M{low_x:.1f},{y - 7:.1f}v14M{high_x:.1f},{y - 7:.1f}v14"
+            f'" stroke="{GREY}" fill="none"/>'
+            f'<rect x="{q1_x:.1f}" y="{y - 12:.1f}" width="{max(q3_x - q1_x, 1):.1f}" '
+            f'height="24" fill="#fff" stroke="#333"/>'
+            f'<line class="median" x1="{mid_x:.1f}" x2="{mid_x:.1f}" y1="{y - 12:.1f}" '
+            f'y2="{y + 12:.1f}" stroke="{set_color(i)}" stroke-width="4"/>'
+            f'<path class="mean" d="M{mean_x:.1f},{y - 5:.1f}l5,5l-5,5l-5,-5z" '
+            f'fill="#fff" stroke="#333"/></g>'
+        )
+    parts.append("</svg>")
+    return "\n".join(parts)
+
+
+def _html_table(table_id: str, header: list[str], lines: list[list[str]]) -> str:
+    """A table whose first column names the result set, with its colour."""
+    head = "".join(f"<th>{escape(h)}</th>" for h in header)
+    body = "".join(
+        f"<tr><th>{_swatch(i)}{escape(line[0])}</th>"
+        + "".join(f"<td>{escape(c)}</td>" for c in line[1:])
+        + "</tr>"
+        for i, line in enumerate(lines)
+    )
+    return f'<table id="{table_id}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+
+
+def _unpriced_note(sets: list[ResultSet]) -> str:
+    models = unpriced_models(sets)
+    if not models:
+        return ""
+    return f'<p class="note">No price in the config for model(s): {escape(", ".join(models))}</p>'
+
+
+def _timely_note(window: float) -> str:
+    return (
+        f'<p class="note">Timely: passed with a reaction time of at most {window:g} s (a passed '
+        "no-op is timely). Times are the run's simulated seconds ÷ its speed factor: wall "
+        "seconds on a live clock.</p>"
+    )
+
+
+def render_comparison_report(
+    sets: list[ResultSet], window: float, links: TranscriptLinks | None = None
+) -> str:
+    summaries = [(rs, summarise(rs.rows, window)) for rs in sets]
+    names = " vs ".join(rs.name for rs in sets)
+    groups = [GROUP_LABELS[g] for g in GROUPS[1:]]
+    success = _html_table(
+        "success",
+        ["result set", "tasks", "success", "timely", *groups],
+        [
+            [
+                rs.name,
+                str(s.total),
+                str(s.rates["overall"]),
+                str(s.timely["overall"]),
+                *(str(s.rates[g]) for g in GROUPS[1:]),
+            ]
+            for rs, s in summaries
+        ],
+    )
+    timely = _html_table(
+        "timely",
+        ["result set", "timely", *groups],
+        [
+            [rs.name, str(s.timely["overall"]), *(str(s.timely[g]) for g in GROUPS[1:])]
+            for rs, s in summaries
+        ],
+    )
+    cost = _html_table(
+        "cost",
+        ["result set", *STAT_HEADERS, "unpriced"],
+        [
+            [rs.name, *stat_cells(s.costs, lambda v: f"${v:.4f}"), str(s.unpriced)]
+            for rs, s in summaries
+        ],
+    )
+    tools = _html_table(
+        "tool-calls",
+        ["result set", *STAT_HEADERS],
+        [[rs.name, *stat_cells(s.tool_calls, lambda v: f"{v:.1f}")] for rs, s in summaries],
+    )
+    reaction = _html_table(
+        "reaction",
+        ["result set", "n", "mean (s)", "median (s)"],
+        [
+            [rs.name, str(len(s.reaction)), _opt(mean(s.reaction)), _opt(median(s.reaction))]
+            for rs, s in summaries
+        ],
+    )
+    plots = [comparison_success_plot(sets, window), cost_box_plot(sets)]
+    legend = " ".join(f"{_swatch(i)}{escape(rs.name)}" for i, rs in enumerate(sets))
+    return (
+        '<!doctype html>\n<html lang="en"><head><meta charset="utf-8">'
+        f"<title>Benchmark comparison: {escape(names)}</title><style>{STYLE}</style></head><body>"
+        f"<h1>Benchmark comparison: {escape(names)}</h1>"
+        f'<p class="legend">{legend}</p>{_timely_note(window)}'
+        f"<h2>Success by category</h2>{success}"
+        f"<h2>Timely success by category</h2>{timely}"
+        f'<div class="plots">{"".join(plots)}</div>'
+        f"<h2>Cost per task (USD)</h2>{cost}{_unpriced_note(sets)}"
+        f"<h2>Tool calls per task</h2>{tools}"
+        f"<h2>Reaction time (passed targeted tasks)</h2>{reaction}"
+        f"<h2>Per task</h2>{tasks_table(sets, window, links or {})}"
+        "</body></html>\n"
+    )
+
+
+# --- per task, with transcripts --------------------------------------------------------------
+
+
+def _opt(value: float | None, fmt: str = "{:.1f}") -> str:
+    return "" if value is None else fmt.format(value)
+
+
+TASK_COLUMNS = (
+    "task",
+    "environment",
+    "agent",
+    "category",
+    "success",
+    "timely",
+    "reaction (s)",
+    "cost (USD)",
+    "tool calls",
+)
+
+
+def task_facts(set_name: str, row: Row, window: float) -> list[tuple[str, str]]:
+    """A task's cells in the per-task table (TASK_COLUMNS), as (label, value) pairs."""
+    values = (
+        row.name,
+        row.environment,
+        set_name,
+        row.category,
+        "yes" if row.success else "no",
+        "yes" if row.timely(window) else "no",
+        _opt(row.reaction_time),
+        _opt(row.cost_usd, "${:.4f}"),
+        "" if row.tool_calls is None else str(row.tool_calls),
+    )
+    return list(zip(TASK_COLUMNS, values, strict=True))
+
+
+def tasks_table(sets: list[ResultSet], window: float, links: TranscriptLinks) -> str:
+    """Every task of every set, a task's sets next to each other, linked to its transcript."""
+    entries = sorted(
+        (
+            (row.environment, row.name, i, rs.name, row)
+            for i, rs in enumerate(sets)
+            for row in rs.rows
+        ),
+        key=lambda e: e[:3],
+    )
+    body = []
+    for environment, name, i, set_name, row in entries:
+        facts = task_facts(set_name, row, window)
+        cells = "".join(
+            f"<td>{_swatch(i) if label == 'agent' else ''}{escape(value)}</td>"
+            for label, value in facts
+        )
+        href = links.get((set_name, environment, name))
+        link = f'<a class="transcript" href="{href}">transcript</a>' if href else "none"
+        body.append(f'<tr class="{"ok" if row.success else "fail"}">{cells}<td>{link}</td></tr>')
+    head = "".join(f"<th>{escape(h)}</th>" for h in (*TASK_COLUMNS, "transcript"))
+    return f'<table id="tasks"><thead><tr>{head}</tr></thead><tbody>{"".join(body)}</tbody></table>'
+
+
+def transcripts_folder(report: Path) -> Path:
+    return report.with_name(f"{report.stem}-transcripts")
+
+
+def write_transcripts(report: Path, sets: list[ResultSet], window: float) -> TranscriptLinks:
+    """A page per task that has a transcript, beside the report; the report's links to them."""
+    report.parent.mkdir(parents=True, exist_ok=True)
+    links: TranscriptLinks = {}
+    for rs in sets:
+        for row in rs.rows:
+            if not has_transcript(row.folder):
+                continue
+            page = transcripts_folder(report) / rs.name / row.environment / f"{row.name}.html"
+            page.parent.mkdir(parents=True, exist_ok=True)
+            facts = task_facts(rs.name, row, window)
+            facts.append(("verdict", str(row.result.get("detail") or "")))
+            page.write_text(
+                render_transcript_page(
+                    title=f"{row.name} — {rs.name}",
+                    facts=facts,
+                    task_folder=row.folder,
+                    page_folder=page.parent,
+                    back_href=relative_href(report, page.parent),
+                ),
+                encoding="utf-8",
+            )
+            links[(rs.name, row.environment, row.name)] = relative_href(page, report.parent)
+    return links

@@ -121,10 +121,25 @@ class Command(BaseCommand):
         )
         run.add_argument("--results-dir", default="results")
 
-        grade = sub.add_parser("grade", help="summarise a results tree")
-        grade.add_argument("name")
+        grade = sub.add_parser(
+            "grade", help="summarise a results tree, or compare several side by side"
+        )
+        grade.add_argument(
+            "names", nargs="+", metavar="NAME", help="result sets under --results-dir"
+        )
         grade.add_argument("--csv", action="store_true")
-        grade.add_argument("--html", metavar="PATH", help="also write a self-contained HTML report")
+        grade.add_argument(
+            "--html",
+            metavar="PATH",
+            help="also write a self-contained HTML report, transcript pages beside it",
+        )
+        grade.add_argument(
+            "--timely-window",
+            type=float,
+            metavar="S",
+            help="timely success: passed with reaction time <= S seconds "
+            "(default: the config's reaction_window, 30)",
+        )
         grade.add_argument("--task")
         grade.add_argument("--filter")
         grade.add_argument("--config", help=f"for prices (default: {DEFAULT_CONFIG} when present)")
@@ -270,20 +285,32 @@ class Command(BaseCommand):
 
     # --- grade -----------------------------------------------------------------------------
 
-    def handle_grade(self, *, name, csv, html, task, filter, config, results_dir, **_):
-        from apps.bench.grading import error_tasks, load_rows, render_csv, render_table
+    def handle_grade(
+        self, *, names, csv, html, timely_window, task, filter, config, results_dir, **_
+    ):
+        from apps.bench import grading, report
 
         if config is None and Path(DEFAULT_CONFIG).exists():
             config = DEFAULT_CONFIG
         cfg = load_config(config) if config else BenchConfig(None)
-        run_dir = Path(results_dir) / name
-        rows = load_rows(run_dir, cfg, task=task, filter=filter)
-        errors = [] if task or filter else error_tasks(run_dir)
-        self.stdout.write(render_csv(rows) if csv else render_table(rows, errors), ending="")
+        window = cfg.reaction_window if timely_window is None else timely_window
+        if not window > 0:  # also rejects NaN
+            raise _usage(f"--timely-window must be a positive number of seconds, got {window}")
+        sets = grading.load_result_sets(Path(results_dir), names, cfg, task=task, filter=filter)
+        if len(sets) == 1:  # one set: the upstream table, as before
+            (one,) = sets
+            text = (
+                grading.render_csv(one.rows) if csv else grading.render_table(one.rows, one.errors)
+            )
+        else:
+            render = grading.render_comparison_csv if csv else grading.render_comparison
+            text = render(sets, window)
+        self.stdout.write(text, ending="")
         if html:
-            from apps.bench.report import write_report
-
-            write_report(Path(html), name, rows)
+            if len(sets) == 1:
+                report.write_report(Path(html), sets[0].name, sets[0].rows, window)
+            else:
+                report.write_comparison_report(Path(html), sets, window)
             if not csv:
                 self.stdout.write(f"HTML report -> {html}")
 
