@@ -8,7 +8,11 @@ from django.db import models
 class BenchmarkRun(models.Model):
     name = models.CharField(max_length=200, unique=True)
     config = models.JSONField(default=dict, blank=True)
-    agent = models.CharField(max_length=200, blank=True, help_text="built-in agent used, if any (control agent, or reference agent on its model)")
+    agent = models.CharField(
+        max_length=200,
+        blank=True,
+        help_text="built-in agent used, if any (control agent, or reference agent on its model)",
+    )
     speed_factor = models.FloatField(default=1.0)
     results_dir = models.CharField(max_length=500, blank=True)
     started_at = models.DateTimeField(null=True, blank=True)
