@@ -1,0 +1,157 @@
+"""`python -m apps.browser_agent`: the reference browser agent on one task (see README.md).
+
+Exit codes: 0 the agent ended normally (whatever its reason: done, terminated, a budget spent);
+1 it could not go on (the browser would not start, the model failed after its retries);
+2 bad arguments or a missing API key.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import math
+import os
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import NoReturn
+
+import openai
+from playwright.sync_api import Error as PlaywrightError
+
+from apps.browser_agent.browser import CHROMIUM, Browser, first_line
+from apps.browser_agent.loop import DEFAULT_MAX_STEPS, AgentLoop, Task, WallBudget
+from apps.browser_agent.model import COSTS_FILE, ChatModel, CostLedger, make_client
+from apps.browser_agent.tools import WAIT_KINDS, TaskClock, Toolbox
+from apps.browser_agent.transcript import Transcript
+
+PROGRAM = "browser_agent"
+LOCAL_KEY = "not-needed"  # a local OpenAI-compatible server takes any key; the client needs one
+
+
+class OneLineParser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{PROGRAM}: error: {message}\n")
+
+
+def _positive(kind: type[int] | type[float]) -> Callable[[str], float]:
+    def parse(text: str) -> float:
+        try:
+            value = kind(text)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and value > 0):
+            whole = " whole" if kind is int else ""
+            raise argparse.ArgumentTypeError(f"must be a positive{whole} number, got {text!r}")
+        return value
+
+    return parse
+
+
+def parser() -> argparse.ArgumentParser:
+    p = OneLineParser(prog=f"python -m apps.{PROGRAM}", description=__doc__.splitlines()[0])
+    p.add_argument("--kind", required=True, choices=WAIT_KINDS, help="the waiting tool")
+    p.add_argument("--model", required=True, help="the model's name at the endpoint")
+    p.add_argument(
+        "--base-url",
+        default=os.environ.get("OPENAI_BASE_URL") or None,
+        help="an OpenAI-compatible endpoint (default: $OPENAI_BASE_URL, else OpenAI's)",
+    )
+    p.add_argument("--api-key-env", default="OPENAI_API_KEY", help="variable holding the key")
+    p.add_argument("--task-url", required=True)
+    p.add_argument("--contact-url", required=True)
+    prompt = p.add_mutually_exclusive_group(required=True)
+    prompt.add_argument("--prompt", help="the task's prompt")
+    prompt.add_argument("--prompt-file", type=Path, help="a file holding the task's prompt")
+    p.add_argument(
+        "--task-dir",
+        type=Path,
+        default=Path(os.environ.get("SENTINEL_TASK_DIR") or "."),
+        help="where costs.json and the transcript go (default: $SENTINEL_TASK_DIR, else .)",
+    )
+    p.add_argument("--max-steps", type=_positive(int), default=DEFAULT_MAX_STEPS)
+    p.add_argument("--max-tokens-total", type=_positive(int))
+    p.add_argument("--max-wall", type=_positive(float), help="wall seconds")
+    p.add_argument(
+        "--speed-factor",
+        type=_positive(float),
+        default=1.0,
+        help="the scenario's speed: the agent's seconds (sleep, timeouts) are the scenario's",
+    )
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    started = time.monotonic()
+    args = parser().parse_args(argv)
+    if args.prompt_file is not None:
+        try:
+            args.prompt = args.prompt_file.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError) as error:
+            _usage_error(f"cannot read --prompt-file {args.prompt_file}: {error}")
+    api_key = os.environ.get(args.api_key_env, "")
+    if not api_key:
+        if args.base_url is None:
+            _usage_error(
+                f"{args.api_key_env} is not set (a local server given by --base-url needs none)"
+            )
+        api_key = LOCAL_KEY
+    if not args.task_dir.is_dir():
+        _usage_error(f"--task-dir {args.task_dir}: no such folder")
+
+    say = functools.partial(print, flush=True)
+    ledger = CostLedger(args.model, args.task_dir / COSTS_FILE)
+    ledger.write()  # an agent killed before its first answer still reports zero tokens
+    model = ChatModel(
+        make_client(base_url=args.base_url, api_key=api_key),
+        args.model,
+        ledger,
+        max_tokens_total=args.max_tokens_total,
+    )
+    wall = WallBudget(args.max_wall, started)
+    task = Task(args.task_url, args.contact_url, args.prompt)
+    transcript = Transcript(args.task_dir, started=started)
+    try:
+        with Browser.launch(contact_url=task.contact_url) as browser:
+            toolbox = Toolbox(
+                browser,
+                model,
+                kind=args.kind,
+                contact_url=task.contact_url,
+                clock=TaskClock(args.speed_factor),
+                wall_left=wall.left,
+            )
+            loop = AgentLoop(
+                task,
+                kind=args.kind,
+                browser=browser,
+                model=model,
+                toolbox=toolbox,
+                transcript=transcript,
+                wall=wall,
+                max_steps=args.max_steps,
+                say=say,
+            )
+            loop.run()
+    except openai.APIError as error:
+        say(f"stopped: the model failed: {first_line(error)}")
+        return 1
+    except PlaywrightError as error:
+        say(f"stopped: the browser failed ({CHROMIUM}): {first_line(error)}")
+        return 1
+    finally:
+        transcript.close()
+    return 0
+
+
+def _usage_error(message: str) -> NoReturn:
+    print(f"{PROGRAM}: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:
+        sys.exit(130)

@@ -1,0 +1,75 @@
+"""The agent's transcript in its task folder: `transcript.jsonl` and `transcript/step-NNN.jpg`.
+
+One JSON object per line, one line per step, written (and flushed) as the step ends, so an agent
+killed at its deadline leaves every finished step readable:
+
+    {"step": 3, "t": 12.41, "url": "http://…", "text": "…" | null, "tool": "click" | null,
+     "arguments": {"target": 12}, "result": "clicked [12] button \"Archive\"",
+     "screenshot": "transcript/step-003.jpg" | null,
+     "usage": {"input_tokens": 5120, "output_tokens": 38}}
+
+`t` is wall seconds since the agent started, when the step ended; `url` and `screenshot` are
+what the model saw when it chose the step; `usage` is every token the step spent — the agent's
+call and, for wait_for, its judge's — so the lines add up to costs.json. The HTML report
+renders this format.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import time
+from pathlib import Path
+from typing import Any
+
+from apps.browser_agent.model import Usage
+
+TRANSCRIPT_FILE = "transcript.jsonl"
+SCREENSHOT_DIR = "transcript"
+
+
+class Transcript:
+    """Appends steps to a fresh transcript (a rerun in the same folder starts over)."""
+
+    def __init__(self, task_dir: Path, *, started: float | None = None) -> None:
+        self.task_dir = task_dir
+        self.started = time.monotonic() if started is None else started
+        self.steps = 0
+        shutil.rmtree(task_dir / SCREENSHOT_DIR, ignore_errors=True)
+        (task_dir / SCREENSHOT_DIR).mkdir(parents=True)
+        self._file = (task_dir / TRANSCRIPT_FILE).open("w", encoding="utf-8")
+
+    def record(
+        self,
+        *,
+        url: str | None,
+        text: str | None,
+        tool: str | None,
+        arguments: dict[str, Any],
+        result: str,
+        screenshot: bytes | None,
+        usage: Usage,
+    ) -> int:
+        """Write one step; returns its number."""
+        self.steps += 1
+        relative = None
+        if screenshot is not None:
+            relative = f"{SCREENSHOT_DIR}/step-{self.steps:03d}.jpg"
+            (self.task_dir / relative).write_bytes(screenshot)
+        line = {
+            "step": self.steps,
+            "t": round(time.monotonic() - self.started, 2),
+            "url": url,
+            "text": text,
+            "tool": tool,
+            "arguments": arguments,
+            "result": result,
+            "screenshot": relative,
+            "usage": {"input_tokens": usage.input_tokens, "output_tokens": usage.output_tokens},
+        }
+        self._file.write(json.dumps(line, ensure_ascii=False) + "\n")
+        self._file.flush()
+        return self.steps
+
+    def close(self) -> None:
+        self._file.close()
