@@ -257,12 +257,9 @@ class Harness:
         argv = [sys.executable, "-m", "apps.browser_agent", *agent.arguments()]
         argv += ["--task-url", run["task_url"], "--contact-url", run["contact_url"]]
         argv += ["--prompt-file", str((task.folder / "prompt.txt").resolve())]
-        argv += [
-            "--task-dir",
-            str(task.folder.resolve()),
-            "--speed-factor",
-            repr(self.speed_factor),
-        ]
+        # Not the speed factor: like the paper's agents, it knows only its URLs and prompt and
+        # lives in wall time, so a faster scenario leaves it less time to notice.
+        argv += ["--task-dir", str(task.folder.resolve())]
         if agent.max_wall is None:
             limit = deadline_s(task.spec, self.speed_factor, self.config.reaction_window)
             argv += ["--max-wall", repr(limit)]

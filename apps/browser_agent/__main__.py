@@ -77,7 +77,8 @@ def parser() -> argparse.ArgumentParser:
         "--speed-factor",
         type=_positive(float),
         default=1.0,
-        help="the scenario's speed: the agent's seconds (sleep, timeouts) are the scenario's",
+        help="demos and tests: the agent's seconds (sleep, timeouts) are the scenario's at this "
+        "speed (bench run never passes it: the paper's agents live in wall time)",
     )
     return p
 

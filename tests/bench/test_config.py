@@ -209,8 +209,7 @@ def test_a_reference_agent_is_configured_instead_of_a_command(tmp_path):
         "--task-url": "http://h/r/t/start",
         "--contact-url": "http://h/r/t/contact",
         "--prompt-file": str((task.folder / "prompt.txt").resolve()),
-        "--task-dir": str(task.folder.resolve()),
-        "--speed-factor": "4.0",
+        "--task-dir": str(task.folder.resolve()),  # and never the speed factor
         "--max-wall": repr(deadline_s(task.spec, 4.0, 30.0)),  # stops itself by the deadline
     }
     assert str(tmp_path) in env["PYTHONPATH"].split(":")

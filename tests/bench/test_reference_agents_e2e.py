@@ -20,14 +20,15 @@ pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.browser]
 
 MODEL = "scripted-1"
 # The condition "an email from Kevin Lee" holds at 40 s (10 wall s at speed 4); the no-op's
-# sender never writes. The judge says yes only on a change that adds one of these names.
+# sender never writes. The judge says yes only on a change that adds one of these names. The
+# agents live in wall time, as the paper's (the harness never tells them the speed factor).
 JUDGE = {"yes_when_any": ["Kevin Lee", "Lena Whitford"]}
 WAIT_FOR = {
     "model": MODEL,
     "agent": [
         {
             "call": "wait_for",
-            "arguments": {"condition": "the awaited email arrives", "timeout": 44},
+            "arguments": {"condition": "the awaited email arrives", "timeout": 16},
         },
         {
             "when_last_result": "met: true",
@@ -44,7 +45,7 @@ WAIT_FOR = {
 SLEEP = {
     "model": MODEL,
     "agent": [
-        {"call": "sleep", "arguments": {"seconds": 48}},
+        {"call": "sleep", "arguments": {"seconds": 14}},
         {"call": "read_page"},
         {
             "when_last_result": "Kevin Lee",
