@@ -123,22 +123,14 @@ def live_site(transactional_db):
         yield base_url
 
 
-CHROMIUM_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
-
-
 @pytest.fixture
 def browser():
     """Debian's Chromium driven by Playwright (never `playwright install`)."""
     import shutil
 
-    executable = shutil.which("chromium") or "/usr/bin/chromium"
+    from apps.browser_agent.browser import CHROMIUM, CHROMIUM_ARGS
+
+    executable = shutil.which("chromium") or CHROMIUM
     if not Path(executable).exists():
         pytest.fail("chromium is not installed: apt-get install -y chromium")
     from playwright.sync_api import sync_playwright

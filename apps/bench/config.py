@@ -22,9 +22,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
+from sentinel_site.yaml_files import YamlFileError, read_yaml
 
 KNOWN_KEYS = (
     "server_url",
@@ -285,16 +284,7 @@ def parse_config(data: Any, *, source: str = "config", require_agent: bool = Tru
 def load_config(path: str | Path) -> BenchConfig:
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ConfigError(f"{path}: config file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"{path}: cannot read: {exc}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
-        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-        raise ConfigError(f"{path}: invalid YAML{where}: {problem}") from None
+        data = read_yaml(path, "config file")
+    except YamlFileError as exc:
+        raise ConfigError(str(exc)) from None
     return dataclasses.replace(parse_config(data, source=str(path)), folder=path.resolve().parent)

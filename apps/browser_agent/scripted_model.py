@@ -36,9 +36,8 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from apps.browser_agent.tools import JUDGE_CHANGE_PATTERN
+from sentinel_site.yaml_files import YamlFileError, read_yaml
 
 SCRIPT_KEYS = ("model", "agent", "judge", "failures")
 REPLY_KEYS = ("call", "arguments", "text", "when_last_result", "otherwise")
@@ -255,20 +254,10 @@ def parse_script(data: Any, *, source: str = "script") -> Script:
 
 def load_script(path: str | Path) -> Script:
     """A script from a YAML (or JSON, which is YAML) file."""
-    path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ScriptError(f"{path}: script file not found") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise ScriptError(f"{path}: cannot read: {error}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
-        problem = getattr(error, "problem", None) or str(error).splitlines()[0]
-        raise ScriptError(f"{path}: invalid YAML{where}: {problem}") from None
+        data = read_yaml(path, "script file")
+    except YamlFileError as error:
+        raise ScriptError(str(error)) from None
     return parse_script(data, source=str(path))
 
 
