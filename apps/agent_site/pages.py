@@ -135,11 +135,15 @@ def perform_implicit_actions(request: HttpRequest, page: Page, kwargs: dict) -> 
             page.act(implicit.action, implicit.payload(value))
 
 
-def rejected(request: HttpRequest, page: Page, exc: ActionRejected) -> HttpResponse:
-    """A refused page or action as a page of the site, naming the reason (with JavaScript on,
-    the shell swaps it in like any page: static/site/shell.js)."""
+def rejected(
+    request: HttpRequest, page: Page, exc: ActionRejected, *, missing: bool = False
+) -> HttpResponse:
+    """A refused page or action, or a page of the run that does not exist, as a page of the
+    site naming the reason (with JavaScript on, the shell swaps it in like any page:
+    static/site/shell.js)."""
     context = {
         "page": page,
+        "missing": missing,  # the page itself does not exist (not an action refused)
         "message": str(exc),
         "back": page.root + "/",
         "environment_title": get_environment(page.run.environment).title,
@@ -197,5 +201,8 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             return rejected(request, page, exc)
         except InvalidQuery as exc:  # a view's QueryState.from_params: a page naming the field
             return rejected(request, page, ActionRejected(str(exc), exc.status))
+        except Http404 as exc:  # an item the run does not show (unknown or not arrived yet)
+            reason = ActionRejected(str(exc) or "no such page", 404)
+            return rejected(request, page, reason, missing=True)
 
     return renderable(wrapper)  # the only views the live protocol renders
