@@ -11,7 +11,6 @@ reaction is the self user's (the original always wrote the literal "user000").
 
 from __future__ import annotations
 
-import uuid
 from collections.abc import Callable, Mapping
 from dataclasses import replace
 from types import MappingProxyType
@@ -32,6 +31,7 @@ from apps.microchat.state import (
     with_read,
     without_message,
 )
+from events.deciding import found, new_id
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
@@ -61,18 +61,12 @@ class Edit(MessageId):
 
 
 def existing_conversation(chat: Chat, conversation_id: str) -> Conversation:
-    conversation = chat.conversations.get(conversation_id)
-    if conversation is None:
-        raise ActionRejected(f"no conversation {conversation_id!r} in this workspace", 404)
-    return conversation
+    return found(chat.conversations, conversation_id, "conversation", "in this workspace")
 
 
 def existing_message(chat: Chat, message_id: str) -> Message:
     """The message, or a 404: unknown and not-yet-arrived ids look the same."""
-    message = chat.messages.get(message_id)
-    if message is None:
-        raise ActionRejected(f"no message {message_id!r} in any chat", 404)
-    return message
+    return found(chat.messages, message_id, "message", "in any chat")
 
 
 def own_message(chat: Chat, message_id: str) -> Message:
@@ -174,8 +168,7 @@ def decide_send(chat: Chat, payload: dict) -> dict:
     decided = {
         "conversation_id": conversation_id,
         "content": message_text(payload),
-        # Chosen once here and logged, so replay reuses it.
-        "id": f"sent-{uuid.uuid4().hex[:12]}",
+        "id": new_id("sent"),
     }
     reply_to = payload.get("reply_to")
     if reply_to:

@@ -10,7 +10,6 @@ repeated request cannot undo itself; the like count moves with them (±1, as in 
 
 from __future__ import annotations
 
-import uuid
 from collections.abc import Callable, Mapping
 from dataclasses import replace
 from types import MappingProxyType
@@ -19,11 +18,11 @@ from urllib.parse import quote
 
 from pydantic import Field
 
+from apps.agent_site.social import Comment, post_actions
 from apps.microdin import catalog as records
 from apps.microdin.query import JobsQuery, MessagingQuery
 from apps.microdin.state import (
     SECTION_TYPES,
-    Comment,
     Conversation,
     Message,
     MessageState,
@@ -32,17 +31,12 @@ from apps.microdin.state import (
     status,
     with_state,
 )
+from events.deciding import checking, found, new_id, required_text
 from events.frozen import with_items
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
-
-class PostId(Payload):
-    post_id: str = Field(description="id of a post in the feed")
-
-
-class CommentOnPost(PostId):
-    text: str = Field(description="the comment")
+WHERE = "on this network"  # ends the 404 for an id that is not (yet) on the network
 
 
 class ConnectionId(Payload):
@@ -76,27 +70,6 @@ class AddProfileSection(Payload):
     content: str = ""
 
 
-def new_id(prefix: str) -> str:
-    # Chosen once in decide() and logged, so replay reuses it.
-    return f"{prefix}-{uuid.uuid4().hex[:12]}"
-
-
-def existing(network: Network, field: str, item_id: str, what: str):
-    """The item, or a 404: unknown and not-yet-arrived ids look the same."""
-    item = getattr(network, field).get(item_id)
-    if item is None:
-        raise ActionRejected(f"no {what} {item_id!r} on this network", status=404)
-    return item
-
-
-def checking(field: str, key: str, what: str) -> Callable[[Network, dict], dict]:
-    def decide(network: Network, payload: dict) -> dict:
-        existing(network, field, payload[key], what)
-        return payload
-
-    return decide
-
-
 def setting(field: str, key: str, **changes: Any) -> Callable[[Network, LoggedEvent], Network]:
     """A reducer setting fields of the item's user-side record (liked, read, applied…)."""
 
@@ -106,19 +79,7 @@ def setting(field: str, key: str, **changes: Any) -> Callable[[Network, LoggedEv
     return reduce
 
 
-def required_text(payload: dict, key: str) -> str:
-    text = str(payload.get(key) or "").strip()
-    if not text:
-        raise ActionRejected(f"payload field {key!r} is empty: write something first")
-    return text
-
-
 # --- posts -----------------------------------------------------------------------------------
-
-
-def decide_comment(network: Network, payload: dict) -> dict:
-    existing(network, "posts", payload["post_id"], "post")
-    return {**payload, "text": required_text(payload, "text"), "id": new_id("user-comment")}
 
 
 def reduce_comment(network: Network, event: LoggedEvent) -> Network:
@@ -136,7 +97,7 @@ def reduce_comment(network: Network, event: LoggedEvent) -> Network:
 
 def decide_answer(network: Network, payload: dict) -> dict:
     """Only a pending invitation can be accepted or ignored."""
-    connection = existing(network, "connections", payload["connection_id"], "connection request")
+    connection = found(network.connections, payload["connection_id"], "connection request", WHERE)
     current = status(network, connection.id)
     if current != "pending":
         raise ActionRejected(
@@ -149,7 +110,7 @@ def decide_answer(network: Network, payload: dict) -> dict:
 
 
 def decide_send(network: Network, payload: dict) -> dict:
-    existing(network, "conversations", payload["conversation_id"], "conversation")
+    found(network.conversations, payload["conversation_id"], "conversation", WHERE)
     return {**payload, "content": required_text(payload, "content"), "id": new_id("user-msg")}
 
 
@@ -183,8 +144,7 @@ def thread_with(network: Network, user_id: str) -> str | None:
 def decide_start(network: Network, payload: dict) -> dict:
     """The existing one-to-one thread with the person, else a new empty one."""
     user_id = payload["user_id"]
-    if user_id not in network.catalog.users:
-        raise ActionRejected(f"no member {user_id!r} on this network", status=404)
+    found(network.catalog.users, user_id, "member", WHERE)
     if user_id == network.me.id:
         raise ActionRejected("you cannot message yourself")
     return {**payload, "conversation_id": thread_with(network, user_id) or new_id("user-conv")}
@@ -203,7 +163,7 @@ def reduce_start(network: Network, event: LoggedEvent) -> Network:
 
 
 def decide_apply(network: Network, payload: dict) -> dict:
-    job = existing(network, "jobs", payload["job_id"], "job")
+    job = found(network.jobs, payload["job_id"], "job", WHERE)
     if network.job_states[job.id].is_applied:
         raise ActionRejected(f"you already applied to {job.title} at {job.company.name}", 409)
     return payload
@@ -228,18 +188,18 @@ def reduce_section(network: Network, event: LoggedEvent) -> Network:
 
 
 def post_page(network: Network, payload: dict) -> PageStep:
-    existing(network, "posts", payload["post_id"], "post")
+    found(network.posts, payload["post_id"], "post", WHERE)
     form = {"text": payload["text"]} if "text" in payload else {}
     return PageStep(f"feed/update/{quote(payload['post_id'])}/", form)
 
 
 def invitations_page(network: Network, payload: dict) -> PageStep:
-    existing(network, "connections", payload["connection_id"], "connection request")
+    found(network.connections, payload["connection_id"], "connection request", WHERE)
     return PageStep("mynetwork/invitations/", {"connection_id": payload["connection_id"]})
 
 
 def thread_page(network: Network, payload: dict) -> PageStep:
-    existing(network, "conversations", payload["conversation_id"], "conversation")
+    found(network.conversations, payload["conversation_id"], "conversation", WHERE)
     path = "messaging/" + MessagingQuery(conversation=payload["conversation_id"]).querystring()
     return PageStep(path, {"content": payload["content"]} if "content" in payload else None)
 
@@ -249,12 +209,12 @@ def profile_page(network: Network, payload: dict) -> PageStep:
 
 
 def notifications_page(network: Network, payload: dict) -> PageStep:
-    existing(network, "notifications", payload["notification_id"], "notification")
+    found(network.notifications, payload["notification_id"], "notification", WHERE)
     return PageStep("notifications/", {"notification_id": payload["notification_id"]})
 
 
 def job_page(network: Network, payload: dict) -> PageStep:
-    existing(network, "jobs", payload["job_id"], "job")
+    found(network.jobs, payload["job_id"], "job", WHERE)
     return PageStep("jobs/" + JobsQuery(job=payload["job_id"]).querystring(), {})
 
 
@@ -265,25 +225,11 @@ def section_page(network: Network, payload: dict) -> PageStep:
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
-        "like_post": Action(
-            PostId,
-            checking("posts", "post_id", "post"),
-            setting("post_states", "post_id", is_liked=True),
-            help="Like a post (its like count goes up by one).",
-            page=post_page,
-        ),
-        "unlike_post": Action(
-            PostId,
-            checking("posts", "post_id", "post"),
-            setting("post_states", "post_id", is_liked=False),
-            page=post_page,
-        ),
-        "comment_post": Action(
-            CommentOnPost,
-            decide_comment,
+        **post_actions(
+            WHERE,
+            lambda is_liked: setting("post_states", "post_id", is_liked=is_liked),
             reduce_comment,
-            help="Comment on a post as the self user.",
-            page=post_page,
+            post_page,
         ),
         "accept_connection": Action(
             ConnectionId,
@@ -301,7 +247,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         ),
         "open_conversation": Action(
             ConversationId,
-            checking("conversations", "conversation_id", "conversation"),
+            checking("conversations", "conversation_id", "conversation", WHERE),
             reduce_open,
             help="Open a thread; this marks its messages read.",
             page=thread_page,
@@ -322,7 +268,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         ),
         "mark_notification_read": Action(
             NotificationId,
-            checking("notifications", "notification_id", "notification"),
+            checking("notifications", "notification_id", "notification", WHERE),
             setting("notification_states", "notification_id", is_read=True),
             help="Mark a notification read (what clicking it does).",
             page=notifications_page,

@@ -15,9 +15,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from apps.agent_site import social
 from apps.microdin.state import (
     ENVIRONMENT,
-    Comment,
     Company,
     Connection,
     ConnectionState,
@@ -27,25 +27,11 @@ from apps.microdin.state import (
     Notification,
     NotificationState,
     Person,
-    Picture,
     Post,
 )
 
 PRELOAD_AGE_S = 300.0
 UNKNOWN_MEMBER = "MicroDin member"
-PICTURE_SUBJECTS = (
-    "landscape",
-    "city",
-    "food",
-    "office",
-    "whiteboard",
-    "chart",
-    "screenshot",
-    "pet",
-    "product",
-    "people",
-    "abstract",
-)
 # The original's wording for a notification without its own text.
 DEFAULT_PHRASES: Mapping[str, str] = {
     "like": "liked your post",
@@ -62,11 +48,8 @@ def table(catalog: Any, name: str) -> Mapping[str, Mapping[str, Any]]:
 
 
 def profile_record(catalog: Any, user_id: str) -> Mapping[str, Any]:
-    """The person's MicroDin profile: our `profiles` table, else the original's user field."""
-    record = table(catalog, "profiles").get(user_id)
-    if record is not None:
-        return record
-    return (catalog.users.get(user_id) or {}).get("microdin") or {}
+    """The person's MicroDin profile (company, headline, numbers on the network)."""
+    return social.profile_record(catalog, ENVIRONMENT, user_id)
 
 
 def company(catalog: Any, company_id: str | None, name: str = "") -> Company | None:
@@ -84,17 +67,17 @@ def company(catalog: Any, company_id: str | None, name: str = "") -> Company | N
 
 def people(catalog: Any) -> Mapping[str, Person]:
     """Every person of the catalog as a card shows them (built once per catalog)."""
-    result = {}
-    for user_id, user in catalog.users.items():
-        profile = profile_record(catalog, user_id)
-        result[user_id] = Person(
+
+    def member(user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]) -> Person:
+        return Person(
             id=user_id,
             name=str(user.get("name") or UNKNOWN_MEMBER),
             title=str(profile.get("headline") or user.get("jobTitle") or ""),
             company=company(catalog, profile.get("companyId"), str(profile.get("company") or "")),
             location=str(user.get("location") or ""),
         )
-    return result
+
+    return social.members(catalog, ENVIRONMENT, member)
 
 
 def catalog_people(catalog: Any) -> Mapping[str, Person]:
@@ -122,44 +105,26 @@ def _order(record: Mapping[str, Any], fallback: int) -> int:
     return int(value) if isinstance(value, int | float) else fallback
 
 
-def picture(record: Mapping[str, Any]) -> Picture | None:
+def picture(record: Mapping[str, Any]) -> social.Picture | None:
     """Ours: `image {subject, label}`; the original: an `imageUrl` (its file name is the seed)."""
-    image = record.get("image")
-    if isinstance(image, Mapping):
-        subject = str(image.get("subject") or "office")
-        return Picture(
-            seed=str(image.get("seed") or record["id"]),
-            subject=subject if subject in PICTURE_SUBJECTS else "abstract",
-            label=str(image.get("label") or ""),
-        )
+    drawn = social.drawn_picture(record, default_subject="office")
     url = record.get("imageUrl")
-    if url:
-        stem = str(url).rsplit("/", 1)[-1].rsplit(".", 1)[0]
-        return Picture(seed=stem, subject="office", label=stem.replace("-", " "))
-    return None
+    if drawn is None and url:
+        return social.file_picture(url, lambda seed: "office")
+    return drawn
 
 
 def catalog_post(catalog: Any, post_id: str, *, posted_at: float, order: int) -> Post | None:
     record = table(catalog, "posts").get(post_id)
     if record is None:
         return None
-    comments = tuple(
-        Comment(
-            id=str(c.get("id", f"{post_id}-c{n}")),
-            author=person(catalog, c.get("authorId")),
-            text=str(c.get("text", "")),
-            likes=int(c.get("likes") or 0),
-        )
-        for n, c in enumerate(record.get("comments") or (), 1)
-        if isinstance(c, Mapping)
-    )
     return Post(
         id=post_id,
         author=person(catalog, record.get("authorId")),
         content=str(record.get("content", "")),
         likes=int(record.get("likes") or 0),
         shares=int(record.get("shares") or 0),
-        comments=comments,
+        comments=social.catalog_comments(record, post_id, lambda user_id: person(catalog, user_id)),
         posted_at=posted_at,
         order=order,
         image=picture(record),

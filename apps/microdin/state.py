@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
+from apps.agent_site.social import Comment, Picture
 from events.frozen import with_changed
 
 ENVIRONMENT = "microdin"
@@ -49,40 +50,22 @@ class Person:
 
 
 @dataclass(frozen=True)
-class Picture:
-    """An image attached to a post: a generated illustration (apps.media) of `subject`."""
-
-    seed: str
-    subject: str = "office"
-    label: str = ""
-
-
-@dataclass(frozen=True)
-class Comment:
-    id: str
-    author: Person
-    text: str
-    likes: int = 0
-    at: float | None = None  # None for comments the catalog gives without a time
-
-
-@dataclass(frozen=True)
 class Post:
     id: str
     author: Person
     content: str
     likes: int  # as delivered; the user's own like is added by `likes_now`
     shares: int
-    comments: tuple[Comment, ...]
+    comments: tuple[Comment[Person], ...]
     posted_at: float
     order: int
-    image: Picture | None = None
+    image: Picture | None = None  # an image attached to the post
 
 
 @dataclass(frozen=True)
 class PostState:
     is_liked: bool = False
-    comments: tuple[Comment, ...] = ()  # written by the self user during the run
+    comments: tuple[Comment[Person], ...] = ()  # written by the self user during the run
 
 
 @dataclass(frozen=True)
@@ -218,7 +201,7 @@ def likes_now(network: Network, post_id: str) -> int:
     return network.posts[post_id].likes + int(network.post_states[post_id].is_liked)
 
 
-def all_comments(network: Network, post_id: str) -> tuple[Comment, ...]:
+def all_comments(network: Network, post_id: str) -> tuple[Comment[Person], ...]:
     return network.posts[post_id].comments + network.post_states[post_id].comments
 
 

@@ -11,7 +11,8 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, one_of, run_page
+from apps.agent_site.pages import Page, run_page
+from apps.agent_site.post_actions import act_on_post
 from apps.agent_site.rendering import (
     back_field,
     came_from,
@@ -99,13 +100,8 @@ def post(request: HttpRequest, page: Page, post_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> HttpResponse:
-    one_of(action, POST_ACTIONS, "post action")
-    payload = {"post_id": post_id}
-    if action == "comment_post":
-        payload["text"] = request.POST.get("text", "")
-    page.act(action, payload)
-    back = came_from(request, page) + f"#post-{post_id}"
-    return redirect_after(request, page, back, POST_ACTIONS[action])
+    done = act_on_post(request, page, post_id, action, POST_ACTIONS)
+    return redirect_after(request, page, came_from(request, page) + f"#post-{post_id}", done)
 
 
 # --- my network ----------------------------------------------------------------------------------

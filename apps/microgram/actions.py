@@ -12,15 +12,14 @@ was client-only in the original and is logged here; so is reading activity.
 from __future__ import annotations
 
 import json
-import uuid
 from collections.abc import Callable, Mapping
 from dataclasses import replace
 from types import MappingProxyType
-from typing import Any
 from urllib.parse import quote
 
 from pydantic import Field
 
+from apps.agent_site.social import PostId, post_actions
 from apps.microgram.catalog import person
 from apps.microgram.state import (
     Conversation,
@@ -32,17 +31,12 @@ from apps.microgram.state import (
     unread_in,
     with_post_state,
 )
+from events.deciding import checking, found, new_id, required_text
 from events.frozen import with_items
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
-
-class PostId(Payload):
-    post_id: str = Field(description="id of a post in the feed")
-
-
-class CommentOnPost(PostId):
-    text: str = Field(description="the comment")
+WHERE = "on MicroGram"  # ends the 404 for an id that is not (yet) on MicroGram
 
 
 class StoryId(Payload):
@@ -74,34 +68,6 @@ class Nothing(Payload):
     pass
 
 
-def new_id(prefix: str) -> str:
-    # Chosen once in decide() and logged, so replay reuses it.
-    return f"{prefix}-{uuid.uuid4().hex[:12]}"
-
-
-def existing(gram: Gram, field: str, item_id: str, what: str) -> Any:
-    """The item, or a 404: unknown and not-yet-arrived ids look the same."""
-    item = getattr(gram, field).get(item_id)
-    if item is None:
-        raise ActionRejected(f"no {what} {item_id!r} on MicroGram", status=404)
-    return item
-
-
-def checking(field: str, key: str, what: str) -> Callable[[Gram, dict], dict]:
-    def decide(gram: Gram, payload: dict) -> dict:
-        existing(gram, field, payload[key], what)
-        return payload
-
-    return decide
-
-
-def required_text(payload: dict, key: str) -> str:
-    text = str(payload.get(key) or "").strip()
-    if not text:
-        raise ActionRejected(f"payload field {key!r} is empty: write something first")
-    return text
-
-
 # --- posts -----------------------------------------------------------------------------------
 
 
@@ -110,11 +76,6 @@ def setting_post(**changes: bool) -> Callable[[Gram, LoggedEvent], Gram]:
         return with_post_state(gram, event.payload["post_id"], **changes)
 
     return reduce
-
-
-def decide_comment(gram: Gram, payload: dict) -> dict:
-    existing(gram, "posts", payload["post_id"], "post")
-    return {**payload, "text": required_text(payload, "text"), "id": new_id("user-comment")}
 
 
 def reduce_comment(gram: Gram, event: LoggedEvent) -> Gram:
@@ -146,7 +107,7 @@ def reduce_read_conversation(gram: Gram, event: LoggedEvent) -> Gram:
 
 
 def decide_send(gram: Gram, payload: dict) -> dict:
-    existing(gram, "conversations", payload["conversation_id"], "conversation")
+    found(gram.conversations, payload["conversation_id"], "conversation", WHERE)
     return {**payload, "text": required_text(payload, "text"), "id": new_id("user-dm")}
 
 
@@ -161,8 +122,8 @@ def reduce_send(gram: Gram, event: LoggedEvent) -> Gram:
 
 
 def decide_share(gram: Gram, payload: dict) -> dict:
-    existing(gram, "posts", payload["post_id"], "post")
-    existing(gram, "conversations", payload["conversation_id"], "conversation")
+    found(gram.posts, payload["post_id"], "post", WHERE)
+    found(gram.conversations, payload["conversation_id"], "conversation", WHERE)
     return {**payload, "text": str(payload.get("text") or "").strip(), "id": new_id("user-dm")}
 
 
@@ -224,7 +185,7 @@ def reduce_read_all_activity(gram: Gram, event: LoggedEvent) -> Gram:
 def decide_follow(gram: Gram, payload: dict) -> dict:
     user_id = payload["user_id"]
     if user_id not in known_people(gram):
-        raise ActionRejected(f"no member {user_id!r} on MicroGram", status=404)
+        raise ActionRejected(f"no member {user_id!r} {WHERE}", status=404)
     if user_id == gram.me.id:
         raise ActionRejected("you cannot follow yourself")
     return payload
@@ -248,23 +209,23 @@ def reduce_unfollow(gram: Gram, event: LoggedEvent) -> Gram:
 
 
 def post_page(gram: Gram, payload: dict) -> PageStep:
-    existing(gram, "posts", payload["post_id"], "post")
+    found(gram.posts, payload["post_id"], "post", WHERE)
     form = {"text": payload["text"]} if "text" in payload else {}
     return PageStep(f"p/{quote(payload['post_id'])}/", form)
 
 
 def opened_post_page(gram: Gram, payload: dict) -> PageStep:
-    existing(gram, "posts", payload["post_id"], "post")
+    found(gram.posts, payload["post_id"], "post", WHERE)
     return PageStep(f"p/{quote(payload['post_id'])}/", None)
 
 
 def story_page(gram: Gram, payload: dict) -> PageStep:
-    existing(gram, "stories", payload["story_id"], "story")
+    found(gram.stories, payload["story_id"], "story", WHERE)
     return PageStep(f"stories/{quote(payload['story_id'])}/", None)
 
 
 def thread_page(gram: Gram, payload: dict) -> PageStep:
-    existing(gram, "conversations", payload["conversation_id"], "conversation")
+    found(gram.conversations, payload["conversation_id"], "conversation", WHERE)
     form = {"text": payload["text"]} if "text" in payload else None
     return PageStep(f"direct/t/{quote(payload['conversation_id'])}/", form)
 
@@ -274,7 +235,7 @@ def profile_page(gram: Gram, payload: dict) -> PageStep:
 
 
 def share_page(gram: Gram, payload: dict) -> PageStep:
-    existing(gram, "posts", payload["post_id"], "post")
+    found(gram.posts, payload["post_id"], "post", WHERE)
     form = {"conversation_id": payload["conversation_id"], "text": payload.get("text", "")}
     return PageStep(f"p/{quote(payload['post_id'])}/", form)
 
@@ -286,58 +247,40 @@ def activity_page(gram: Gram, payload: dict) -> PageStep:
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
-        "like_post": Action(
-            PostId,
-            checking("posts", "post_id", "post"),
-            setting_post(is_liked=True),
-            help="Like a post (its like count goes up by one).",
-            page=post_page,
-        ),
-        "unlike_post": Action(
-            PostId,
-            checking("posts", "post_id", "post"),
-            setting_post(is_liked=False),
-            help="Take a like back.",
-            page=post_page,
+        **post_actions(
+            WHERE, lambda is_liked: setting_post(is_liked=is_liked), reduce_comment, post_page
         ),
         "save_post": Action(
             PostId,
-            checking("posts", "post_id", "post"),
+            checking("posts", "post_id", "post", WHERE),
             setting_post(is_saved=True),
             help="Save a post (it shows under Saved on your profile).",
             page=post_page,
         ),
         "unsave_post": Action(
             PostId,
-            checking("posts", "post_id", "post"),
+            checking("posts", "post_id", "post", WHERE),
             setting_post(is_saved=False),
             help="Remove a post from Saved.",
             page=post_page,
         ),
-        "comment_post": Action(
-            CommentOnPost,
-            decide_comment,
-            reduce_comment,
-            help="Comment on a post as the self user.",
-            page=post_page,
-        ),
         "view_post": Action(
             PostId,
-            checking("posts", "post_id", "post"),
+            checking("posts", "post_id", "post", WHERE),
             setting_post(is_viewed=True),
             help="Open a post with its comments (what opening it does).",
             page=opened_post_page,
         ),
         "view_story": Action(
             StoryId,
-            checking("stories", "story_id", "story"),
+            checking("stories", "story_id", "story", WHERE),
             reduce_view_story,
             help="Watch a story (its ring turns grey).",
             page=story_page,
         ),
         "read_conversation": Action(
             ConversationId,
-            checking("conversations", "conversation_id", "conversation"),
+            checking("conversations", "conversation_id", "conversation", WHERE),
             reduce_read_conversation,
             help="Open a DM thread; this marks its messages read.",
             page=thread_page,
@@ -379,7 +322,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         ),
         "mark_activity_read": Action(
             ActivityId,
-            checking("activity", "activity_id", "activity item"),
+            checking("activity", "activity_id", "activity item", WHERE),
             reduce_read_activity,
             help="Mark one activity item read (what clicking it does).",
             page=activity_page,

@@ -17,31 +17,17 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
+from apps.agent_site import social
 from apps.microgram.state import (
     ENVIRONMENT,
     Activity,
-    Comment,
     Conversation,
     Message,
     Person,
-    Picture,
     Post,
     Story,
 )
 
-PICTURE_SUBJECTS = (
-    "landscape",
-    "city",
-    "food",
-    "office",
-    "whiteboard",
-    "chart",
-    "screenshot",
-    "pet",
-    "product",
-    "people",
-    "abstract",
-)
 # Words in the original's image file names → the closest subject we can draw.
 SUBJECT_HINTS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("food", ("food", "coffee", "pasta", "market", "dinner", "baking", "bread", "brunch", "tea")),
@@ -60,31 +46,24 @@ def table(catalog: Any, name: str) -> Mapping[str, Mapping[str, Any]]:
     return catalog.table(ENVIRONMENT, name)
 
 
-def profile_record(catalog: Any, user_id: str) -> Mapping[str, Any]:
-    """The person's MicroGram numbers: our `profiles` table, else the original's user field."""
-    record = table(catalog, "profiles").get(user_id)
-    if record is not None:
-        return record
-    return (catalog.users.get(user_id) or {}).get("microgram") or {}
+def member(user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]) -> Person:
+    """A catalog user as MicroGram shows them; `profile` holds their numbers on MicroGram."""
+    return Person(
+        id=user_id,
+        name=str(user.get("name") or user_id),
+        username=str(user.get("username") or user_id),
+        bio=str(profile.get("bio") or user.get("bio") or ""),
+        website=str(profile.get("website") or ""),
+        followers=int(profile.get("followers") or 0),
+        following=int(profile.get("following") or 0),
+        posts_count=int(profile.get("postsCount") or 0),
+        verified=bool(profile.get("isVerified")),
+    )
 
 
 def people(catalog: Any) -> Mapping[str, Person]:
     """Every person of the catalog as MicroGram shows them (built once per catalog)."""
-    result = {}
-    for user_id, user in catalog.users.items():
-        profile = profile_record(catalog, user_id)
-        result[user_id] = Person(
-            id=user_id,
-            name=str(user.get("name") or user_id),
-            username=str(user.get("username") or user_id),
-            bio=str(profile.get("bio") or user.get("bio") or ""),
-            website=str(profile.get("website") or ""),
-            followers=int(profile.get("followers") or 0),
-            following=int(profile.get("following") or 0),
-            posts_count=int(profile.get("postsCount") or 0),
-            verified=bool(profile.get("isVerified")),
-        )
-    return result
+    return social.members(catalog, ENVIRONMENT, member)
 
 
 def person(catalog: Any, user_id: str | None) -> Person:
@@ -105,17 +84,10 @@ def guess_subject(seed: str) -> str:
     )
 
 
-def picture(record: Mapping[str, Any], url_key: str) -> Picture:
-    image = record.get("image")
-    if isinstance(image, Mapping):
-        subject = str(image.get("subject") or "abstract")
-        return Picture(
-            seed=str(image.get("seed") or record["id"]),
-            subject=subject if subject in PICTURE_SUBJECTS else "abstract",
-            label=str(image.get("label") or ""),
-        )
-    stem = str(record.get(url_key) or record["id"]).rsplit("/", 1)[-1].rsplit(".", 1)[0]
-    return Picture(seed=stem, subject=guess_subject(stem), label=stem.replace("-", " "))
+def picture(record: Mapping[str, Any], url_key: str) -> social.Picture:
+    """Ours: `image {subject, label}`; the original: the URL under `url_key`, else the id."""
+    drawn = social.drawn_picture(record, default_subject="abstract")
+    return drawn or social.file_picture(record.get(url_key) or record["id"], guess_subject)
 
 
 def max_order(catalog: Any, name: str) -> int:
@@ -140,16 +112,6 @@ def catalog_post(catalog: Any, post_id: str, *, posted_at: float) -> Post | None
     record = table(catalog, "posts").get(post_id)
     if record is None:
         return None
-    comments = tuple(
-        Comment(
-            id=str(c.get("id", f"{post_id}-c{n}")),
-            author=person(catalog, c.get("authorId")),
-            text=str(c.get("text", "")),
-            likes=int(c.get("likes") or 0),
-        )
-        for n, c in enumerate(record.get("comments") or (), 1)
-        if isinstance(c, Mapping)
-    )
     return Post(
         id=post_id,
         author=person(catalog, record.get("authorId")),
@@ -157,7 +119,7 @@ def catalog_post(catalog: Any, post_id: str, *, posted_at: float) -> Post | None
         caption=str(record.get("caption") or ""),
         location=str(record.get("location") or ""),
         likes=int(record.get("likes") or 0),
-        comments=comments,
+        comments=social.catalog_comments(record, post_id, lambda user_id: person(catalog, user_id)),
         is_target=bool(record.get("isTargetPost")),
         posted_at=posted_at,
         order=int(record.get("order") or 0),

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
+from apps.agent_site.social import Comment, Picture
 from events.derived import per_state
 from events.frozen import with_changed
 
@@ -38,24 +39,6 @@ class Person:
 
 
 @dataclass(frozen=True)
-class Picture:
-    """A generated illustration (apps.media) of `subject`, square in posts and stories."""
-
-    seed: str
-    subject: str
-    label: str = ""
-
-
-@dataclass(frozen=True)
-class Comment:
-    id: str
-    author: Person
-    text: str
-    likes: int = 0
-    at: float | None = None  # the self user's comments carry their time
-
-
-@dataclass(frozen=True)
 class Post:
     id: str
     author: Person
@@ -63,7 +46,7 @@ class Post:
     caption: str
     location: str
     likes: int  # as delivered; the self user's like is added by `likes_now`
-    comments: tuple[Comment, ...]  # the catalog's (the `comments` evaluation table)
+    comments: tuple[Comment[Person], ...]  # the catalog's (the `comments` evaluation table)
     is_target: bool
     posted_at: float
     order: int
@@ -174,7 +157,7 @@ def likes_now(gram: Gram, post_id: str) -> int:
     return gram.posts[post_id].likes + int(gram.post_states[post_id].is_liked)
 
 
-def comments_of(gram: Gram, post_id: str) -> tuple[Comment, ...]:
+def comments_of(gram: Gram, post_id: str) -> tuple[Comment[Person], ...]:
     """Every comment under the post: the catalog's, then the self user's (the original showed
     these only until a reload)."""
     own = tuple(

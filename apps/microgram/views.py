@@ -11,6 +11,7 @@ from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.agent_site.pages import Page, one_of, run_page
+from apps.agent_site.post_actions import act_on_post
 from apps.agent_site.rendering import (
     came_from,
     redirect_after,
@@ -83,15 +84,11 @@ def post(request: HttpRequest, page: Page, post_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> HttpResponse:
-    one_of(action, POST_ACTIONS, "post action")
-    payload = {"post_id": post_id}
-    if action == "comment_post":
-        payload["text"] = request.POST.get("text", "")
-    page.act(action, payload)
+    done = act_on_post(request, page, post_id, action, POST_ACTIONS)
     back = came_from(request, page, f"p/{post_id}/")
     if not back.startswith("p/"):
-        back += f"#post-{post_id}"
-    return redirect_after(request, page, back, POST_ACTIONS[action])
+        back += f"#post-{post_id}"  # back to the post in a list, not to the list's top
+    return redirect_after(request, page, back, done)
 
 
 @require_POST

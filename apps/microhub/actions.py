@@ -30,6 +30,7 @@ from apps.microhub.state import (
     next_issue_number,
     with_issue_state,
 )
+from events.deciding import found
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
@@ -94,10 +95,7 @@ def existing_issue(hub: Hub, issue_id: str) -> Issue:
 
 
 def existing_pr(hub: Hub, pr_id: str):
-    pr = hub.prs.get(pr_id)
-    if pr is None:
-        raise ActionRejected(f"no pull request {pr_id!r} in {hub.owner}/{hub.name}", status=404)
-    return pr
+    return found(hub.prs, pr_id, "pull request", f"in {hub.owner}/{hub.name}")
 
 
 def not_blank(payload: dict, name: str) -> str:

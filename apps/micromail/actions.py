@@ -12,7 +12,6 @@ request, or two tabs that race, cannot flip the flag back by accident.
 from __future__ import annotations
 
 import re
-import uuid
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
 from typing import Any, Literal
@@ -33,6 +32,7 @@ from apps.micromail.state import (
     with_state,
     without_email,
 )
+from events.deciding import found, new_id
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
@@ -52,10 +52,7 @@ class Move(EmailId):
 
 def existing_email(mail: Mail, email_id: str) -> Email:
     """The message, or a 404: unknown, purged and not-yet-arrived ids look the same."""
-    email = mail.emails.get(email_id)
-    if email is None:
-        raise ActionRejected(f"no email {email_id!r} in this mailbox", status=404)
-    return email
+    return found(mail.emails, email_id, "email", "in this mailbox")
 
 
 def decide_on_email(mail: Mail, payload: dict) -> dict:
@@ -107,11 +104,6 @@ class Compose(Payload):
     draft_id: str | None = Field(None, description="the draft this replaces")
 
 
-def new_message_id(folder: str) -> str:
-    # Chosen once in decide() and logged, so replay reuses it (upstream's id shape).
-    return f"{folder}-{uuid.uuid4().hex[:12]}"
-
-
 def address_list(payload: dict, name: str, *, check: bool) -> list[str]:
     addresses = [v.strip() for v in payload.get(name) or () if v.strip()]
     if check:
@@ -160,7 +152,8 @@ def decide_send(mail: Mail, payload: dict) -> dict:
     message = composed(mail, payload, check_addresses=True)
     if not message["to"]:
         raise ActionRejected("payload field 'to' needs at least one recipient")
-    return {"id": new_message_id("sent"), **message, **draft_to_replace(mail, payload)}
+    # `<folder>-<hex>`: upstream's id shape.
+    return {"id": new_id("sent"), **message, **draft_to_replace(mail, payload)}
 
 
 def decide_save_draft(mail: Mail, payload: dict) -> dict:
@@ -171,7 +164,7 @@ def decide_save_draft(mail: Mail, payload: dict) -> dict:
             "an empty draft has nothing to save: give to, cc, bcc, subject, body or attachments"
         )
     replaced = draft_to_replace(mail, payload)
-    return {"id": replaced.get("draft_id") or new_message_id("drafts"), **message, **replaced}
+    return {"id": replaced.get("draft_id") or new_id("drafts"), **message, **replaced}
 
 
 def documents(mail: Mail, ids: list[str]) -> tuple[Attachment, ...]:

@@ -18,6 +18,7 @@ from typing import Any
 from pydantic import Field
 
 from apps.microscholar.state import Paper, Scholar, with_alert_read, with_paper_state
+from events.deciding import found
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
@@ -31,10 +32,7 @@ class AlertId(Payload):
 
 
 def existing_paper(scholar: Scholar, paper_id: str) -> Paper:
-    paper = scholar.papers.get(paper_id)
-    if paper is None:
-        raise ActionRejected(f"no paper {paper_id!r} in the index", status=404)
-    return paper
+    return found(scholar.papers, paper_id, "paper", "in the index")
 
 
 def decide_on_paper(scholar: Scholar, payload: dict) -> dict:

@@ -29,6 +29,7 @@ from apps.microtube.state import (
     with_video_state,
     with_watched,
 )
+from events.deciding import found
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
@@ -63,9 +64,8 @@ class AddToPlaylist(VideoId):
 
 def existing(tube: Tube, kind: str, item_id: str | None) -> None:
     """A 404 for an id the site does not show: unknown and not yet arrived look the same."""
-    if not item_id or item_id not in getattr(tube, kind):
-        label = {"videos": "video", "channels": "channel", "notifications": "notification"}
-        raise ActionRejected(f"no {label.get(kind, kind)} {item_id!r} on this site", status=404)
+    label = {"videos": "video", "channels": "channel", "notifications": "notification"}
+    found(getattr(tube, kind), item_id, label.get(kind, kind), "on this site")
 
 
 def checking(kind: str, field: str) -> Callable[[Tube, dict], dict]:
