@@ -115,8 +115,10 @@ def own_scenarios(settings, tmp_path) -> Path:
 
 
 @pytest.fixture
-def live_site(transactional_db):
-    """Base URL of a real Daphne server (HTTP + websockets) serving the test database."""
+def live_site(transactional_db, site_ticker):
+    """Base URL of a real Daphne server (HTTP + websockets) serving the test database, with the
+    configured ticker behind it, as in production: on the Celery leg a page would otherwise see
+    a scenario event only when something reads the run (its next clock-driven push)."""
     from sentinel_site.site_server import site_server
 
     with site_server(log_path=settings.BASE_DIR / "var" / "live-site.log") as base_url:
