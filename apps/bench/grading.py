@@ -473,51 +473,70 @@ def unpriced_models(sets: list[ResultSet]) -> list[str]:
     )
 
 
+# The comparison's tables, one row per result set: (header, rows), drawn as text by
+# render_comparison and as HTML by report.render_comparison_report.
+TableCells = tuple[list[str], list[list[str]]]
+Summaries = list[tuple[ResultSet, Summary]]
+
+
+def _category_headers() -> list[str]:
+    return [CATEGORY_HEADERS.get(g, g) for g in GROUPS[1:]]
+
+
+def success_table(summaries: Summaries) -> TableCells:
+    header = ["result set", "tasks", "success", "timely", *_category_headers()]
+    return header, [
+        [
+            rs.name,
+            str(s.total),
+            str(s.rates["overall"]),
+            str(s.timely["overall"]),
+            *_rate_cells(s.rates),
+        ]
+        for rs, s in summaries
+    ]
+
+
+def timely_table(summaries: Summaries) -> TableCells:
+    header = ["result set", "timely", *_category_headers()]
+    return header, [
+        [rs.name, str(s.timely["overall"]), *_rate_cells(s.timely)] for rs, s in summaries
+    ]
+
+
+def cost_table(summaries: Summaries) -> TableCells:
+    return ["result set", *STAT_HEADERS, "unpriced"], [
+        [rs.name, *stat_cells(s.costs, lambda v: f"${v:.4f}"), str(s.unpriced)]
+        for rs, s in summaries
+    ]
+
+
+def tool_calls_table(summaries: Summaries) -> TableCells:
+    return ["result set", *STAT_HEADERS], [
+        [rs.name, *stat_cells(s.tool_calls, lambda v: f"{v:.1f}")] for rs, s in summaries
+    ]
+
+
 def render_comparison(sets: list[ResultSet], window: float) -> str:
     """The console comparison: one row per result set in every table."""
     summaries = [(rs, summarise(rs.rows, window)) for rs in sets]
-    groups = [CATEGORY_HEADERS.get(g, g) for g in GROUPS[1:]]
     out = [f"Comparing {len(sets)} result sets: {', '.join(rs.name for rs in sets)}", ""]
     out.append(
         f"Success by category (timely = passed with reaction time <= {window:g} s; "
         "a passed no-op is timely)"
     )
-    out += aligned(
-        ["result set", "tasks", "success", "timely", *groups],
-        [
-            [
-                rs.name,
-                str(s.total),
-                str(s.rates["overall"]),
-                str(s.timely["overall"]),
-                *_rate_cells(s.rates),
-            ]
-            for rs, s in summaries
-        ],
-    )
+    out += aligned(*success_table(summaries))
     out += ["", f"Timely success by category (reaction time <= {window:g} s)"]
-    out += aligned(
-        ["result set", "timely", *groups],
-        [[rs.name, str(s.timely["overall"]), *_rate_cells(s.timely)] for rs, s in summaries],
-    )
+    out += aligned(*timely_table(summaries))
     out += ["", "Cost per task (USD; costs.json tokens x config prices)"]
-    out += aligned(
-        ["result set", *STAT_HEADERS, "unpriced"],
-        [
-            [rs.name, *stat_cells(s.costs, lambda v: f"${v:.4f}"), str(s.unpriced)]
-            for rs, s in summaries
-        ],
-    )
+    out += aligned(*cost_table(summaries))
     out += ["", "Tokens per task (input + output, costs.json)"]
     out += aligned(
         ["result set", *STAT_HEADERS],
         [[rs.name, *stat_cells(s.total_tokens, lambda v: f"{v:.0f}")] for rs, s in summaries],
     )
     out += ["", "Tool calls per task (costs.json)"]
-    out += aligned(
-        ["result set", *STAT_HEADERS],
-        [[rs.name, *stat_cells(s.tool_calls, lambda v: f"{v:.1f}")] for rs, s in summaries],
-    )
+    out += aligned(*tool_calls_table(summaries))
     out += [
         "",
         "Reaction time (passed targeted tasks; seconds = simulated seconds / speed factor)",

@@ -18,15 +18,17 @@ from pathlib import Path
 
 from apps.bench.grading import (
     GROUPS,
-    STAT_HEADERS,
     ResultSet,
     Row,
+    cost_table,
     mean,
     median,
     quartiles,
     render_table,
-    stat_cells,
+    success_table,
     summarise,
+    timely_table,
+    tool_calls_table,
     unpriced_models,
 )
 from apps.bench.transcripts import has_transcript, relative_href, render_transcript_page
@@ -490,42 +492,10 @@ def render_comparison_report(
 ) -> str:
     summaries = [(rs, summarise(rs.rows, window)) for rs in sets]
     names = " vs ".join(rs.name for rs in sets)
-    groups = [GROUP_LABELS[g] for g in GROUPS[1:]]
-    success = _html_table(
-        "success",
-        ["result set", "tasks", "success", "timely", *groups],
-        [
-            [
-                rs.name,
-                str(s.total),
-                str(s.rates["overall"]),
-                str(s.timely["overall"]),
-                *(str(s.rates[g]) for g in GROUPS[1:]),
-            ]
-            for rs, s in summaries
-        ],
-    )
-    timely = _html_table(
-        "timely",
-        ["result set", "timely", *groups],
-        [
-            [rs.name, str(s.timely["overall"]), *(str(s.timely[g]) for g in GROUPS[1:])]
-            for rs, s in summaries
-        ],
-    )
-    cost = _html_table(
-        "cost",
-        ["result set", *STAT_HEADERS, "unpriced"],
-        [
-            [rs.name, *stat_cells(s.costs, lambda v: f"${v:.4f}"), str(s.unpriced)]
-            for rs, s in summaries
-        ],
-    )
-    tools = _html_table(
-        "tool-calls",
-        ["result set", *STAT_HEADERS],
-        [[rs.name, *stat_cells(s.tool_calls, lambda v: f"{v:.1f}")] for rs, s in summaries],
-    )
+    success = _html_table("success", *success_table(summaries))
+    timely = _html_table("timely", *timely_table(summaries))
+    cost = _html_table("cost", *cost_table(summaries))
+    tools = _html_table("tool-calls", *tool_calls_table(summaries))
     reaction = _html_table(
         "reaction",
         ["result set", "n", "mean (s)", "median (s)"],
