@@ -11,8 +11,8 @@ from __future__ import annotations
 from typing import Any
 
 from events.clock import sim_now, wall_now
-from events.live import log_grew
 from events.models import Event, EventKind, Run
+from events.notifications import log_grew
 from events.projection import Folded, folded_state
 from events.registry import ActionRejected, PayloadError, get_environment, validate_payload
 from events.scheduler import fire_due

@@ -13,7 +13,7 @@ from typing import Any
 from django.db import transaction
 from django.utils import timezone
 
-from events import live
+from events import notifications
 from events.catalog import load_catalog
 from events.clock import sim_now, wall_now
 from events.models import ClockMode, Event, EventKind, Run, RunStatus
@@ -87,7 +87,7 @@ def start_clock(run: Run, *, wall: float | None = None) -> Run:
     run.refresh_from_db()
     _log(run, "start", run.sim_time, {"started_at": started_at})
     notify_clock_started(run)
-    live.clock_moved(run.pk)
+    notifications.clock_moved(run.pk)
     return run
 
 
@@ -110,7 +110,7 @@ def advance(run: Run, to: float) -> FireResult:
     ).update(status=RunStatus.RUNNING_MANUAL, sim_time=to):
         raise LifecycleError("the run changed concurrently; read its status and retry")
     _log(run, "advance", to)
-    live.clock_moved(run.pk)
+    notifications.clock_moved(run.pk)
     return fire_due(run)
 
 

@@ -20,9 +20,9 @@ from typing import Any
 from django.db import connection, connections
 
 from events.catalog import load_catalog
-from events.live import LIVE_KINDS
 from events.lru import LRU
 from events.models import Event, Run
+from events.notifications import LIVE_KINDS
 from events.registry import EMPTY, Environment, LoggedEvent, get_environment
 
 CACHE_SIZE = 512

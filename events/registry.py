@@ -121,7 +121,7 @@ class Environment:
 
     Time reaches the environment explicitly: `now` is the simulated second (authored scale) of
     the operation, read once from the run's clock. Values that move between events (a price, a
-    star count) are functions of the state and `now` (events.waypoints), never events of their own.
+    star count) are functions of the state and `now` (apps.kit.waypoints), never events of their own.
     """
 
     name: str

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 from django.db.models import Max
 
 from events.clock import sim_now, wall_due, wall_now
-from events.live import log_grew
 from events.models import Event, EventKind, Run, RunStatus
+from events.notifications import log_grew
 from events.store import TimelineEntryAlreadyFired, append_event
 
 

@@ -21,7 +21,7 @@ further requests wait their turn on the event loop (no thread held) rather than 
 Agents' pages have threads of their own (`Lanes`): an `/evaluate` (up to 2 s of eval_sql), an
 admin dry run or a slow API call never holds a thread that an agent's page or contact waits for.
 And every request is stamped with the wall time it arrived, before it waits for a thread, so a
-contact counts from when the agent made it (apps/agent_site/pages.py `arrival_wall`).
+contact counts from when the agent made it (apps/kit/pages.py `arrival_wall`).
 """
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ from django.core.handlers.asgi import ASGIHandler
 from django.db import connections
 from django.http import FileResponse
 
-from apps.agent_site.pages import ARRIVAL
+from apps.kit.pages import ARRIVAL
 from sentinel_site.urls import RUN_PREFIX
 
 # Two: while one request waits on the database (SQLite's busy timeout, a PostgreSQL row lock),

@@ -2,7 +2,7 @@
 
 from django.urls import path
 
-from events.consumers import RunLiveConsumer
+from apps.kit.consumers import RunLiveConsumer
 from sentinel_site.urls import RUN_PREFIX
 
 websocket_urlpatterns = [

@@ -40,7 +40,7 @@ INSTALLED_APPS = [
     "events",
     "apps.scenarios",
     "apps.control",
-    "apps.agent_site",
+    "apps.kit",
     "apps.bench",
     "apps.replay",
     "apps.media",  # generated images shared by the environments (not an environment itself)
@@ -126,7 +126,7 @@ SENTINEL_CONTROL_TOKEN = env_str("SENTINEL_CONTROL_TOKEN")
 # The upstream flat endpoints (/init, /redirect, /contact, …) drive one shared default slot that
 # any caller can reach; off, only a run's own URLs touch a run (apps/control/slot.py).
 SENTINEL_FLAT_ENDPOINTS = env_bool("SENTINEL_FLAT_ENDPOINTS", True)
-# Keep each rendered agent page while nothing it shows can change (apps/agent_site/screen_cache.py);
+# Keep each rendered agent page while nothing it shows can change (apps/kit/screen_cache.py);
 # off only to measure or debug rendering itself.
 SENTINEL_SCREEN_CACHE = env_bool("SENTINEL_SCREEN_CACHE", True)
 SENTINEL_CATALOG_DIR = env_dir("SENTINEL_CATALOG_DIR", BASE_DIR / "fixtures", base=BASE_DIR)

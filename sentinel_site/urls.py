@@ -16,7 +16,7 @@ urlpatterns = [
     path("api/", include(api_urlpatterns)),
     path("media/", include("apps.media.urls")),  # generated avatars, logos, pictures (no run)
     path(RUN_PREFIX, include(run_urlpatterns)),
-    path(RUN_PREFIX, include("apps.agent_site.urls")),  # the run's home, live pages' polling
+    path(RUN_PREFIX, include("apps.kit.urls")),  # the run's home, live pages' polling
     # Each environment's pages, under its run: /r/<token>/<environment>/…
     *[
         path(f"{RUN_PREFIX}{environment.name}/", include(environment.urlconf))

@@ -117,6 +117,36 @@ def test_the_core_imports_nothing_from_apps_or_tests():
     assert upward == []
 
 
+# The engine is only the engine: pages, URLs and sockets are the site's (apps.kit), never its own.
+SITE_LIBRARIES = ("django.http", "django.urls", "django.shortcuts", "django.template", "channels")
+
+
+def site_imports(module: str, names: set[str]) -> list[str]:
+    return sorted(
+        f"{module} imports {name}"
+        for name in names
+        if any(name == lib or name.startswith(lib + ".") for lib in (*SITE_LIBRARIES, "apps"))
+    )
+
+
+def test_the_engine_imports_no_web_library_and_no_app():
+    modules = project_modules()
+    found = [
+        line
+        for module, path in modules.items()
+        if package_of(module) == "events"
+        for line in site_imports(module, imported_names(path, module))
+    ]
+    assert found == []
+
+
+def test_the_engine_rule_catches_a_web_import():
+    assert site_imports("events.x", {"django.http.response", "django.db", "apps.kit.live"}) == [
+        "events.x imports apps.kit.live",
+        "events.x imports django.http.response",
+    ]
+
+
 def test_no_module_imports_itself_through_others():
     assert cycles(module_graph()) == []
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 from django.test import Client
 
-from apps.agent_site.links import contact_path
+from apps.kit.links import contact_path
 from apps.scenarios.format import parse_scenario
 from apps.tally.environment import tally_scenario
 from events import lifecycle

@@ -7,7 +7,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from events.deciding import checking, found, new_id, required_text
+from apps.kit.deciding import checking, found, new_id, required_text
 from events.registry import ActionRejected
 
 

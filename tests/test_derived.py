@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from events.derived import per_state
+from apps.kit.derived import per_state
 
 
 @dataclass(frozen=True)

@@ -1,5 +1,5 @@
 """`folded_state(run).live_seq` — the last scenario or action event the fold includes — is what
-live pages start from. It must be the log's own answer (`events.live.last_live_seq`) whether the
+live pages start from. It must be the log's own answer (`apps.kit.live.last_live_seq`) whether the
 state was fast-forwarded from a cached fold or folded from scratch, and page views (kind
 `view`), which the fold also sees, must never move it."""
 
@@ -11,9 +11,9 @@ import pytest
 from django.db.models import Max
 from django.test import Client
 
+from apps.kit.live import LIVE_KINDS, last_live_seq
 from events import lifecycle
 from events.commands import perform_action, record_view
-from events.live import LIVE_KINDS, last_live_seq
 from events.models import ClockMode, Event, EventKind
 from events.projection import clear_cache, folded_state, state_at
 from events.store import append_event

@@ -7,7 +7,7 @@ import random
 
 import pytest
 
-from events.waypoints import Waypoints
+from apps.kit.waypoints import Waypoints
 
 
 def original(start: float, inserted: list[tuple[float, float]], now: float) -> float:

@@ -14,10 +14,10 @@ from django.shortcuts import render
 from django.views.decorators.csrf import csrf_exempt
 from django.views.decorators.http import require_http_methods, require_POST
 
-from apps.agent_site.links import contact_path, start_page_path
-from apps.agent_site.pages import arrival_wall, run_for_token
 from apps.control import slot
 from apps.control.parsers import BadBody, body_limit, read_json
+from apps.kit.links import contact_path, start_page_path
+from apps.kit.pages import arrival_wall, run_for_token
 from events import lifecycle
 from events.commands import perform_action
 from events.models import ClockMode, Run, RunStatus

@@ -17,11 +17,11 @@ from rest_framework.permissions import AllowAny
 from rest_framework.request import Request
 from rest_framework.response import Response
 
-from apps.agent_site.links import start_page_path
 from apps.control import slot
 from apps.control.auth import is_control_authenticated
 from apps.control.parsers import request_data
 from apps.control.serializers import InitPayloadSerializer
+from apps.kit.links import start_page_path
 from apps.scenarios.library import UnknownScenario, get_dev_scenario, get_scenario, scenario_library
 from events import lifecycle
 from events.catalog import load_catalog

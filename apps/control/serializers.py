@@ -6,7 +6,7 @@ import math
 
 from rest_framework import serializers
 
-from apps.agent_site import links
+from apps.kit import links
 from apps.scenarios.format import ScenarioError, parse_scenario, parse_timeline
 from apps.scenarios.library import get_scenario
 from events.models import ClockMode, Run

@@ -7,8 +7,8 @@ from django.http import FileResponse, Http404, HttpRequest, HttpResponse, HttpRe
 from django.shortcuts import render
 from django.views.decorators.http import require_POST
 
-from apps.agent_site.links import task_path
 from apps.home import overview
+from apps.kit.links import task_path
 from apps.scenarios.library import get_dev_scenario
 from events import lifecycle
 from events.registry import UnknownEnvironment, get_environment

@@ -18,6 +18,7 @@ from typing import Literal
 
 from pydantic import Field
 
+from apps.kit.deciding import found, new_id
 from apps.microchat.query import ChatQuery
 from apps.microchat.state import (
     REACTIONS,
@@ -31,7 +32,6 @@ from apps.microchat.state import (
     with_read,
     without_message,
 )
-from events.deciding import found, new_id
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 

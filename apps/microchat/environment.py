@@ -16,6 +16,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
+from apps.kit.tables import Table
 from apps.microchat import state as chats
 from apps.microchat.actions import ACTIONS
 from apps.microchat.bench import sample_pages
@@ -28,7 +29,6 @@ from apps.microchat.catalog import (
 from apps.microchat.state import ENVIRONMENT, Chat, empty_chat
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 BASELINES: Mapping[str, Measure] = MappingProxyType(
     {

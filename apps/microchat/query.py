@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, item, text
+from apps.kit.query import InvalidQuery, QueryState, choice, item, text
 
 __all__ = [
     "CHAT_FILTERS",

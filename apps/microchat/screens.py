@@ -10,10 +10,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from datetime import date, timedelta
 
+from apps.kit.derived import per_state
 from apps.microchat import state as chats
 from apps.microchat.query import CallsQuery, ChatQuery
 from apps.microchat.state import Call, Chat, Conversation, Message, Team
-from events.derived import per_state
 
 FILTER_LABELS = {"unread": "Unread", "chats": "Chats", "meetings": "Meeting chats"}
 PREVIEW_LENGTH = 90

@@ -11,9 +11,9 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site import simclock
-from apps.agent_site.pages import Page, one_of, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.kit import simclock
+from apps.kit.pages import Page, one_of, run_page
+from apps.kit.rendering import redirect_to, render_screen
 from apps.microchat import screens
 from apps.microchat.actions import existing_conversation, existing_message
 from apps.microchat.calendar import calendar_grid

@@ -18,7 +18,9 @@ from urllib.parse import quote
 
 from pydantic import Field
 
-from apps.agent_site.social import Comment, post_actions
+from apps.kit.deciding import checking, found, new_id, required_text
+from apps.kit.frozen import with_items
+from apps.kit.social import Comment, post_actions
 from apps.microdin import catalog as records
 from apps.microdin.query import JobsQuery, MessagingQuery
 from apps.microdin.state import (
@@ -31,8 +33,6 @@ from apps.microdin.state import (
     status,
     with_state,
 )
-from events.deciding import checking, found, new_id, required_text
-from events.frozen import with_items
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from apps.agent_site import social
+from apps.kit import social
 from apps.microdin.state import (
     ENVIRONMENT,
     Company,

@@ -19,6 +19,8 @@ from types import MappingProxyType
 
 from pydantic import Field
 
+from apps.kit.frozen import with_items
+from apps.kit.tables import Table
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
 from apps.microdin.actions import ACTIONS
@@ -32,10 +34,8 @@ from apps.microdin.state import (
     PostState,
     ProfileStats,
 )
-from events.frozen import with_items
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 # Counted right after the preload, by the core (the original's names: baseline_<name>).
 BASELINES: Mapping[str, Measure] = MappingProxyType(

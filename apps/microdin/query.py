@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, item, text
+from apps.kit.query import InvalidQuery, QueryState, choice, item, text
 
 __all__ = ["InvalidQuery", "JobsQuery", "MessagingQuery", "NotificationsQuery", "SearchQuery"]
 

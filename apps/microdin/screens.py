@@ -11,6 +11,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from apps.kit.derived import per_state
 from apps.microdin import catalog as records
 from apps.microdin import state as net
 from apps.microdin.query import JobsQuery, MessagingQuery, NotificationsQuery, SearchQuery
@@ -27,7 +28,6 @@ from apps.microdin.state import (
     Post,
     ProfileSection,
 )
-from events.derived import per_state
 
 INVITATIONS_PREVIEW = 3
 SUGGESTIONS = 8

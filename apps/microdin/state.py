@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
-from apps.agent_site.social import Comment, Picture
-from events.frozen import with_changed
+from apps.kit.frozen import with_changed
+from apps.kit.social import Comment, Picture
 
 ENVIRONMENT = "microdin"
 EMPTY: Mapping = MappingProxyType({})

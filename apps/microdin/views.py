@@ -2,7 +2,7 @@
 through `page.act`, post/redirect/get back to the screen the form was on.
 
 Every view serves the full page, or just its content when htmx asks for a fragment
-(apps.agent_site.rendering). Opening a thread marks it read: declared with the environment
+(apps.kit.rendering). Opening a thread marks it read: declared with the environment
 (`implicit_actions`), not done here.
 """
 
@@ -11,9 +11,9 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, run_page
-from apps.agent_site.post_actions import act_on_post
-from apps.agent_site.rendering import (
+from apps.kit.pages import Page, run_page
+from apps.kit.post_actions import act_on_post
+from apps.kit.rendering import (
     back_field,
     came_from,
     redirect_after,

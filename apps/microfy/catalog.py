@@ -18,8 +18,8 @@ from collections.abc import Mapping
 from types import MappingProxyType
 from typing import Any
 
+from apps.kit.waypoints import Waypoints
 from apps.microfy.state import ENVIRONMENT, Artist, Mood, Playlist, Track, TrackState
-from events.waypoints import Waypoints
 
 HORIZON_S = 720.0  # the original's event_timeline_end: drifting counts stop growing there
 UNKNOWN_ARTIST = "Unknown Artist"

@@ -22,6 +22,7 @@ from typing import Any
 
 from pydantic import Field
 
+from apps.kit.tables import Table
 from apps.microfy import library
 from apps.microfy import state as lib
 from apps.microfy.actions import ACTIONS
@@ -30,7 +31,6 @@ from apps.microfy.catalog import artists, catalog_mood, catalog_playlist, catalo
 from apps.microfy.state import ENVIRONMENT, Music, with_playlists, with_tracks
 from events.registry import Environment, EventType, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 FALLBACK_SELF: Mapping[str, Any] = MappingProxyType({"id": "me", "name": "Me"})
 

@@ -10,10 +10,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from apps.kit.derived import per_state
+from apps.kit.waypoints import Waypoints
 from apps.microfy.catalog import artists, tracks_by_artist
 from apps.microfy.state import LIKED, Artist, Music, Playlist, Track
-from events.derived import per_state
-from events.waypoints import Waypoints
 
 HOME_ARTISTS = 10
 POPULAR = 10

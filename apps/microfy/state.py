@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
-from events.waypoints import Waypoints
+from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microfy"
 LIKED = "liked"  # the Liked Songs collection's id in URLs

@@ -14,12 +14,12 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, one_of, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.kit.pages import Page, one_of, run_page
+from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.waypoints import Waypoints
 from apps.microfy import library
 from apps.microfy.query import HomeQuery, SearchQuery
 from apps.microfy.state import LIKED, Music, Track
-from events.waypoints import Waypoints
 
 TRACK_ACTIONS = {
     "play_track": "",

@@ -19,7 +19,9 @@ from urllib.parse import quote
 
 from pydantic import Field
 
-from apps.agent_site.social import PostId, post_actions
+from apps.kit.deciding import checking, found, new_id, required_text
+from apps.kit.frozen import with_items
+from apps.kit.social import PostId, post_actions
 from apps.microgram.catalog import person
 from apps.microgram.state import (
     Conversation,
@@ -31,8 +33,6 @@ from apps.microgram.state import (
     unread_in,
     with_post_state,
 )
-from events.deciding import checking, found, new_id, required_text
-from events.frozen import with_items
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 

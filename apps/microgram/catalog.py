@@ -17,7 +17,7 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
-from apps.agent_site import social
+from apps.kit import social
 from apps.microgram.state import (
     ENVIRONMENT,
     Activity,

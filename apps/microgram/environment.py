@@ -18,15 +18,15 @@ from types import MappingProxyType
 
 from pydantic import Field
 
+from apps.kit.frozen import with_items
+from apps.kit.tables import Table
 from apps.microgram import catalog as records
 from apps.microgram import state as gram_state
 from apps.microgram.actions import ACTIONS
 from apps.microgram.bench import sample_pages
 from apps.microgram.state import ENVIRONMENT, Gram, PostState, with_post_state
-from events.frozen import with_items
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 # Counted right after the preload, by the core (the original's names: baseline_<name>).
 BASELINES: Mapping[str, Measure] = MappingProxyType(

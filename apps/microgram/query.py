@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, text
+from apps.kit.query import InvalidQuery, QueryState, choice, text
 
 __all__ = ["ExploreQuery", "FeedQuery", "InvalidQuery", "ProfileQuery", "SearchQuery"]
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from apps.kit.derived import per_state
 from apps.microgram.catalog import people, person
 from apps.microgram.state import (
     Activity,
@@ -26,7 +27,6 @@ from apps.microgram.state import (
     unread_conversation_count,
     unread_in,
 )
-from events.derived import per_state
 
 HASHTAG = re.compile(r"(#\w+)")
 SUGGESTIONS_SHOWN = 5

@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
-from apps.agent_site.social import Comment, Picture
-from events.derived import per_state
-from events.frozen import with_changed
+from apps.kit.derived import per_state
+from apps.kit.frozen import with_changed
+from apps.kit.social import Comment, Picture
 
 ENVIRONMENT = "microgram"
 EMPTY: Mapping = MappingProxyType({})

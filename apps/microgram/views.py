@@ -10,9 +10,9 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, one_of, run_page
-from apps.agent_site.post_actions import act_on_post
-from apps.agent_site.rendering import (
+from apps.kit.pages import Page, one_of, run_page
+from apps.kit.post_actions import act_on_post
+from apps.kit.rendering import (
     came_from,
     redirect_after,
     redirect_to,

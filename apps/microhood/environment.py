@@ -22,6 +22,8 @@ from typing import Annotated
 
 from pydantic import Field
 
+from apps.kit.tables import Table
+from apps.kit.waypoints import Waypoints
 from apps.microhood import state as account
 from apps.microhood.actions import ACTIONS
 from apps.microhood.bench import sample_pages
@@ -52,8 +54,6 @@ from events.registry import (
     timeless,
 )
 from events.schemas import Payload
-from events.tables import Table
-from events.waypoints import Waypoints
 
 # A waypoint as the original writes it: [time, price].
 TimePrice = Annotated[list[float], Field(min_length=2, max_length=2)]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, text
+from apps.kit.query import InvalidQuery, QueryState, choice, text
 from apps.microhood.state import SIDES
 
 __all__ = ["RANGES", "ChartQuery", "InvalidQuery", "SearchQuery", "StockQuery"]

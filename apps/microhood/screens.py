@@ -11,11 +11,11 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from apps.kit.derived import per_state
 from apps.microhood import state as account
 from apps.microhood.charts import Chart, chart, session_samples, sparkline
 from apps.microhood.orders import next_fill_time, settle
 from apps.microhood.state import Hood, NewsItem, Order
-from events.derived import per_state
 
 PRICE_STEP = 0.01  # prices are shown to the cent
 REFRESH_S = 1.0  # moving prices are re-shown at most once per simulated second

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
-from events.waypoints import Waypoints
+from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microhood"
 DEFAULT_BUYING_POWER = 10_000.0

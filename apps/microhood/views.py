@@ -12,8 +12,8 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.kit.pages import Page, run_page
+from apps.kit.rendering import redirect_to, render_screen
 from apps.microhood import screens
 from apps.microhood import state as account
 from apps.microhood.query import RANGES, ChartQuery, InvalidQuery, SearchQuery, StockQuery

@@ -19,6 +19,7 @@ from typing import Literal
 
 from pydantic import Field
 
+from apps.kit.deciding import found
 from apps.microhub.state import (
     MERGE_STRATEGIES,
     VISIBILITIES,
@@ -30,7 +31,6 @@ from apps.microhub.state import (
     next_issue_number,
     with_issue_state,
 )
-from events.deciding import found
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 

@@ -21,6 +21,8 @@ from typing import Annotated, Any
 
 from pydantic import Field, model_validator
 
+from apps.kit.tables import Table
+from apps.kit.waypoints import Waypoints
 from apps.microhub import catalog as records
 from apps.microhub.actions import ACTIONS
 from apps.microhub.bench import sample_pages
@@ -35,8 +37,6 @@ from apps.microhub.state import (
 )
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
-from events.waypoints import Waypoints
 
 WILDCARD = ["*"]
 IdList = list[str]

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, text
+from apps.kit.query import InvalidQuery, QueryState, choice, text
 
 __all__ = ["ActionsQuery", "InvalidQuery", "IssuesQuery", "PullsQuery"]
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from apps.kit.derived import per_state
 from apps.microhub.state import (
     Comment,
     Commit,
@@ -19,7 +20,6 @@ from apps.microhub.state import (
     open_issue_count,
     open_pr_count,
 )
-from events.derived import per_state
 
 
 @dataclass(frozen=True)

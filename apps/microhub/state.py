@@ -14,7 +14,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
-from events.waypoints import Waypoints
+from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microhub"
 EMPTY: Mapping[str, Any] = MappingProxyType({})

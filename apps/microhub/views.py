@@ -12,8 +12,8 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
-from apps.agent_site.pages import Page, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.kit.pages import Page, run_page
+from apps.kit.rendering import redirect_to, render_screen
 from apps.microhub import screens
 from apps.microhub.markup import render_markdown
 from apps.microhub.query import ActionsQuery, InvalidQuery, IssuesQuery, PullsQuery

@@ -1,6 +1,6 @@
 """The calendar's own clock: the preload's day, moving with the run's simulated time.
 
-Simulated second 0 is 09:00 (apps.agent_site.simclock) on the day the scenario opens the
+Simulated second 0 is 09:00 (apps.kit.simclock) on the day the scenario opens the
 calendar on (`initial_date`, else `today`, else the run's day zero), so "today" and the red
 current-time line move on the simulated clock exactly as the shell's time does, and a run that
 goes past midnight turns the page to the next day.
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from datetime import date, datetime
 
-from apps.agent_site import simclock
+from apps.kit import simclock
 from apps.microlendar.screens import HOUR_PX
 from apps.microlendar.state import Agenda
 

@@ -17,6 +17,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
+from apps.kit.tables import Table
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times
 from apps.microlendar.actions import ACTIONS
@@ -25,7 +26,6 @@ from apps.microlendar.catalog import catalog_event, catalog_task, event_ids, tas
 from apps.microlendar.state import ENVIRONMENT, Agenda, empty_agenda, with_events, with_tasks
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 DATE_PATTERN = r"^\d{4}-\d{2}-\d{2}$"
 

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from datetime import date
 from typing import Self
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, item, text
+from apps.kit.query import InvalidQuery, QueryState, choice, item, text
 from apps.microlendar import times
 from apps.microlendar.state import CALENDARS
 

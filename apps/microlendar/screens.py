@@ -1,5 +1,5 @@
 """What each calendar screen shows for a URL: pure functions of (agenda, query, today),
-memoised per state (events.derived.per_state: the fold hands out the same agenda until an
+memoised per state (apps.kit.derived.per_state: the fold hands out the same agenda until an
 event changes it, so a reload or a live push of an unchanged calendar costs a lookup).
 
 `today` is an input, not read here: it moves with the simulated clock (views.calendar_today).
@@ -12,6 +12,7 @@ import calendar as month_math
 from dataclasses import dataclass, replace
 from datetime import date, timedelta
 
+from apps.kit.derived import per_state
 from apps.microlendar import times
 from apps.microlendar.query import CalendarQuery
 from apps.microlendar.state import (
@@ -27,7 +28,6 @@ from apps.microlendar.state import (
     live_tasks,
     matches_search,
 )
-from events.derived import per_state
 
 HOUR_PX = 48  # height of an hour row in the day, week and 4-day grids
 MONTH_CHIPS = 3  # events shown in a month cell before "+N more"

@@ -17,7 +17,7 @@ from datetime import date, timedelta
 from types import MappingProxyType
 from typing import Any
 
-from events.frozen import with_changed, with_items
+from apps.kit.frozen import with_changed, with_items
 
 ENVIRONMENT = "microlendar"
 

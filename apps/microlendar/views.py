@@ -1,7 +1,7 @@
 """MicroLendar pages: thin views over `page.state`, actions through `page.act`.
 
 Every view serves the full page, or just the `#calendar-app` content when htmx asks for a
-fragment (apps.agent_site.rendering). Actions are POST forms that come back to the screen they
+fragment (apps.kit.rendering). Actions are POST forms that come back to the screen they
 came from (the `back` field; post/redirect/get), so the site works with plain links and forms;
 htmx and the drag-and-drop script only make it smoother. Opening an event's details marks it
 viewed: declared with the environment (`implicit_actions`).
@@ -15,8 +15,8 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
-from apps.agent_site.pages import Page, one_of, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.kit.pages import Page, one_of, run_page
+from apps.kit.rendering import redirect_to, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, existing_event
 from apps.microlendar.clock import calendar_moment, now_line_top

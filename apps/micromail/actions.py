@@ -19,6 +19,7 @@ from urllib.parse import urlencode
 
 from pydantic import Field
 
+from apps.kit.deciding import found, new_id
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import (
     FOLDERS,
@@ -32,7 +33,6 @@ from apps.micromail.state import (
     with_state,
     without_email,
 )
-from events.deciding import found, new_id
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 

@@ -10,7 +10,7 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from apps.agent_site.simclock import clock_time
+from apps.kit.simclock import clock_time
 from apps.micromail.actions import existing_email
 from apps.micromail.state import Email, Mail
 from events.registry import ActionRejected

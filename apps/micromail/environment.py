@@ -14,6 +14,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
+from apps.kit.tables import Table
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
@@ -21,7 +22,6 @@ from apps.micromail.catalog import catalog_email, catalog_state
 from apps.micromail.state import ENVIRONMENT, Mail, empty_mail, with_emails
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 # Upstream stamps preloaded mail "five minutes before start", so the list reads "5 min ago".
 PRELOAD_AGE_S = 300.0

@@ -10,10 +10,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from urllib.parse import urlencode
 
+from apps.kit.derived import per_state
 from apps.micromail import state as mailbox
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import FOLDER_TITLES, FOLDERS, Attachment, Email, EmailState, Mail
-from events.derived import per_state
 
 FILTER_LABELS = {"all": "All", "unread": "Unread", "flagged": "Flagged", "mentions": "Mentions"}
 

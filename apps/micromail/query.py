@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, item, text
+from apps.kit.query import InvalidQuery, QueryState, choice, item, text
 from apps.micromail.state import FOLDERS, QUICK_FILTERS
 
 __all__ = ["SCOPES", "InvalidQuery", "MailboxQuery"]

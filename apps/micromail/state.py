@@ -12,7 +12,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
-from events.frozen import with_changed, with_items
+from apps.kit.frozen import with_changed, with_items
 
 ENVIRONMENT = "micromail"
 

@@ -1,7 +1,7 @@
 """MicroMail pages: thin views over `page.state`, actions through `page.act`.
 
 Every view serves the full page, or just the `#mailbox` content when htmx asks for a fragment
-(apps.agent_site.rendering). Actions are POST forms that redirect back to the screen they came
+(apps.kit.rendering). Actions are POST forms that redirect back to the screen they came
 from (post/redirect/get), so the site works with plain links and forms; htmx only makes it
 smoother. Opening a message marks it read: declared with the environment (`implicit_actions`).
 """
@@ -12,8 +12,8 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse, JsonResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
-from apps.agent_site.pages import Page, one_of, run_page
-from apps.agent_site.rendering import is_fragment, redirect_to, render_screen
+from apps.kit.pages import Page, one_of, run_page
+from apps.kit.rendering import is_fragment, redirect_to, render_screen
 from apps.micromail.actions import existing_email
 from apps.micromail.compose import (
     COMPOSE_MODES,

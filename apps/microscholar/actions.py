@@ -17,8 +17,8 @@ from typing import Any
 
 from pydantic import Field
 
+from apps.kit.deciding import found
 from apps.microscholar.state import Paper, Scholar, with_alert_read, with_paper_state
-from events.deciding import found
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 

@@ -14,8 +14,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from apps.kit.waypoints import Waypoints
 from apps.microscholar.state import ENVIRONMENT, Alert, Paper
-from events.waypoints import Waypoints
 
 
 def _int(value: Any, default: int = 0) -> int:

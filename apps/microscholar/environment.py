@@ -20,6 +20,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
+from apps.kit.tables import Table
 from apps.microscholar import state as index
 from apps.microscholar.actions import ACTIONS
 from apps.microscholar.bench import sample_pages
@@ -39,7 +40,6 @@ from apps.microscholar.state import (
 )
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 # The original's metric names (eval_sql reads baseline_<name> from session_meta).
 BASELINES: Mapping[str, Measure] = MappingProxyType(

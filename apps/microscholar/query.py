@@ -1,4 +1,4 @@
-"""The screens' URL state: every screen a stable, canonical URL (apps.agent_site.query).
+"""The screens' URL state: every screen a stable, canonical URL (apps.kit.query).
 
 - search: `?q=agents&as_ylo=2024&as_yhi=2025&sort=date&start=10` (Google Scholar's names for the
   year range and the offset); no `q` is the home page with recommended articles.
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, text
+from apps.kit.query import InvalidQuery, QueryState, choice, text
 
 __all__ = ["AlertsQuery", "InvalidQuery", "ProfileQuery", "SearchQuery", "whole_number"]
 

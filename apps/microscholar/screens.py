@@ -11,12 +11,12 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from urllib.parse import quote, urlencode
 
+from apps.kit.derived import per_state
 from apps.microscholar import search
 from apps.microscholar import state as index
 from apps.microscholar.catalog import Profile, coauthors, person_name, profiles, self_id
 from apps.microscholar.query import PER_PAGE, AlertsQuery, ProfileQuery, SearchQuery
 from apps.microscholar.state import Alert, Paper, Scholar
-from events.derived import per_state
 
 SNIPPET_LENGTH = 220
 RELATED_SHOWN = 5

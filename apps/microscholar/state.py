@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
-from events.frozen import with_changed, with_items
-from events.waypoints import Waypoints
+from apps.kit.frozen import with_changed, with_items
+from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microscholar"
 EMPTY: Mapping = MappingProxyType({})

@@ -1,7 +1,7 @@
 """MicroScholar pages: thin views over `page.state`, actions through `page.act`.
 
 Each view serves the whole page, or its content block for an htmx fragment request
-(apps.agent_site.rendering). Actions are POST forms that go back to the screen they came from
+(apps.kit.rendering). Actions are POST forms that go back to the screen they came from
 (`back`, post/redirect/get). Opening the Cite dialog cites the paper: declared with the
 environment (`implicit_actions`), so this module never does it itself.
 """
@@ -12,9 +12,9 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site import simclock
-from apps.agent_site.pages import Page, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.kit import simclock
+from apps.kit.pages import Page, run_page
+from apps.kit.rendering import redirect_to, render_screen
 from apps.microscholar import cite as citing
 from apps.microscholar import screens
 from apps.microscholar import state as index

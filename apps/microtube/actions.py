@@ -16,6 +16,7 @@ from urllib.parse import quote
 
 from pydantic import Field
 
+from apps.kit.deciding import found
 from apps.microtube.query import WatchQuery
 from apps.microtube.state import (
     Comment,
@@ -29,7 +30,6 @@ from apps.microtube.state import (
     with_video_state,
     with_watched,
 )
-from events.deciding import found
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from apps.kit.waypoints import Waypoints
 from apps.microtube.state import (
     ENVIRONMENT,
     SELF_CHANNEL,
@@ -21,7 +22,6 @@ from apps.microtube.state import (
     Notification,
     Video,
 )
-from events.waypoints import Waypoints
 
 DAY = 86400.0
 # The original's categories (and ours) → the apps.media picture subject of the thumbnail.

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from events.waypoints import Waypoints
+from apps.kit.waypoints import Waypoints
 
 UNITS = ((1_000_000_000, "B"), (1_000_000, "M"), (1_000, "K"))
 MINUTE, HOUR, DAY, WEEK, MONTH, YEAR = 60, 3600, 86400, 7 * 86400, 30 * 86400, 365 * 86400

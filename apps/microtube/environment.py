@@ -22,6 +22,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
+from apps.kit.tables import Table
 from apps.microtube import state as tube_state
 from apps.microtube.actions import ACTIONS
 from apps.microtube.bench import sample_pages
@@ -44,7 +45,6 @@ from apps.microtube.state import (
 )
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 HOUR = 3600.0
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.agent_site.query import InvalidQuery, QueryState, choice, item, text
+from apps.kit.query import InvalidQuery, QueryState, choice, item, text
 
 __all__ = ["ChannelQuery", "InvalidQuery", "PlaylistQuery", "ResultsQuery", "WatchQuery"]
 

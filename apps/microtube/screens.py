@@ -9,6 +9,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from apps.kit.derived import per_state
 from apps.microtube.state import (
     LIKED_VIDEOS,
     WATCH_LATER,
@@ -19,7 +20,6 @@ from apps.microtube.state import (
     Video,
     unread_notification_count,
 )
-from events.derived import per_state
 
 RELATED_SHOWN = 10
 SEARCH_FIELDS = ("title", "description")

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
-from events.waypoints import Waypoints
+from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microtube"
 EMPTY: Mapping = MappingProxyType({})

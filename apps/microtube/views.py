@@ -2,7 +2,7 @@
 through `page.act`, post/redirect/get back to the screen the form belongs to.
 
 Every view serves the full page, or only its content when htmx asks for a fragment
-(apps.agent_site.rendering). Opening a watch page is watching the video: declared with the
+(apps.kit.rendering). Opening a watch page is watching the video: declared with the
 environment (`implicit_actions`), not done here.
 """
 
@@ -14,8 +14,8 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, one_of, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.kit.pages import Page, one_of, run_page
+from apps.kit.rendering import redirect_to, render_screen
 from apps.microtube import screens
 from apps.microtube.query import (
     ChannelQuery,

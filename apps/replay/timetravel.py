@@ -17,7 +17,7 @@ from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllow
 from django.urls import Resolver404, resolve, reverse
 from django.utils.html import format_html
 
-from apps.agent_site.links import environment_root
+from apps.kit.links import environment_root
 from events.models import Event, Run
 from events.registry import UnknownEnvironment, get_environment
 

@@ -12,7 +12,7 @@ from django.shortcuts import get_object_or_404
 from django.template.response import TemplateResponse
 from django.urls import path, reverse
 
-from apps.agent_site.links import task_path
+from apps.kit.links import task_path
 from apps.scenarios.chart import timeline_svg
 from apps.scenarios.dry_run import dry_run, validate_timeline_entry
 from apps.scenarios.format import ScenarioError

@@ -1,4 +1,4 @@
-from apps.agent_site import environments
+from apps.kit import environments
 
 
 class TallyConfig(environments.EnvironmentConfig):

@@ -19,11 +19,11 @@ from typing import Annotated
 
 from pydantic import Field
 
+from apps.kit.tables import Table
 from apps.tally.actions import ACTIONS, Count
 from apps.tally.state import TallyState, with_entry, with_level_points
 from events.registry import Environment, EventType, LoggedEvent, timeless
 from events.schemas import Payload
-from events.tables import Table
 
 __all__ = ["TALLY", "TallyState", "tally_scenario"]
 

@@ -1,6 +1,6 @@
 """The tally as an immutable value: the entries pings and pokes add, and a level that moves.
 
-The level is a series of waypoints (events.waypoints): between scenario events it ramps with
+The level is a series of waypoints (apps.kit.waypoints): between scenario events it ramps with
 the clock, so the page, the live push and the `levels` evaluation table all compute it from
 their one `now`.
 """
@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from events.waypoints import Waypoints
+from apps.kit.waypoints import Waypoints
 
 LEVEL_START = 0.0  # the level before any waypoint
 LEVEL_STEP = 0.1  # the page shows the level rounded to this

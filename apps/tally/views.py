@@ -6,8 +6,8 @@ from django.contrib import messages
 from django.http import HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.agent_site.pages import Page, run_page
-from apps.agent_site.rendering import redirect_to, render_screen
+from apps.kit.pages import Page, run_page
+from apps.kit.rendering import redirect_to, render_screen
 from events.registry import ActionRejected
 
 

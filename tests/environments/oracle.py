@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 from django.test import Client
 
-from apps.agent_site.links import contact_path, environment_root
+from apps.kit.links import contact_path, environment_root
 from events.commands import current_state
 from events.models import Event, EventKind, Run
 from events.registry import Environment, PageStep, get_environment

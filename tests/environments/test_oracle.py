@@ -7,7 +7,7 @@ from dataclasses import replace
 
 import pytest
 
-from apps.agent_site.links import environment_root
+from apps.kit.links import environment_root
 from events import lifecycle
 from events.models import ClockMode
 from events.registry import get_environment

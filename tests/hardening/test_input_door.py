@@ -13,7 +13,7 @@ import pytest
 from django.test import Client
 from rest_framework.test import APIClient
 
-from apps.agent_site.links import environment_root, live_path
+from apps.kit.links import environment_root, live_path
 from apps.scenarios.library import get_scenario
 from apps.tally.environment import tally_scenario
 from events import lifecycle

@@ -14,7 +14,7 @@ from channels.testing import WebsocketCommunicator
 from django.test import Client
 from django.urls import URLPattern, URLResolver, get_resolver
 
-from apps.agent_site.links import contact_path, environment_root, live_path
+from apps.kit.links import contact_path, environment_root, live_path
 from events import lifecycle
 from events.commands import current_state
 from events.models import ClockMode, Event, Run, RunStatus

@@ -16,7 +16,7 @@ import pytest
 from django.conf import settings
 from websockets.sync.client import connect
 
-from events.live import last_live_seq
+from apps.kit.live import last_live_seq
 from tests import control_api
 from tests.live.pushed import regions
 

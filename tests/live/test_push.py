@@ -18,8 +18,9 @@ from channels.layers import get_channel_layer
 from channels.testing import WebsocketCommunicator
 from django.test import Client
 
-from events import lifecycle, live
-from events.live import last_live_seq, render_update
+from apps.kit import live
+from apps.kit.live import last_live_seq, render_update
+from events import lifecycle
 from events.models import ClockMode, Event, EventKind
 from events.projection import state_at
 from tests.live.pushed import regions

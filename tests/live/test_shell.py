@@ -11,9 +11,9 @@ import pytest
 from asgiref.sync import async_to_sync
 from django.test import Client
 
-from apps.agent_site.simclock import absolute, ago, clock_time, relative, today
+from apps.kit.live import last_live_seq
+from apps.kit.simclock import absolute, ago, clock_time, relative, today
 from events import lifecycle
-from events.live import last_live_seq
 from events.models import ClockMode
 from tests.micromail.cast import CATALOG_DIR, mailbox_scenario
 

@@ -6,7 +6,7 @@ import re
 
 from django.test import Client
 
-from apps.agent_site.screen_cache import CSRF_PLACEHOLDER
+from apps.kit.screen_cache import CSRF_PLACEHOLDER
 from events import lifecycle
 from events.commands import current_state
 from tests.microgram.cast import ARRIVES_AT, DESK, MARCO, MARKET, STORIES

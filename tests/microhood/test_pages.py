@@ -9,11 +9,11 @@ import sqlite3
 
 import pytest
 
+from apps.kit.live import render_update
 from apps.microhood import state as account
 from events import lifecycle
 from events.commands import current_state
 from events.evaluation import grading_snapshot
-from events.live import render_update
 from tests.microhood.conftest import url
 
 pytestmark = pytest.mark.django_db

@@ -1,7 +1,7 @@
 """The star count, the one value MicroHub tasks are graded on at the moment of contact.
 
 `reference_stars` is an independent implementation written from the reference text (§3, "Star
-interpolation (exact)"), sharing no code with events.waypoints: it is compared with the
+interpolation (exact)"), sharing no code with apps.kit.waypoints: it is compared with the
 environment's fold at many instants of the original's star scenarios and of ours, threshold
 crossings included. Then page, live push and evaluation table must agree at one instant.
 """
@@ -15,13 +15,13 @@ from pathlib import Path
 
 import pytest
 
+from apps.kit.live import render_update
 from apps.microhub.environment import MICROHUB
 from apps.microhub.state import star_count
 from apps.scenarios.format import parse_scenario
 from events import lifecycle
 from events.catalog import load_catalog
 from events.evaluation import grading_snapshot
-from events.live import render_update
 from events.models import ClockMode
 from events.registry import LoggedEvent
 from tests.environments.cases import UPSTREAM_CATALOGS, UPSTREAM_SCENARIOS

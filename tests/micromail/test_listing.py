@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from apps.agent_site.simclock import ago, clock_time
+from apps.kit.simclock import ago, clock_time
 from apps.micromail import state as mailbox
 from apps.micromail.compose import prefill, split_addresses
 from apps.micromail.environment import MICROMAIL

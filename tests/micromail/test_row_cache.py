@@ -1,4 +1,4 @@
-"""The message-list row cache (apps.agent_site.fragments, used by `{% message_rows %}`) is never a second source
+"""The message-list row cache (apps.kit.fragments, used by `{% message_rows %}`) is never a second source
 of truth: a page built from cached rows is the page a fresh render gives, a state change shows
 at once, and the "time ago" text follows the run's clock while the rest of the row is reused."""
 
@@ -8,10 +8,10 @@ import re
 
 import pytest
 
-from apps.agent_site import fragments, screen_cache
+from apps.kit import fragments, screen_cache
+from apps.kit.live import without_csrf_tokens
 from events import lifecycle
 from events.commands import perform_action
-from events.live import without_csrf_tokens
 from tests.micromail.cast import LATE_AT
 from tests.micromail.test_pages import text
 

@@ -1,4 +1,4 @@
-"""A kept screen (apps.agent_site.screen_cache) is never a second source of truth: it is served
+"""A kept screen (apps.kit.screen_cache) is never a second source of truth: it is served
 only while the state, the clock's displayed values and the request are those it was rendered
 for, each response carries its own request's CSRF token, and one-shot messages are never kept."""
 
@@ -9,7 +9,7 @@ import re
 import pytest
 from django.test import Client
 
-from apps.agent_site import screen_cache
+from apps.kit import screen_cache
 from events import lifecycle
 from events.commands import perform_action
 from tests.micromail.cast import LATE_AT

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from django.test import Client
 
+from apps.kit.live import render_update
 from events import lifecycle
 from events.commands import current_state
-from events.live import render_update
 from tests.microtube.cast import DESK_SETUP, UPLOAD_AT, WALKTHROUGH
 
 

@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 from django.test import AsyncRequestFactory
 
-from apps.agent_site.pages import ARRIVAL
 from apps.control.agent import run_contact
+from apps.kit.pages import ARRIVAL
 from events import lifecycle
 from events.evaluation import contacts_of
 

@@ -1,7 +1,7 @@
 """`{% live %}` marks a page's live regions; on a live re-render it records them for the push.
 
 The cast: a plain page view (a request as a browser sends it) and a live re-render (the request
-events.live makes for a push, flagged `sentinel_live`).
+apps.kit.live makes for a push, flagged `sentinel_live`).
 """
 
 from __future__ import annotations
@@ -10,10 +10,10 @@ import pytest
 from django.http import HttpRequest
 from django.template import Context, Template, TemplateSyntaxError
 
-from apps.agent_site.pages import Page
-from apps.agent_site.templatetags.simtime import sim_ago, sim_now, sim_relative
+from apps.kit.live import render_update
+from apps.kit.pages import Page
+from apps.kit.templatetags.simtime import sim_ago, sim_now, sim_relative
 from events import lifecycle
-from events.live import render_update
 from events.models import ClockMode
 from tests.micromail.cast import CATALOG_DIR, mailbox_scenario
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from apps.agent_site.links import environment_root
+from apps.kit.links import environment_root
 from apps.scenarios.library import get_dev_scenario
 from events import lifecycle
 from events.models import ClockMode

@@ -1,4 +1,4 @@
-"""Elapsed-time texts of the kit (apps.agent_site.simclock): what they read, and that each
+"""Elapsed-time texts of the kit (apps.kit.simclock): what they read, and that each
 reads the same until the moment it says it next changes, and differently from then."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import random
 
 import pytest
 
-from apps.agent_site.simclock import compact_ago, long_ago, units_changes_at
+from apps.kit.simclock import compact_ago, long_ago, units_changes_at
 
 MIN, HOUR, DAY, WEEK = 60, 3600, 86400, 7 * 86400
 

@@ -42,7 +42,7 @@ def reset_concurrency() -> None:
 
 def arrival(request):
     """When the request arrived (stamped before it waited for a thread) and when it ran."""
-    from apps.agent_site.pages import arrival_wall
+    from apps.kit.pages import arrival_wall
 
     return JsonResponse(
         {

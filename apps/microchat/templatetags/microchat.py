@@ -1,5 +1,5 @@
 """Template tags for MicroChat pages: the chat-list rows and the messages of the open chat,
-each rendered once per distinct input (apps.agent_site.fragments), plus small filters.
+each rendered once per distinct input (apps.kit.fragments), plus small filters.
 
 Rows carry small POST forms (a star, reactions). A cached fragment cannot hold the request's
 CSRF token, so it is rendered with a placeholder that the tag swaps for the page's token.
@@ -12,9 +12,9 @@ from datetime import date, timedelta
 from django import template
 from django.utils.safestring import SafeString, mark_safe
 
-from apps.agent_site import simclock
-from apps.agent_site.fragments import render_fragment
-from apps.agent_site.templatetags.simtime import sim_ago
+from apps.kit import simclock
+from apps.kit.fragments import render_fragment
+from apps.kit.templatetags.simtime import sim_ago
 from apps.microchat.markup import render_markup
 from apps.microchat.screens import ConversationRow, MessageView, OpenConversation
 

@@ -1,12 +1,12 @@
 """MicroFy's template helpers: shelves of cards and song rows rendered once per distinct input
-(apps.agent_site.fragments), the player's clock text and the audio clip of a track."""
+(apps.kit.fragments), the player's clock text and the audio clip of a track."""
 
 from __future__ import annotations
 
 from django import template
 from django.utils.safestring import SafeString, mark_safe
 
-from apps.agent_site.fragments import render_fragment
+from apps.kit.fragments import render_fragment
 from apps.media.links import audio_url
 from apps.microfy.state import Track, clock_text
 

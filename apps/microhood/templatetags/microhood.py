@@ -1,8 +1,8 @@
-"""Rows and cards rendered once per distinct content (apps.agent_site.fragments)."""
+"""Rows and cards rendered once per distinct content (apps.kit.fragments)."""
 
 from django import template
 
-from apps.agent_site.fragments import render_fragment
+from apps.kit.fragments import render_fragment
 
 register = template.Library()
 

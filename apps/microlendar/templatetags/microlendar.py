@@ -1,12 +1,12 @@
 """Template tags for MicroLendar pages: event chips and time-grid blocks, each rendered once per
-distinct input (apps.agent_site.fragments), and the hour labels of the time grid."""
+distinct input (apps.kit.fragments), and the hour labels of the time grid."""
 
 from __future__ import annotations
 
 from django import template
 from django.utils.safestring import SafeString, mark_safe
 
-from apps.agent_site.fragments import render_fragment
+from apps.kit.fragments import render_fragment
 from apps.microlendar import times
 from apps.microlendar.screens import Block, Chip
 

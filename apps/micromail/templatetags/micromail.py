@@ -1,5 +1,5 @@
 """Template tags and filters for MicroMail pages: folder names, the message-list row, plus the
-shared simulated-time filters (apps/agent_site/templatetags/simtime.py) so `{% load micromail %}`
+shared simulated-time filters (apps/kit/templatetags/simtime.py) so `{% load micromail %}`
 is enough."""
 
 from __future__ import annotations
@@ -7,9 +7,9 @@ from __future__ import annotations
 from django import template
 from django.utils.safestring import SafeString, mark_safe
 
-from apps.agent_site import simclock
-from apps.agent_site.fragments import render_fragment
-from apps.agent_site.templatetags.simtime import sim_ago, sim_clock
+from apps.kit import simclock
+from apps.kit.fragments import render_fragment
+from apps.kit.templatetags.simtime import sim_ago, sim_clock
 from apps.micromail.listing import Row, row_label
 from apps.micromail.state import FOLDER_TITLES
 
@@ -44,7 +44,7 @@ def file_kind(name: str) -> str:
 @register.simple_tag(takes_context=True)
 def message_rows(context: template.Context, rows: tuple[Row, ...]) -> SafeString:
     """The rows of the message list, each rendered once per distinct input by
-    micromail/_row.html (apps.agent_site.fragments). The arrival time goes in as its text, and
+    micromail/_row.html (apps.kit.fragments). The arrival time goes in as its text, and
     the page learns when that text next changes, so a live list re-renders on the minute."""
     page = context["page"]
     inputs = {

@@ -16,7 +16,7 @@ from __future__ import annotations
 from django import template
 from django.utils.safestring import SafeString, mark_safe
 
-from apps.agent_site.fragments import render_fragment
+from apps.kit.fragments import render_fragment
 from apps.media.templatetags import media
 from apps.microtube import display
 from apps.microtube.state import Channel, Tube, Video

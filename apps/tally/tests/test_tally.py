@@ -10,7 +10,7 @@ import pytest
 from django.test import Client
 from django.utils.html import escape
 
-from apps.agent_site.links import environment_root
+from apps.kit.links import environment_root
 from apps.scenarios.format import parse_scenario
 from apps.tally.environment import tally_scenario
 from events import lifecycle

@@ -21,7 +21,7 @@ import httpx
 from django.core.management.base import BaseCommand, CommandError
 from django.db import DatabaseError
 
-from apps.agent_site.links import environment_root
+from apps.kit.links import environment_root
 from apps.scenarios.format import ScenarioError
 from apps.scenarios.library import get_dev_scenario
 from events import lifecycle

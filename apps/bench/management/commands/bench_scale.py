@@ -34,8 +34,8 @@ from django.core.management import call_command
 from django.core.management.base import BaseCommand, CommandError
 from django.db.models import Count
 
-from apps.agent_site.links import contact_path, environment_root, task_path
 from apps.bench.load import AgentPlan, LoadResult, OpenLoop
+from apps.kit.links import contact_path, environment_root, task_path
 from apps.scenarios.library import scenario_library
 from events import lifecycle
 from events.clock import wall_now

@@ -4,7 +4,7 @@
 staleness), folds the state, logs the page view, and hands the view a `Page`. Environment views
 stay thin: they read `page.state`, call `page.act(...)` for actions, and render.
 
-A *live* request (`request.sentinel_live`, made by events.live to re-render a page's live regions
+A *live* request (`request.sentinel_live`, made by apps.kit.live to re-render a page's live regions
 for a websocket push or a poll) is a pure read: no view event is logged and `page.act` refuses,
 so implicit effects (opening marks read) never happen behind the user's back.
 """
@@ -19,11 +19,11 @@ from typing import Any
 from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllowed
 from django.shortcuts import render
 
-from apps.agent_site import links
-from apps.agent_site.query import InvalidQuery
+from apps.kit import links
+from apps.kit.live import renderable
+from apps.kit.query import InvalidQuery
 from events.clock import sim_now, wall_now
 from events.commands import current_folded, perform_action, record_view
-from events.live import renderable
 from events.models import Event, Run
 from events.projection import state_at
 from events.registry import ActionRejected, get_environment
@@ -77,7 +77,7 @@ class Page:
 
     @property
     def live_socket(self) -> str:
-        """Websocket path pushing this page's live regions (see events.consumers)."""
+        """Websocket path pushing this page's live regions (see apps.kit.consumers)."""
         return links.live_path(self.run)
 
     @cached_property
@@ -186,7 +186,7 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             live=live,
             live_seq=folded.live_seq,
         )
-        request.sentinel_page = page  # what a live render reads back (events.live)
+        request.sentinel_page = page  # what a live render reads back (apps.kit.live)
         try:
             if request.method == "GET" and not live:
                 record_view(

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 
 from django.http import HttpRequest
 
-from apps.agent_site.pages import Page, one_of
+from apps.kit.pages import Page, one_of
 
 
 def act_on_post(

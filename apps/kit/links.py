@@ -29,7 +29,7 @@ def environment_root(run: Run) -> str:
 
 
 def live_path(run: Run) -> str:
-    """The websocket (and polling) endpoint of the run's live pages (events.consumers)."""
+    """The websocket (and polling) endpoint of the run's live pages (apps.kit.consumers)."""
     return _live_path(run.token)
 
 

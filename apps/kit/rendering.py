@@ -15,8 +15,8 @@ from django.contrib import messages
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect
 from django.template.loader import render_to_string
 
-from apps.agent_site import screen_cache
-from apps.agent_site.pages import Page
+from apps.kit import screen_cache
+from apps.kit.pages import Page
 
 FRAGMENT_TEMPLATE = "site/fragment.html"
 

@@ -2,7 +2,7 @@
 
 from django.urls import path
 
-from apps.agent_site import views
+from apps.kit import views
 
 urlpatterns = [
     path("", views.run_home, name="run-home"),

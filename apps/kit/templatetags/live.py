@@ -8,12 +8,12 @@ argument is the element name; then `name=value` attributes whose values are filt
 (`datetime=page|sim_now|date:"c"`); a value of None or False leaves the attribute out, True
 writes it bare. `id` is required: a pushed region finds its old self by id.
 
-On a live re-render (`request.sentinel_live`, made by events.live for a websocket push or a
+On a live re-render (`request.sentinel_live`, made by apps.kit.live for a websocket push or a
 poll) the tag also records `(id, outer HTML with hx-swap-oob="true")` in
 `request.sentinel_live_regions`, in page order; a region inside another region is sent as part
 of the outer one only. So the push is exactly the regions the templates declare, with nothing
 cut out of the HTML afterwards. A region must not sit in a fragment cached across requests
-(apps.agent_site.fragments): a cached render would not record it.
+(apps.kit.fragments): a cached render would not record it.
 """
 
 from __future__ import annotations

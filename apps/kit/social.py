@@ -13,8 +13,8 @@ from typing import Any, Generic, TypeVar
 
 from pydantic import Field
 
+from apps.kit.deciding import checking, found, new_id, required_text
 from apps.media.pictures import SUBJECTS
-from events.deciding import checking, found, new_id, required_text
 from events.registry import Action, PageStep, Reducer, State
 from events.schemas import Payload
 

@@ -28,7 +28,7 @@ import math
 from channels.db import database_sync_to_async
 from channels.generic.websocket import AsyncJsonWebsocketConsumer
 
-from events import live
+from apps.kit import live
 from events.clock import sim_now, wall_due, wall_now
 from events.models import RunStatus
 

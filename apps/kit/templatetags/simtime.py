@@ -11,7 +11,7 @@
     {{ page|sim_today:"Y-m-d" }}                2025-01-06 (any Django date format)
     {{ page|sim_now|date:"D j M H:i" }}         Mon 6 Jan 09:12 (the page's own moment)
 
-`page` is the `apps.agent_site.pages.Page` of the request: its `now` was read once from the run's
+`page` is the `apps.kit.pages.Page` of the request: its `now` was read once from the run's
 clock, so every time on a page agrees. Filters whose text moves on with the clock (`sim_ago`,
 `sim_ago_compact`, `sim_ago_long`, `sim_relative`, `sim_now`) tell the page when it next changes (`page.changes_at`), so a live
 page is pushed again then. `sim_ago` and `sim_relative` also take a plain `now` (simulated
@@ -25,7 +25,7 @@ from datetime import datetime
 from django import template
 from django.utils.dateformat import format as format_date
 
-from apps.agent_site import simclock
+from apps.kit import simclock
 
 register = template.Library()
 

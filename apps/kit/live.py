@@ -4,15 +4,16 @@ and when what they show changes with the clock.
 The flow, one path for every backend:
 
 1. Whoever appends `scenario` or `action` events (the ticker in any backend, a lazy catch-up
-   inside a request, an agent action) calls `log_grew(run_id, seq)`; whoever moves a clock by
-   hand (`/advance`, starting the clock) calls `clock_moved(run_id)`. After the transaction
-   commits, a `run.log_grew` / `run.clock_moved` message goes to the channel group `run.<id>`
-   through the configured channel layer (in-memory embedded, Redis in production).
-2. Each subscribed socket (`events.consumers.RunLiveConsumer`) knows which URL its page shows.
+   inside a request, an agent action) calls the engine's `events.notifications.log_grew(run_id,
+   seq)`; whoever moves a clock by hand (`/advance`, starting the clock) calls `clock_moved`.
+   After the transaction commits, this module hears it and sends a `run.log_grew` /
+   `run.clock_moved` message to the channel group `run.<id>` through the configured channel
+   layer (in-memory embedded, Redis in production).
+2. Each subscribed socket (`apps.kit.consumers.RunLiveConsumer`) knows which URL its page shows.
    It asks `shared_update(...)` for that URL: the page's normal view renders it in-process, for
    the same run and query, flagged `sentinel_live` — so it logs no view event and performs no
    implicit action. The page's templates mark their live regions with a tag
-   (apps/agent_site/templatetags/live.py) which, on such a request, records each region's HTML
+   (apps/kit/templatetags/live.py) which, on such a request, records each region's HTML
    on the request (`request.sentinel_live_regions`): nothing is cut out of the HTML afterwards.
    The render also says when what it shows next changes with the clock
    (`request.sentinel_page.next_change`, simulated seconds); the socket sets a timer for it.
@@ -39,7 +40,7 @@ from functools import cached_property
 from urllib.parse import urlsplit
 
 from asgiref.sync import async_to_sync
-from django.db import close_old_connections, transaction
+from django.db import close_old_connections
 from django.db.models import Max
 from django.http import Http404, HttpRequest, QueryDict
 from django.middleware.csrf import CSRF_ALLOWED_CHARS
@@ -47,11 +48,11 @@ from django.urls import Resolver404, resolve, reverse
 from django.utils.crypto import get_random_string
 
 from events.lru import LRU
-from events.models import Event, EventKind, Run
+from events.models import Event, Run
+from events.notifications import LIVE_KINDS, clock_moved_signal, log_grew_signal
 
 log = logging.getLogger(__name__)
 
-LIVE_KINDS = (EventKind.SCENARIO, EventKind.ACTION)
 LOG_GREW = "run.log_grew"
 CLOCK_MOVED = "run.clock_moved"
 POLL_INTERVAL_MS = 2000  # the fallback when the socket cannot connect (documented in the shell)
@@ -62,30 +63,26 @@ def group_name(run_id: int) -> str:
 
 
 # ---------------------------------------------------------------------------------------------
-# Broadcast (sync callers: the scheduler, commands, the life-cycle; any thread, any backend)
+# Broadcast: the engine's notices (events.notifications, sent after commit) become channel
+# messages to the run's group. Connected in KitConfig.ready().
 
 
-def log_grew(run_id: int, seq: int) -> None:
-    """Tell subscribers of the run that its log grew to `seq`, once the write is committed.
-
-    Never raises: a push is a convenience (pages also poll and reload), an append is not.
-    """
-    transaction.on_commit(lambda: _send(run_id, {"type": LOG_GREW, "run": run_id, "seq": seq}))
+def on_log_grew(sender: object, *, run_id: int, seq: int, **_: object) -> None:
+    """Tell subscribers of the run that its log grew to `seq`."""
+    _send(run_id, {"type": LOG_GREW, "run": run_id, "seq": seq})
 
 
-def clock_moved(run_id: int) -> None:
-    """Tell subscribers of the run that its clock was moved or started (not by time passing),
-    once the write is committed: each re-checks when its page next changes.
+def on_clock_moved(sender: object, *, run_id: int, **_: object) -> None:
+    """Tell subscribers of the run that its clock was moved or started: each re-checks when its
+    page next changes. The message carries the clock as committed, read once here for all."""
+    reading = clock_reading(run_id)
+    if reading is not None:
+        _send(run_id, {"type": CLOCK_MOVED, "run": run_id, "clock": reading})
 
-    The message carries the clock as committed, read once here for all subscribers.
-    """
 
-    def send() -> None:
-        reading = clock_reading(run_id)
-        if reading is not None:
-            _send(run_id, {"type": CLOCK_MOVED, "run": run_id, "clock": reading})
-
-    transaction.on_commit(send)
+def connect() -> None:
+    log_grew_signal.connect(on_log_grew, dispatch_uid="kit.live.log_grew")
+    clock_moved_signal.connect(on_clock_moved, dispatch_uid="kit.live.clock_moved")
 
 
 def _send(run_id: int, message: dict) -> None:
@@ -149,7 +146,7 @@ LIVE_PAGE = "sentinel_live_page"  # attribute marking a view a live request may 
 
 
 def renderable(view):
-    """Mark `view` as a page a live request may render (apps.agent_site.pages.run_page does):
+    """Mark `view` as a page a live request may render (apps.kit.pages.run_page does):
     a view that reads the run and acts only through `Page.act`, which refuses on a live render.
     Nothing else under a run's URL is ever called by the live protocol — not the task URL
     (it starts the clock), the contact page (it records a contact) or the JSON actions."""

@@ -5,7 +5,7 @@
     {% rows "microhub/_issue_row.html" issues "issue" stamp="opened_at" ago="long" %}
     {% row "microgram/_post.html" card=card at=card.post.posted_at %}
 
-Each row goes through `apps.agent_site.fragments.render_fragment` with exactly: the item (under
+Each row goes through `apps.kit.fragments.render_fragment` with exactly: the item (under
 `name`) or the named inputs, the environment `root`, the page's `csrf_token` (a placeholder in a
 page rendered by `render_screen`, filled per response, so forms in rows are cacheable), any extra
 inputs, and — when the row has a time (`stamp` names the item's attribute, or `at` is given) —
@@ -22,8 +22,8 @@ from typing import Any
 from django import template
 from django.utils.safestring import SafeString, mark_safe
 
-from apps.agent_site import simclock
-from apps.agent_site.fragments import render_fragment
+from apps.kit import simclock
+from apps.kit.fragments import render_fragment
 
 register = template.Library()
 

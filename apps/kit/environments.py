@@ -1,6 +1,6 @@
 """Registering an environment app with the core: one dotted path in its AppConfig.
 
-    from apps.agent_site import environments
+    from apps.kit import environments
 
     class MicromailConfig(environments.EnvironmentConfig):
         name = "apps.micromail"

@@ -1,11 +1,11 @@
 """The run's own URLs that every environment shares: its home, and the polling fallback of live
 pages, `GET /r/<token>/live?url=<page URL>&seq=<N>&due=<simulated seconds or empty>`.
 
-Same answer as the websocket push (events.consumers), over plain HTTP, for browsers whose
+Same answer as the websocket push (apps.kit.consumers), over plain HTTP, for browsers whose
 socket cannot connect: 204 when the run's log has no scenario/action event after `seq` and the
 run's clock has not reached `due` (when the page's content next changes with the clock), else
 `{"type": "regions", "url": …, "seq": M, "next_change": <the new due or null>, "html": <out-of-band
-swaps>}`. A pure read: nothing is logged; the render is shared with the sockets (events.live).
+swaps>}`. A pure read: nothing is logged; the render is shared with the sockets (apps.kit.live).
 """
 
 from __future__ import annotations
@@ -15,9 +15,9 @@ import math
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
 from django.views.decorators.http import require_GET
 
-from apps.agent_site.links import environment_root
-from apps.agent_site.pages import run_for_token
-from events import live
+from apps.kit import live
+from apps.kit.links import environment_root
+from apps.kit.pages import run_for_token
 from events.clock import sim_now, wall_now
 from events.scheduler import fire_due
 

@@ -1,7 +1,7 @@
 """Simulated time as pages show it, from the run's clock — never the browser's.
 
 Every environment renders times with these helpers (template filters in
-`apps/agent_site/templatetags/simtime.py`), so acceleration and a virtual clock look the same to
+`apps/kit/templatetags/simtime.py`), so acceleration and a virtual clock look the same to
 every client and to the replay viewer.
 
 The simulated workday starts at 09:00: simulated second 0 is 09:00 on the run's *day zero*, the
