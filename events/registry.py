@@ -10,11 +10,13 @@ import sqlite3
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any, NamedTuple
+from typing import Any, Generic, NamedTuple, TypeVar
 
-from events.schemas import Payload, PayloadError, validate_payload  # noqa: F401 (re-exported)
+from events.schemas import Payload, PayloadError, validate_payload
 
-State = Any  # each environment defines its own immutable state type
+# Each environment defines its own immutable state type; the interface is generic in it, so a
+# type checker sees that an environment's reducers, decisions and measures agree on one state.
+S = TypeVar("S")
 
 
 class LoggedEvent(NamedTuple):
@@ -35,15 +37,15 @@ class ActionRejected(ValueError):
         self.status = status
 
 
-Reducer = Callable[[State, LoggedEvent], State]
+Reducer = Callable[[S, LoggedEvent], S]
 
 
 @dataclass(frozen=True)
-class EventType:
+class EventType(Generic[S]):
     """A scenario event type: its payload schema and the reducer that applies it."""
 
     schema: type[Payload]
-    reduce: Reducer
+    reduce: Reducer[S]
     help: str = ""
     # Catalog references to check when a scenario is authored: payload field → (catalog
     # table); a list field may be ["*"].
@@ -66,7 +68,7 @@ class PageStep:
 
 
 @dataclass(frozen=True)
-class Action:
+class Action(Generic[S]):
     """An agent action: validated against the current state by `decide`, then logged.
 
     `decide(state, payload)` returns the payload to record (it may add derived fields, e.g.
@@ -76,21 +78,21 @@ class Action:
     """
 
     schema: type[Payload]
-    decide: Callable[[State, dict], dict]
-    reduce: Reducer
+    decide: Callable[..., dict]  # (state, payload) → payload, or (state, payload, now) if timed
+    reduce: Reducer[S]
     help: str = ""
-    page: Callable[[State, dict], PageStep] | None = None
+    page: Callable[[S, dict], PageStep] | None = None
     # The decision depends on the clock (a market order is checked against the price of its
     # moment): then `decide(state, payload, now)`, `now` being the simulated second it is logged at.
     timed: bool = False
 
-    def decide_at(self, state: State, payload: dict, now: float) -> dict:
+    def decide_at(self, state: S, payload: dict, now: float) -> dict:
         """`decide`, given the moment when the action says it needs one (`timed`)."""
         return self.decide(state, payload, now) if self.timed else self.decide(state, payload)
 
 
 @dataclass(frozen=True)
-class ImplicitAction:
+class ImplicitAction(Generic[S]):
     """An action a page performs by being opened, as the real product does: opening an unread
     message marks it read. Declared with the environment so no view has to remember it.
 
@@ -103,20 +105,27 @@ class ImplicitAction:
     param: str
     action: str
     payload: Callable[[str], dict]
-    applies: Callable[[State, str], bool]
+    applies: Callable[[S, str], bool]
 
 
-Measure = Callable[[State, float], float | int]  # (state, now) → a number
+Measure = Callable[[S, float], float | int]  # (state, now) → a number
 EMPTY: Mapping[str, Any] = MappingProxyType({})
 
 
-def timeless(count: Callable[[State], float | int]) -> Measure:
+def timeless(count: Callable[[S], float | int]) -> Measure[S]:
     """A baseline that depends on the state only (most counts do) as a `measure(state, now)`."""
     return lambda state, now: count(state)
 
 
+class Performed(NamedTuple, Generic[S]):
+    """An action carried out on a state: what is logged, and the state once it is applied."""
+
+    payload: dict  # as decided (with any derived field, e.g. a generated id): the logged payload
+    state: S  # the state with the action applied, as the next fold will give it
+
+
 @dataclass(frozen=True)
-class Environment:
+class Environment(Generic[S]):
     """Everything the core needs to know about one environment.
 
     Time reaches the environment explicitly: `now` is the simulated second (authored scale) of
@@ -126,21 +135,45 @@ class Environment:
 
     name: str
     title: str
-    initial_state: Callable[[Any], State]  # catalog → the empty state
-    event_types: Mapping[str, EventType]
-    actions: Mapping[str, Action]
+    initial_state: Callable[[Any], S]  # catalog → the empty state
+    event_types: Mapping[str, EventType[S]]
+    actions: Mapping[str, Action[S]]
     # name → measure(state, now); captured by the core right after each preload applies, and
     # exported to eval_sql as session_meta rows `baseline_<name>`.
-    baselines: Mapping[str, Measure]
+    baselines: Mapping[str, Measure[S]]
     # The evaluation tables as of `now` (upstream names and columns, so eval_sql runs unchanged).
-    materialize: Callable[[State, float, sqlite3.Connection], None]
+    materialize: Callable[[S, float, sqlite3.Connection], None]
     urlconf: str | None = None  # module with the environment's page urlpatterns
-    implicit_actions: tuple[ImplicitAction, ...] = ()
+    implicit_actions: tuple[ImplicitAction[S], ...] = ()
     # state → every kind of page worth timing, as paths relative to the environment root
     # (e.g. "?folder=inbox"); used by `manage.py bench_pages`.
-    sample_pages: Callable[[State], list[str]] | None = None
+    sample_pages: Callable[[S], list[str]] | None = None
 
-    def apply(self, state: State, event: LoggedEvent) -> State:
+    def action(self, name: str) -> Action[S]:
+        """The action called `name`, or a refusal naming the ones there are."""
+        found = self.actions.get(name)
+        if found is None:
+            raise ActionRejected(
+                f"unknown action {name!r} for {self.name}; allowed: {', '.join(sorted(self.actions))}",
+                status=400,  # the request names no such thing: a bad request, not a missing page
+            )
+        return found
+
+    def perform(self, state: S, name: str, payload: Mapping[str, Any], at: float) -> Performed[S]:
+        """Carry out action `name` on `state` at simulated second `at`, purely: validate the
+        payload, decide (ActionRejected when the state does not allow it) and apply the event
+        that would be logged. The server logs `payload` and keeps `state`; tests call it alone."""
+        action = self.action(name)
+        try:
+            validate_payload(action.schema, payload, what=f"action {name}")
+        except PayloadError as exc:
+            raise ActionRejected(str(exc)) from None
+        decided = action.decide_at(state, dict(payload), at)
+        # seq is unknown until logged: no reducer reads it (they see payload and time only).
+        event = LoggedEvent(seq=0, at=at, kind="action", type=name, payload=decided)
+        return Performed(decided, action.reduce(state, event))
+
+    def apply(self, state: S, event: LoggedEvent) -> S:
         """Apply one logged event. Views and lifecycle events never change environment state."""
         if event.kind == "scenario":
             event_type = self.event_types.get(event.type)
@@ -151,7 +184,7 @@ class Environment:
             return action.reduce(state, event) if action else state
         return state
 
-    def measure_baselines(self, state: State, now: float) -> Mapping[str, float | int]:
+    def measure_baselines(self, state: S, now: float) -> Mapping[str, float | int]:
         return MappingProxyType(
             {name: measure(state, now) for name, measure in self.baselines.items()}
         )
@@ -161,8 +194,8 @@ class Environment:
         return event_type is not None and event_type.preload
 
     def fold(
-        self, state: State, events, baselines: Mapping[str, Any] = EMPTY
-    ) -> tuple[State, Mapping[str, Any]]:
+        self, state: S, events, baselines: Mapping[str, Any] = EMPTY
+    ) -> tuple[S, Mapping[str, Any]]:
         """Apply `events` in order; baselines are measured right after every preload."""
         apply, captures = self.apply, self.captures_baselines
         for event in events:
@@ -172,10 +205,10 @@ class Environment:
         return state, baselines
 
 
-_REGISTRY: dict[str, Environment] = {}
+_REGISTRY: dict[str, Environment[Any]] = {}
 
 
-def register(environment: Environment) -> Environment:
+def register(environment: Environment[S]) -> Environment[S]:
     existing = _REGISTRY.get(environment.name)
     if existing is not None and existing is not environment:
         raise ValueError(f"environment {environment.name!r} is registered twice")
@@ -194,7 +227,7 @@ class UnknownEnvironment(LookupError):
         )
 
 
-def get_environment(name: str) -> Environment:
+def get_environment(name: str) -> Environment[Any]:
     try:
         return _REGISTRY[name]
     except KeyError:
@@ -205,5 +238,5 @@ def environment_names() -> list[str]:
     return sorted(_REGISTRY)
 
 
-def all_environments() -> list[Environment]:
+def all_environments() -> list[Environment[Any]]:
     return [_REGISTRY[name] for name in sorted(_REGISTRY)]

@@ -11,7 +11,7 @@ state a value: the fold cache, kept screens and time travel can hold on to it sa
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any, TypeVar
 
@@ -38,3 +38,15 @@ def with_changed(state: S, field: str, key: Any, **changes: Any) -> S:
     if current is None:
         return state
     return with_items(state, field, [(key, replace(current, **changes))])
+
+
+@dataclass(frozen=True)
+class CatalogState:
+    """The base of every environment's state: the catalog it is built from.
+
+    The catalog is an input, not state: it is left out of equality and `repr`, so two folds of
+    the same log compare equal cheaply (comparing would canonicalise the whole catalog) and a
+    state prints readably. Subclasses are frozen dataclasses adding their own fields.
+    """
+
+    catalog: Any = field(compare=False, repr=False)

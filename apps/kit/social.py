@@ -15,7 +15,7 @@ from pydantic import Field
 
 from apps.kit.deciding import checking, found, new_id, required_text
 from apps.media.pictures import SUBJECTS
-from events.registry import Action, PageStep, Reducer, State
+from events.registry import Action, PageStep, Reducer
 from events.schemas import Payload
 
 Member = TypeVar("Member")  # a person as the app shows them (its own `Person`)
@@ -131,7 +131,7 @@ def post_actions(
     where: str,
     liking: Callable[[bool], Reducer],
     reduce_comment: Reducer,
-    page: Callable[[State, dict], PageStep],
+    page: Callable[[Any, dict], PageStep],
 ) -> dict[str, Action]:
     """`like_post`, `unlike_post` and `comment_post`: the same names, payloads and rules on every
     feed. The app says how a like is kept (`liking(is_liked)` → its reducer), where a comment is

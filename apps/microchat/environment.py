@@ -16,7 +16,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.microchat import state as chats
 from apps.microchat.actions import ACTIONS
 from apps.microchat.bench import sample_pages

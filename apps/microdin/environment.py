@@ -20,7 +20,7 @@ from types import MappingProxyType
 from pydantic import Field
 
 from apps.kit.frozen import with_items
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
 from apps.microdin.actions import ACTIONS

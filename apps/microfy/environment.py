@@ -22,7 +22,7 @@ from typing import Any
 
 from pydantic import Field
 
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.microfy import library
 from apps.microfy import state as lib
 from apps.microfy.actions import ACTIONS

@@ -19,7 +19,7 @@ from types import MappingProxyType
 from pydantic import Field
 
 from apps.kit.frozen import with_items
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.microgram import catalog as records
 from apps.microgram import state as gram_state
 from apps.microgram.actions import ACTIONS

@@ -22,7 +22,7 @@ from typing import Annotated
 
 from pydantic import Field
 
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.kit.waypoints import Waypoints
 from apps.microhood import state as account
 from apps.microhood.actions import ACTIONS

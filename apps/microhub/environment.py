@@ -21,7 +21,7 @@ from typing import Annotated, Any
 
 from pydantic import Field, model_validator
 
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.kit.waypoints import Waypoints
 from apps.microhub import catalog as records
 from apps.microhub.actions import ACTIONS

@@ -17,7 +17,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times
 from apps.microlendar.actions import ACTIONS

@@ -8,20 +8,17 @@ Scenario events (SentinelBench format):
 
 from __future__ import annotations
 
-import sqlite3
 from collections.abc import Mapping
 from types import MappingProxyType
 
-from pydantic import Field
-
-from apps.kit.tables import Table
+from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
+from apps.kit.tables import KEY, Table, tables
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
 from apps.micromail.catalog import catalog_email, catalog_state
-from apps.micromail.state import ENVIRONMENT, Mail, empty_mail, with_emails
-from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
-from events.schemas import Payload
+from apps.micromail.state import ENVIRONMENT, Email, EmailState, Mail, empty_mail
+from events.registry import Environment, ImplicitAction, Measure, timeless
 
 # Upstream stamps preloaded mail "five minutes before start", so the list reads "5 min ago".
 PRELOAD_AGE_S = 300.0
@@ -44,122 +41,63 @@ BASELINES: Mapping[str, Measure] = MappingProxyType(
 )
 
 
-def deliver(mail: Mail, email_ids: list[str], *, arrived_at: float, preloaded: bool) -> Mail:
-    """Put catalog messages in the mailbox.
-
-    An id already in the mailbox is the same message delivered twice: it is left as it is (no
-    duplicate row, no reset of what the user did to it). Ids missing from the catalog are
-    skipped; scenario validation reports them to the author before a run ever starts.
-    """
-    arrivals = []
-    for email_id in dict.fromkeys(email_ids):  # de-duplicate, keep order
-        if mail.has(email_id):
-            continue
-        email = catalog_email(
-            mail.catalog, email_id, arrived_at=arrived_at, self_email=mail.self_email
-        )
-        if email is not None:
-            arrivals.append((email, catalog_state(mail.catalog, email_id, keep_read=preloaded)))
-    return with_emails(mail, arrivals) if arrivals else mail
+def make_email(mail: Mail, email_id: str, stamp: Stamp) -> tuple[Email, EmailState] | None:
+    """A catalog message as it arrives: preloaded mail keeps its catalog read flag and is dated
+    five minutes before the start; new mail arrives unread, stamped with the event's time."""
+    arrived_at = stamp.at - PRELOAD_AGE_S if stamp.preloaded else stamp.at
+    email = catalog_email(mail.catalog, email_id, arrived_at=arrived_at, self_email=mail.self_email)
+    if email is None:
+        return None
+    return email, catalog_state(mail.catalog, email_id, keep_read=stamp.preloaded)
 
 
-def reduce_preload_emails(mail: Mail, event: LoggedEvent) -> Mail:
-    """Preload mail, keeping its catalog read state (the core then measures the baselines)."""
-    ids = mail.catalog.expand(ENVIRONMENT, "emails", event.payload["email_ids"])
-    return deliver(mail, ids, arrived_at=event.at - PRELOAD_AGE_S, preloaded=True)
+deliver_emails = Delivery("emails", make_email, states="states")
 
-
-def reduce_new_email(mail: Mail, event: LoggedEvent) -> Mail:
-    """A message arrives unread, stamped with the event's simulated time."""
-    return deliver(mail, [event.payload["email_id"]], arrived_at=event.at, preloaded=False)
-
-
-class PreloadEmails(Payload):
-    email_ids: list[str] = Field(description='catalog email ids; ["*"] = every email')
-
-
-class NewEmail(Payload):
-    email_id: str = Field(description="catalog email id")
-
-
-EVENT_TYPES: Mapping[str, EventType] = MappingProxyType(
-    {
-        "preload_emails": EventType(
-            schema=PreloadEmails,
-            reduce=reduce_preload_emails,
-            help="Mail already in the mailbox at the start; baselines are measured after it.",
-            catalog_refs={"email_ids": "emails"},
-            preload=True,
-        ),
-        "new_email": EventType(
-            schema=NewEmail,
-            reduce=reduce_new_email,
-            help="One message arrives, unread.",
-            catalog_refs={"email_id": "emails"},
-        ),
-    }
+EVENT_TYPES = event_types(
+    preload(
+        "preload_emails",
+        {"email_ids": ("emails", deliver_emails)},
+        required=("email_ids",),
+        environment=ENVIRONMENT,
+        help="Mail already in the mailbox at the start; baselines are measured after it.",
+    ),
+    arrival("new_email", "email_id", "emails", deliver_emails, help="One message arrives, unread."),
 )
 
 
 # --- evaluation tables (upstream names and columns, so eval_sql runs unchanged) -----------------
+# Nothing in a mailbox moves between events: `now` is unused. All attachment names in one column.
 
-EMAILS = Table(
-    "emails",
-    (
-        "id TEXT PRIMARY KEY",
-        "subject TEXT",
-        "sender_name TEXT",
-        "sender_email TEXT",
-        "hasAttachment INTEGER",
-        "isExternal INTEGER",
-        "importance TEXT",
-        "mentionsMe INTEGER",
-        "isCC INTEGER",
-        "body TEXT",
-        "attachment_name TEXT",
+materialize = tables(
+    Table(
+        "emails",
+        lambda mail, now: mail.emails.values(),
+        {
+            "id TEXT PRIMARY KEY": "id",
+            "subject TEXT": "subject",
+            "sender_name TEXT": "sender_name",
+            "sender_email TEXT": "sender_email",
+            "hasAttachment INTEGER": "has_attachment",
+            "isExternal INTEGER": "is_external",
+            "importance TEXT": "importance",
+            "mentionsMe INTEGER": "mentions_me",
+            "isCC INTEGER": "is_cc",
+            "body TEXT": "body",
+            "attachment_name TEXT": "attachment_names",
+        },
+    ),
+    Table.keyed(
+        "email_states",
+        "states",
+        {
+            "email_id TEXT PRIMARY KEY": KEY,
+            "isRead INTEGER": "is_read",
+            "isFlagged INTEGER": "is_flagged",
+            "isPinned INTEGER": "is_pinned",
+            "folder TEXT": "folder",
+        },
     ),
 )
-EMAIL_STATES = Table(
-    "email_states",
-    (
-        "email_id TEXT PRIMARY KEY",
-        "isRead INTEGER",
-        "isFlagged INTEGER",
-        "isPinned INTEGER",
-        "folder TEXT",
-    ),
-)
-
-
-def materialize(mail: Mail, now: float, conn: sqlite3.Connection) -> None:
-    """Write `emails` and `email_states` (nothing in a mailbox moves between events: `now` is
-    unused); all attachment names in one column."""
-    EMAILS.write(
-        conn,
-        (
-            (
-                e.id,
-                e.subject,
-                e.sender_name,
-                e.sender_email,
-                e.has_attachment,
-                e.is_external,
-                e.importance,
-                e.mentions_me,
-                e.is_cc,
-                e.body,
-                e.attachment_names,
-            )
-            for e in mail.emails.values()
-        ),
-    )
-    EMAIL_STATES.write(
-        conn,
-        (
-            (email_id, s.is_read, s.is_flagged, s.is_pinned, s.folder)
-            for email_id, s in mail.states.items()
-        ),
-    )
 
 
 MICROMAIL = Environment(

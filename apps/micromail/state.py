@@ -12,7 +12,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
-from apps.kit.frozen import with_changed, with_items
+from apps.kit.frozen import CatalogState, with_changed, with_items
 
 ENVIRONMENT = "micromail"
 
@@ -88,10 +88,8 @@ class EmailState:
 
 
 @dataclass(frozen=True)
-class Mail:
-    # The catalog and self user are inputs, not state: excluded from equality so that two
-    # folds of the same log compare equal cheaply.
-    catalog: Any = field(compare=False, repr=False)
+class Mail(CatalogState):
+    # The self user is an input, like the catalog: excluded from equality.
     self_user: Mapping[str, Any] = field(
         compare=False, repr=False, default_factory=lambda: FALLBACK_SELF
     )

@@ -20,7 +20,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.microscholar import state as index
 from apps.microscholar.actions import ACTIONS
 from apps.microscholar.bench import sample_pages

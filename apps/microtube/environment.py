@@ -22,7 +22,7 @@ from types import MappingProxyType
 
 from pydantic import Field
 
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.microtube import state as tube_state
 from apps.microtube.actions import ACTIONS
 from apps.microtube.bench import sample_pages

@@ -19,7 +19,7 @@ from typing import Annotated
 
 from pydantic import Field
 
-from apps.kit.tables import Table
+from apps.kit.legacy_tables import Table
 from apps.tally.actions import ACTIONS, Count
 from apps.tally.state import TallyState, with_entry, with_level_points
 from events.registry import Environment, EventType, LoggedEvent, timeless
