@@ -117,6 +117,11 @@ def timeless(count: Callable[[S], float | int]) -> Measure[S]:
     return lambda state, now: count(state)
 
 
+def counted(counts: Mapping[str, Callable[[S], float | int]]) -> Mapping[str, Measure[S]]:
+    """Baselines that are counts of the state alone: `{"unread_count": unread_count, …}`."""
+    return MappingProxyType({name: timeless(count) for name, count in counts.items()})
+
+
 class Performed(NamedTuple, Generic[S]):
     """An action carried out on a state: what is logged, and the state once it is applied."""
 

@@ -26,7 +26,7 @@ from events.clock import sim_now, wall_now
 from events.commands import current_folded, perform_action, record_view
 from events.models import Event, Run
 from events.projection import state_at
-from events.registry import ActionRejected, get_environment
+from events.registry import ActionRejected, Environment, get_environment
 
 
 class LiveRenderActed(ActionRejected):
@@ -79,6 +79,11 @@ class Page:
     def live_socket(self) -> str:
         """Websocket path pushing this page's live regions (see apps.kit.consumers)."""
         return links.live_path(self.run)
+
+    @cached_property
+    def environment(self) -> Environment[Any]:
+        """The environment this page belongs to (its title, actions…)."""
+        return get_environment(self.run.environment)
 
     @cached_property
     def root(self) -> str:
@@ -146,7 +151,7 @@ def rejected(
         "missing": missing,  # the page itself does not exist (not an action refused)
         "message": str(exc),
         "back": page.root + "/",
-        "environment_title": get_environment(page.run.environment).title,
+        "environment_title": page.environment.title,
     }
     return render(request, "site/rejected.html", context, status=exc.status)
 

@@ -8,9 +8,6 @@ Scenario events (SentinelBench format):
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from types import MappingProxyType
-
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.tables import KEY, Table, tables
 from apps.micromail import state as mailbox
@@ -18,25 +15,22 @@ from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
 from apps.micromail.catalog import catalog_email, catalog_state
 from apps.micromail.state import ENVIRONMENT, Email, EmailState, Mail, empty_mail
-from events.registry import Environment, ImplicitAction, Measure, timeless
+from events.registry import Environment, ImplicitAction, counted
 
 # Upstream stamps preloaded mail "five minutes before start", so the list reads "5 min ago".
 PRELOAD_AGE_S = 300.0
 
 # Counted right after the preload, by the core (upstream's names: eval_sql reads baseline_<name>).
-BASELINES: Mapping[str, Measure] = MappingProxyType(
+BASELINES = counted(
     {
-        name: timeless(count)
-        for name, count in {
-            "unread_count": mailbox.unread_count,
-            "junk_count": mailbox.junk_count,
-            "attachment_count": mailbox.attachment_count,
-            "external_count": mailbox.external_count,
-            "inbox_count": mailbox.inbox_count,
-            "urgent_count": mailbox.urgent_count,
-            "mention_count": mailbox.mention_count,
-            "cc_count": mailbox.cc_count,
-        }.items()
+        "unread_count": mailbox.unread_count,
+        "junk_count": mailbox.junk_count,
+        "attachment_count": mailbox.attachment_count,
+        "external_count": mailbox.external_count,
+        "inbox_count": mailbox.inbox_count,
+        "urgent_count": mailbox.urgent_count,
+        "mention_count": mailbox.mention_count,
+        "cc_count": mailbox.cc_count,
     }
 )
 

@@ -1,0 +1,75 @@
+"""One shape for every environment's browser story: start a scenario's run on the live site,
+open its task URL in Chromium at 1280×800, move its clock, check a pushed item arrived without a
+reload, report through the contact page and read the verdict and the logged actions.
+
+    def test_…(live_site, browser):
+        story = BrowserStory.start(live_site, browser, "microdin-kubernetes-absolute-active")
+        story.page.get_by_role(…).click()
+        story.watch_for_reload()
+        story.advance(262.8)
+        expect(…).to_be_visible()
+        story.assert_not_reloaded()
+        …
+        assert story.report() == [("apply_job", {"job_id": "job-09"})]
+
+Waits are Playwright's own expectations (a condition with a ceiling), never a fixed sleep.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from tests import control_api
+
+VIEWPORT = {"width": 1280, "height": 800}
+# Generous: on a fully loaded 2-core machine a first render can take seconds. Expectations
+# return as soon as their condition holds, so the ceiling costs nothing when the machine is idle.
+TIMEOUT_MS = 30_000
+
+
+@dataclass
+class BrowserStory:
+    site: str  # the live site's base URL
+    run: dict  # the run as the control API created it (id, task_url, contact_url, …)
+    page: Any  # a Playwright page
+
+    @classmethod
+    def start(cls, site: str, browser, scenario: str, *, open_task: bool = True, **run: Any):
+        """A virtual-clock run of `scenario` on the live site, its task URL opened."""
+        created = control_api.call(
+            site, "POST", "/api/runs/", {"scenario": scenario, "clock_mode": "virtual", **run}
+        )
+        page = browser.new_page(viewport=VIEWPORT)
+        page.set_default_timeout(TIMEOUT_MS)
+        story = cls(site, created, page)
+        if open_task:
+            page.goto(created["task_url"])
+        return story
+
+    def api(self, method: str, path: str, body: dict | None = None):
+        return control_api.call(self.site, method, path, body)
+
+    def watch_for_reload(self) -> None:
+        """Mark the page once its live client is up: a reload would lose the mark."""
+        self.page.wait_for_function("() => document.getElementById('sentinel-live')")
+        self.page.evaluate("window.sentinelLoadedOnce = true")
+
+    def assert_not_reloaded(self) -> None:
+        assert self.page.evaluate("window.sentinelLoadedOnce") is True, "the page reloaded"
+
+    def advance(self, time: float) -> None:
+        """Move the run's virtual clock to `time` (scenario seconds)."""
+        self.api("POST", f"/api/runs/{self.run['id']}/advance/", {"time": time})
+
+    def actions(self) -> list[tuple[str, dict]]:
+        """The agent actions logged so far, in order, as (type, payload)."""
+        logged = self.api("GET", f"/api/runs/{self.run['id']}/events/")
+        return [(e["type"], e["payload"]) for e in logged if e["kind"] == "action"]
+
+    def report(self, *, success: bool = True) -> list[tuple[str, dict]]:
+        """Report through the contact page, check the verdict, and return the logged actions."""
+        self.page.goto(self.run["contact_url"])
+        verdict = self.api("POST", f"/api/runs/{self.run['id']}/evaluate/")
+        assert verdict["success"] is success, verdict["detail"]
+        return self.actions()
