@@ -10,8 +10,8 @@ from __future__ import annotations
 import re
 
 from apps.micromail import state as mailbox
-from apps.micromail.listing import compose_url
 from apps.micromail.query import MailboxQuery
+from apps.micromail.screens import compose_url
 from apps.micromail.state import FOLDERS, QUICK_FILTERS, Mail
 
 _WORD = re.compile(r"[A-Za-z]{5,}")

@@ -22,7 +22,8 @@ from apps.micromail.compose import (
     prefill,
     split_addresses,
 )
-from apps.micromail.listing import (
+from apps.micromail.query import MailboxQuery
+from apps.micromail.screens import (
     attachment_choices,
     attachment_of,
     compose_url,
@@ -30,7 +31,6 @@ from apps.micromail.listing import (
     folder_links,
     mailbox_screen,
 )
-from apps.micromail.query import MailboxQuery
 from apps.micromail.state import FOLDER_TITLES, FOLDERS
 from events.registry import ActionRejected
 
@@ -55,7 +55,7 @@ def root_url(page: Page) -> str:
 
 
 FAVORITE_ACTIONS = ("add_favorite", "remove_favorite")
-# Sent by the compose form's own saving (micromail/compose.js): answered with the draft's id.
+# Sent by the compose form's own saving (static/micromail/micromail.js): answered with the draft's id.
 AUTOSAVE_HEADER = "X-MicroMail-Autosave"
 
 

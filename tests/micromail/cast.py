@@ -13,10 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from apps.micromail.environment import MICROMAIL
-from apps.micromail.state import Mail
-from apps.scenarios.format import parse_scenario
-from events.catalog import load_catalog
-from events.registry import ActionRejected, LoggedEvent, PayloadError, validate_payload
+from tests.kit import Cast
 
 CATALOG_DIR = Path(__file__).resolve().parent / "catalog"
 
@@ -28,40 +25,12 @@ DANA = "dana@vendorco.example"
 PRELOADED = ["budget-review", "team-lunch", "prize-scam", "vendor-quote", "old-archive"]
 LATE_AT = 120.0
 
-
-def catalog():
-    return load_catalog(CATALOG_DIR)
-
-
-def scenario_event(type: str, payload: dict, *, at: float = 0.0, seq: int = 1) -> LoggedEvent:
-    return LoggedEvent(seq, at, "scenario", type, payload)
-
-
-def fresh_mail() -> Mail:
-    return MICROMAIL.initial_state(catalog())
-
-
-def preloaded_mail(ids: list[str] | None = None) -> Mail:
-    """The mailbox right after the t=0 preload of the cast (without late-report)."""
-    return MICROMAIL.apply(
-        fresh_mail(), scenario_event("preload_emails", {"email_ids": ids or PRELOADED})
-    )
-
-
-def act(mail: Mail, name: str, payload: dict, *, at: float = 10.0, seq: int = 100) -> Mail:
-    """Validate, decide and apply one agent action, as the core does (without a database)."""
-    action = MICROMAIL.actions[name]
-    try:
-        validate_payload(action.schema, payload, what=f"action {name}")
-    except PayloadError as exc:
-        raise ActionRejected(str(exc)) from None
-    recorded = action.decide(mail, dict(payload))
-    return MICROMAIL.apply(mail, LoggedEvent(seq, at, "action", name, recorded))
-
-
-def mailbox_scenario(**overrides) -> dict:
-    """A scenario over the cast: preload at 0, late-report at 120 (the condition)."""
-    data = {
+CAST = Cast(
+    MICROMAIL,
+    CATALOG_DIR,
+    preload=("preload_emails", {"email_ids": PRELOADED}),
+    # Preload at 0, late-report at 120 (the condition).
+    scenario={
         "id": "micromail-cast-late-report",
         "environment": "micromail",
         "start_page": "HOST_ADDRESS/micromail",
@@ -75,6 +44,7 @@ def mailbox_scenario(**overrides) -> dict:
         ],
         "eval_sql": "SELECT EXISTS(SELECT 1 FROM emails WHERE id = 'late-report')",
         "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "passive"},
-    }
-    data.update(overrides)
-    return parse_scenario(data, source="tests/micromail").to_run_spec()
+    },
+    acts_at=10.0,
+    arrives_at=LATE_AT,
+)

@@ -5,17 +5,13 @@ from __future__ import annotations
 import pytest
 from django.test import Client
 
-from events import lifecycle
-from events.models import ClockMode
-from tests.micromail.cast import CATALOG_DIR, mailbox_scenario
+from tests.micromail.cast import CAST
 
 
 @pytest.fixture
 def mail_run(db):
     """A run of the cast scenario, preloaded, its virtual clock at 0."""
-    return lifecycle.create_run(
-        mailbox_scenario(), clock_mode=ClockMode.VIRTUAL, catalog_dir=CATALOG_DIR
-    )
+    return CAST.start()
 
 
 @pytest.fixture

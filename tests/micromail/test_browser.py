@@ -1,8 +1,8 @@
 """MicroMail in a real browser: a live clock delivers mail while Chromium reads, moves and replies.
 
 The story: the self user opens the task URL (which starts the clock) and lands in the inbox.
-A colleague's "Partner sync recap" arrives a few simulated seconds later (the page is reloaded
-until it shows, as an agent polling the page would). The user opens it, replies to it, moves an
+A colleague's "Partner sync recap" arrives a few simulated seconds later, pushed into the open
+page without a reload. The user opens it, replies to it, moves an
 old, already-read agenda mail to Junk, and reports back on the contact page. The grade must see
 exactly those three actions.
 
@@ -12,16 +12,15 @@ Elements are found by role, label and text, so the test survives layout changes.
 from __future__ import annotations
 
 import re
-import time
 
 import pytest
 from playwright.sync_api import Page, expect
 
-from tests import control_api
-
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py, so it imports that fixture and overrides the name here.
+from tests.browser_story import TIMEOUT_MS
 from tests.conftest import browser  # noqa: F401
+from tests.inline_story import inline_story
 
 pytestmark = pytest.mark.browser
 
@@ -75,9 +74,6 @@ def scenario() -> dict:
     }
 
 
-api = control_api.call
-
-
 def inbox_link(page: Page):
     return page.get_by_role("navigation", name="Folders").get_by_role(
         "link", name=re.compile(r"^Inbox\b")
@@ -90,31 +86,13 @@ def row(page: Page, subject: str):
     )
 
 
-def reload_until_visible(page: Page, locator, *, timeout_s: float = 30.0) -> None:
-    """Reload every half second until `locator` shows (the page itself is not live-updated)."""
-    deadline = time.monotonic() + timeout_s
-    while locator.count() == 0:
-        assert time.monotonic() < deadline, "the clock-fired email never appeared"
-        time.sleep(0.5)
-        page.reload()
-
-
 def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_site, browser):  # noqa: F811
-    run = api(
-        live_site,
-        "POST",
-        "/api/runs/",
-        {
-            "scenario_json": scenario(),
-            "clock_mode": "live",
-            "speed_factor": SPEED_FACTOR,
-        },
+    story = inline_story(
+        live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
-    page = browser.new_page()
-    page.set_default_timeout(5000)
+    page = story.page
 
     # The task URL starts the clock and lands in the inbox: folders, rows, one unread.
-    page.goto(run["task_url"])
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible()
     for folder in ("Inbox", "Sent Items", "Drafts", "Archive", "Junk Email", "Deleted Items"):
         expect(
@@ -125,10 +103,13 @@ def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_si
     expect(row(page, OLD_SUBJECT)).to_be_visible()
     expect(inbox_link(page)).to_have_accessible_name(re.compile(r"\b1 unread"))
 
-    # The clock delivers the new mail: unread, and counted in the badge.
-    reload_until_visible(page, row(page, NEW_SUBJECT))
-    expect(row(page, NEW_SUBJECT)).to_have_accessible_name(re.compile(r"^Unread\."))
+    # The clock delivers the new mail into the open page: unread, and counted in the badge.
+    story.watch_for_reload()
+    expect(row(page, NEW_SUBJECT)).to_have_accessible_name(
+        re.compile(r"^Unread\."), timeout=TIMEOUT_MS
+    )
     expect(inbox_link(page)).to_have_accessible_name(re.compile(r"\b2 unread"))
+    story.assert_not_reloaded()
 
     # Opening it shows it and marks it read.
     row(page, NEW_SUBJECT).click()
@@ -164,10 +145,6 @@ def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_si
     ).to_have_accessible_name(re.compile(r"\b1 items"))
 
     # Report back, then grade: the three actions, and only them.
-    page.goto(run["contact_url"])
+    actions = story.report()
     assert page.title() == "Contact"
-    verdict = api(live_site, "POST", f"/api/runs/{run['id']}/evaluate/")
-    assert verdict["success"] is True, verdict["detail"]
-    assert verdict["actions"] == 3
-    logged = api(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    assert [e["type"] for e in logged if e["kind"] == "action"] == ["open_email", "send", "move"]
+    assert [name for name, _ in actions] == ["open_email", "send", "move"]

@@ -10,11 +10,10 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
-from tests import control_api
-
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
 from tests.conftest import browser  # noqa: F401
+from tests.inline_story import inline_story
 
 pytestmark = pytest.mark.browser
 
@@ -48,18 +47,9 @@ def folder(page: Page, title: str):
     )
 
 
-def logged_actions(live_site: str, run: dict) -> list[dict]:
-    events = control_api.call(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    return [e for e in events if e["kind"] == "action"]
-
-
 def test_attach_autosave_discard_and_preview(live_site, browser):  # noqa: F811
-    run = control_api.call(
-        live_site, "POST", "/api/runs/", {"scenario_json": scenario(), "clock_mode": "virtual"}
-    )
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(WAIT_MS)
-    page.goto(run["task_url"])
+    story = inline_story(live_site, browser, scenario())
+    page = story.page
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible(timeout=WAIT_MS)
 
     # Write a message with an attachment from the picker, then walk away without saving.
@@ -83,9 +73,9 @@ def test_attach_autosave_discard_and_preview(live_site, browser):  # noqa: F811
     draft.click()
     expect(page.get_by_role("textbox", name="Message")).to_have_value("Numbers attached.")
     expect(page.get_by_role("list", name="Attached files")).to_contain_text("capacity-plan-q3.xlsx")
-    saves = [a for a in logged_actions(live_site, run) if a["type"] == "save_draft"]
-    assert saves and {a["payload"]["id"] for a in saves} == {saves[0]["payload"]["id"]}
-    assert saves[-1]["payload"]["attachments"] == ["att-029"]  # capacity-plan-q3.xlsx
+    saves = [payload for name, payload in story.actions() if name == "save_draft"]
+    assert saves and {p["id"] for p in saves} == {saves[0]["id"]}
+    assert saves[-1]["attachments"] == ["att-029"]  # capacity-plan-q3.xlsx
 
     # Discard asks first; Keep editing keeps the text; Discard deletes the draft.
     discard = page.get_by_role("group", name="Compose actions").get_by_role(
@@ -102,8 +92,8 @@ def test_attach_autosave_discard_and_preview(live_site, browser):  # noqa: F811
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible(timeout=WAIT_MS)
     folder(page, "Drafts").click()
     expect(page.get_by_text("Nothing in Drafts.")).to_be_visible(timeout=WAIT_MS)
-    last = logged_actions(live_site, run)[-1]
-    assert (last["type"], last["payload"]["permanent"]) == ("delete", True)
+    name, payload = story.actions()[-1]
+    assert (name, payload["permanent"]) == ("delete", True)
 
     # An attachment opens over its message at its own URL; Escape closes it.
     folder(page, "Inbox").click()

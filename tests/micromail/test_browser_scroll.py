@@ -14,11 +14,10 @@ import pytest
 from django.conf import settings
 from playwright.sync_api import Page, expect
 
-from tests import control_api
-
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
 from tests.conftest import browser  # noqa: F401
+from tests.inline_story import inline_story
 
 pytestmark = pytest.mark.browser
 
@@ -66,15 +65,8 @@ def rows(page: Page):
 
 def test_opening_the_150th_message_keeps_the_list_where_it_was(live_site, browser):  # noqa: F811
     """Also: a live push keeps it, closing the message keeps it, and rows name their parts."""
-    run = control_api.call(
-        live_site,
-        "POST",
-        "/api/runs/",
-        {"scenario_json": full_inbox_scenario(), "clock_mode": "virtual"},
-    )
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(WAIT_MS)
-    page.goto(run["task_url"])
+    story = inline_story(live_site, browser, full_inbox_scenario())
+    page = story.page
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible(timeout=WAIT_MS)
     assert rows(page).count() >= 150
     # Each row's accessible name says its parts apart: state, sender, subject, time, marks.
@@ -100,7 +92,7 @@ def test_opening_the_150th_message_keeps_the_list_where_it_was(live_site, browse
 
     # A message delivered meanwhile is pushed into the list; the list stays put.
     count = rows(page).count()
-    control_api.call(live_site, "POST", f"/api/runs/{run['id']}/advance/", {"time": LATE_AT})
+    story.advance(LATE_AT)
     expect(rows(page)).to_have_count(count + 1, timeout=WAIT_MS)
     assert scroll_top(page) == pytest.approx(before, abs=1)
     expect(page.get_by_role("heading", level=2, name=subject)).to_be_visible()

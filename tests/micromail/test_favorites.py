@@ -4,39 +4,39 @@ from __future__ import annotations
 
 import pytest
 
-from apps.micromail.listing import favorite_links, folder_links
+from apps.micromail.screens import favorite_links, folder_links
 from apps.micromail.state import DEFAULT_FAVORITES
 from events.registry import ActionRejected
-from tests.micromail.cast import act, preloaded_mail
+from tests.micromail.cast import CAST
 
 ROOT = "/r/t/micromail/"
 
 
 def test_favorites_start_as_the_originals():
     assert (
-        preloaded_mail().favorites == DEFAULT_FAVORITES == ("inbox", "sent", "archive", "deleted")
+        CAST.preloaded().favorites == DEFAULT_FAVORITES == ("inbox", "sent", "archive", "deleted")
     )
 
 
 def test_adding_a_folder_puts_it_last_and_adding_again_changes_nothing():
-    mail = act(preloaded_mail(), "add_favorite", {"folder": "junk"})
+    mail = CAST.act(CAST.preloaded(), "add_favorite", {"folder": "junk"})
     assert mail.favorites == (*DEFAULT_FAVORITES, "junk")
-    assert act(mail, "add_favorite", {"folder": "junk"}) == mail
+    assert CAST.act(mail, "add_favorite", {"folder": "junk"}) == mail
 
 
 def test_removing_a_folder_takes_it_out_and_removing_again_changes_nothing():
-    mail = act(preloaded_mail(), "remove_favorite", {"folder": "sent"})
+    mail = CAST.act(CAST.preloaded(), "remove_favorite", {"folder": "sent"})
     assert mail.favorites == ("inbox", "archive", "deleted")
-    assert act(mail, "remove_favorite", {"folder": "sent"}) == mail
+    assert CAST.act(mail, "remove_favorite", {"folder": "sent"}) == mail
 
 
 def test_a_folder_that_does_not_exist_is_refused_naming_the_folders():
     with pytest.raises(ActionRejected, match="folder"):
-        act(preloaded_mail(), "add_favorite", {"folder": "spam"})
+        CAST.act(CAST.preloaded(), "add_favorite", {"folder": "spam"})
 
 
 def test_the_favorites_section_lists_them_in_order_with_their_badges():
-    mail = act(preloaded_mail(), "add_favorite", {"folder": "junk"})
+    mail = CAST.act(CAST.preloaded(), "add_favorite", {"folder": "junk"})
     links = favorite_links(mail, "junk", ROOT)
     assert [link.folder for link in links] == [*DEFAULT_FAVORITES, "junk"]
     junk = links[-1]
@@ -44,5 +44,5 @@ def test_the_favorites_section_lists_them_in_order_with_their_badges():
 
 
 def test_every_folder_says_whether_it_is_a_favorite():
-    starred = {link.folder for link in folder_links(preloaded_mail(), None, ROOT) if link.favorite}
+    starred = {link.folder for link in folder_links(CAST.preloaded(), None, ROOT) if link.favorite}
     assert starred == set(DEFAULT_FAVORITES)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sqlite3
 
 from apps.micromail.environment import materialize
-from tests.micromail.cast import PRIYA, act, preloaded_mail
+from tests.micromail.cast import CAST, PRIYA
 
 
 def tables(mail) -> sqlite3.Connection:
@@ -19,7 +19,7 @@ def columns(conn, table: str) -> list[str]:
 
 
 def test_emails_columns_are_upstreams():
-    assert columns(tables(preloaded_mail()), "emails") == [
+    assert columns(tables(CAST.preloaded()), "emails") == [
         "id",
         "subject",
         "sender_name",
@@ -35,7 +35,7 @@ def test_emails_columns_are_upstreams():
 
 
 def test_email_states_columns_are_upstreams():
-    assert columns(tables(preloaded_mail()), "email_states") == [
+    assert columns(tables(CAST.preloaded()), "email_states") == [
         "email_id",
         "isRead",
         "isFlagged",
@@ -49,12 +49,12 @@ def test_booleans_are_integers_zero_or_one():
         "SELECT hasAttachment, isExternal, mentionsMe, isCC, typeof(isCC) "
         "FROM emails WHERE id = 'budget-review'"
     )
-    row = tables(preloaded_mail()).execute(sql).fetchone()
+    row = tables(CAST.preloaded()).execute(sql).fetchone()
     assert row == (1, 0, 1, 0, "integer")
 
 
 def test_state_booleans_are_integers_zero_or_one():
-    mail = act(preloaded_mail(), "flag", {"email_id": "team-lunch"})
+    mail = CAST.act(CAST.preloaded(), "flag", {"email_id": "team-lunch"})
     sql = (
         "SELECT isRead, isFlagged, isPinned, folder FROM email_states WHERE email_id = 'team-lunch'"
     )
@@ -63,7 +63,7 @@ def test_state_booleans_are_integers_zero_or_one():
 
 
 def test_every_attachment_name_is_searchable_with_like():
-    conn = tables(preloaded_mail())
+    conn = tables(CAST.preloaded())
     assert conn.execute(
         "SELECT attachment_name FROM emails WHERE id = 'budget-review'"
     ).fetchone() == ("budget-q3.xlsx, budget-notes.pdf",)
@@ -73,21 +73,21 @@ def test_every_attachment_name_is_searchable_with_like():
 
 
 def test_attachment_name_is_empty_text_when_there_is_none():
-    conn = tables(preloaded_mail())
+    conn = tables(CAST.preloaded())
     assert conn.execute(
         "SELECT attachment_name FROM emails WHERE id = 'team-lunch'"
     ).fetchone() == ("",)
 
 
 def test_importance_defaults_to_normal():
-    conn = tables(preloaded_mail())
+    conn = tables(CAST.preloaded())
     assert conn.execute("SELECT importance FROM emails WHERE id = 'team-lunch'").fetchone() == (
         "normal",
     )
 
 
 def test_sent_mail_is_a_row_like_upstream():
-    mail = act(preloaded_mail(), "send", {"to": [PRIYA], "subject": "Hello"})
+    mail = CAST.act(CAST.preloaded(), "send", {"to": [PRIYA], "subject": "Hello"})
     conn = tables(mail)
     sql = (
         "SELECT e.subject, s.folder, s.isRead FROM emails e "
@@ -97,8 +97,8 @@ def test_sent_mail_is_a_row_like_upstream():
 
 
 def test_a_purged_email_is_gone_from_both_tables():
-    mail = act(
-        act(preloaded_mail(), "delete", {"email_id": "team-lunch"}),
+    mail = CAST.act(
+        CAST.act(CAST.preloaded(), "delete", {"email_id": "team-lunch"}),
         "delete",
         {"email_id": "team-lunch"},
     )

@@ -10,7 +10,7 @@ from django.utils.safestring import SafeString, mark_safe
 from apps.kit import simclock
 from apps.kit.fragments import render_fragment
 from apps.kit.templatetags.simtime import sim_ago, sim_clock
-from apps.micromail.listing import Row, row_label
+from apps.micromail.screens import Row, row_label
 from apps.micromail.state import FOLDER_TITLES
 
 register = template.Library()

@@ -7,16 +7,13 @@ import pytest
 from apps.kit.simclock import ago, clock_time
 from apps.micromail import state as mailbox
 from apps.micromail.compose import prefill, split_addresses
-from apps.micromail.environment import MICROMAIL
 from apps.micromail.query import InvalidQuery, MailboxQuery
 from events.registry import ActionRejected
-from tests.micromail.cast import DANA, OMAR, PRIYA, SELF_EMAIL, act, preloaded_mail, scenario_event
+from tests.micromail.cast import CAST, DANA, OMAR, PRIYA, SELF_EMAIL
 
 
 def with_late_report():
-    return MICROMAIL.apply(
-        preloaded_mail(), scenario_event("new_email", {"email_id": "late-report"}, at=120.0)
-    )
+    return CAST.arrive(CAST.preloaded(), "new_email", {"email_id": "late-report"})
 
 
 def test_newest_first():
@@ -25,12 +22,12 @@ def test_newest_first():
 
 
 def test_pinned_mail_comes_before_newer_mail():
-    mail = act(with_late_report(), "pin", {"email_id": "team-lunch"})
+    mail = CAST.act(with_late_report(), "pin", {"email_id": "team-lunch"})
     assert mailbox.select(mail, folder="inbox")[0] == "team-lunch"
 
 
 def test_equal_arrival_times_show_the_later_delivery_first():
-    assert mailbox.select(preloaded_mail(), folder="inbox") == [
+    assert mailbox.select(CAST.preloaded(), folder="inbox") == [
         "vendor-quote",
         "team-lunch",
         "budget-review",
@@ -47,19 +44,19 @@ def test_equal_arrival_times_show_the_later_delivery_first():
 )
 def test_quick_filters(quick_filter, expected):
     assert (
-        set(mailbox.select(preloaded_mail(), folder="inbox", quick_filter=quick_filter)) == expected
+        set(mailbox.select(CAST.preloaded(), folder="inbox", quick_filter=quick_filter)) == expected
     )
 
 
 def test_the_open_email_stays_listed_after_it_stops_matching_the_filter():
-    mail = act(preloaded_mail(), "open_email", {"email_id": "budget-review"})
+    mail = CAST.act(CAST.preloaded(), "open_email", {"email_id": "budget-review"})
     assert "budget-review" in mailbox.select(
         mail, folder="inbox", quick_filter="unread", keep="budget-review"
     )
 
 
 def test_filter_counts_for_a_folder():
-    mail = preloaded_mail()
+    mail = CAST.preloaded()
     counts = mailbox.filter_counts(mail, mailbox.in_folder(mail, "inbox"))
     assert counts == {"all": 3, "unread": 2, "flagged": 0, "mentions": 1}
 
@@ -75,16 +72,16 @@ def test_filter_counts_for_a_folder():
     ],
 )
 def test_search_reaches_subject_body_sender_and_addresses(query, found):
-    assert found in mailbox.select(preloaded_mail(), folder="inbox", query=query)
+    assert found in mailbox.select(CAST.preloaded(), folder="inbox", query=query)
 
 
 def test_search_finds_recipients_of_sent_mail():
-    mail = act(preloaded_mail(), "send", {"to": [PRIYA], "bcc": [DANA], "subject": "x"})
+    mail = CAST.act(CAST.preloaded(), "send", {"to": [PRIYA], "bcc": [DANA], "subject": "x"})
     assert len(mailbox.select(mail, folder="sent", query="vendorco")) == 1
 
 
 def test_badges_show_inbox_unread_and_other_totals():
-    badges = mailbox.folder_badges(preloaded_mail())
+    badges = mailbox.folder_badges(CAST.preloaded())
     assert (badges["inbox"], badges["junk"], badges["archive"], badges["sent"]) == (2, 1, 1, 0)
 
 
@@ -120,25 +117,25 @@ def test_addresses_split_on_commas_and_semicolons():
 
 
 def test_reply_goes_to_the_sender_and_quotes_the_body():
-    reply = prefill(preloaded_mail(), "reply", "budget-review")
+    reply = prefill(CAST.preloaded(), "reply", "budget-review")
     assert reply.to == (PRIYA,) and reply.subject == "Re: Q3 budget review"
     assert "> The Q3 budget review is attached" in reply.body
 
 
 def test_reply_all_adds_cc_without_the_self_user():
-    reply = prefill(preloaded_mail(), "reply_all", "budget-review")
+    reply = prefill(CAST.preloaded(), "reply_all", "budget-review")
     assert reply.to == (PRIYA,) and reply.cc == (OMAR,)
     assert SELF_EMAIL not in reply.to + reply.cc
 
 
 def test_forward_has_no_recipient_and_carries_the_message():
-    forward = prefill(preloaded_mail(), "forward", "vendor-quote")
+    forward = prefill(CAST.preloaded(), "forward", "vendor-quote")
     assert forward.to == () and forward.subject == "Fwd: Quote for the new laptops"
     assert "From: Dana Okafor <dana@vendorco.example>" in forward.body
 
 
 def test_replying_twice_does_not_stack_prefixes():
-    mail = act(preloaded_mail(), "send", {"to": [PRIYA], "subject": "Re: Q3 budget review"})
+    mail = CAST.act(CAST.preloaded(), "send", {"to": [PRIYA], "subject": "Re: Q3 budget review"})
     sent_id = mailbox.in_folder(mail, "sent")[0]
     reply = prefill(mail, "reply", sent_id)
     assert reply.subject == "Re: Q3 budget review" and reply.to == (PRIYA,)
@@ -146,13 +143,13 @@ def test_replying_twice_does_not_stack_prefixes():
 
 def test_editing_a_non_draft_is_rejected():
     with pytest.raises(ActionRejected, match="not a draft"):
-        prefill(preloaded_mail(), "draft", "budget-review")
+        prefill(CAST.preloaded(), "draft", "budget-review")
 
 
 def test_a_rows_accessible_name_says_state_sender_subject_time_and_marks_apart():
-    from apps.micromail.listing import row_label
+    from apps.micromail.screens import row_label
 
-    mail = act(preloaded_mail(), "flag", {"email_id": "budget-review"})
+    mail = CAST.act(CAST.preloaded(), "flag", {"email_id": "budget-review"})
     email, email_state = mail.emails["budget-review"], mail.states["budget-review"]
     assert row_label(email, email_state, "5 min ago") == (
         "Unread. From Priya Nair. Subject: Q3 budget review. 5 min ago. Flagged. "
@@ -161,9 +158,9 @@ def test_a_rows_accessible_name_says_state_sender_subject_time_and_marks_apart()
 
 
 def test_a_read_row_without_subject_says_so():
-    from apps.micromail.listing import row_label
+    from apps.micromail.screens import row_label
 
-    mail = act(preloaded_mail(), "save_draft", {"body": "x"})
+    mail = CAST.act(CAST.preloaded(), "save_draft", {"body": "x"})
     (draft_id,) = [i for i, s in mail.states.items() if s.folder == "drafts"]
     label = row_label(mail.emails[draft_id], mail.states[draft_id], "just now")
     assert label == "From Robin Vale. Subject: (no subject). Just now."
