@@ -15,6 +15,8 @@ from urllib.parse import urlencode
 
 from pydantic import Field
 
+from apps.kit.changing import setting
+from apps.kit.frozen import with_changed
 from apps.microlendar import times
 from apps.microlendar.query import CalendarQuery
 from apps.microlendar.state import (
@@ -24,13 +26,10 @@ from apps.microlendar.state import (
     DEFAULT_DURATION_MIN,
     Agenda,
     CalendarEvent,
+    EventState,
     Task,
     TaskState,
-    with_event,
-    with_event_state,
-    with_events,
-    with_task_state,
-    with_tasks,
+    with_created,
 )
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
@@ -99,6 +98,16 @@ def existing_task(agenda: Agenda, task_id: str) -> Task:
     return agenda.tasks[task_id]
 
 
+def naming(existing, key: str):
+    """A decide() whose one rule is that `payload[key]` names an item `existing` finds."""
+
+    def decide(agenda: Agenda, payload: dict) -> dict:
+        existing(agenda, payload[key])
+        return payload
+
+    return decide
+
+
 def _read(parse, text: str, field: str):
     try:
         return parse(text, field=field)
@@ -139,10 +148,6 @@ def decide_view(agenda: Agenda, payload: dict) -> dict:
     return payload
 
 
-def reduce_view(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    return with_event_state(agenda, event.payload["event_id"], viewed=True)
-
-
 def decide_create(agenda: Agenda, payload: dict) -> dict:
     day = _read(times.parse_date, payload["date"], "date")
     start, end = _times(payload.get("time") or DEFAULT_START, payload.get("endTime"))
@@ -160,8 +165,6 @@ def decide_create(agenda: Agenda, payload: dict) -> dict:
 
 def reduce_create(agenda: Agenda, event: LoggedEvent) -> Agenda:
     p = event.payload
-    if p["id"] in agenda.events:
-        return agenda
     created = CalendarEvent(
         id=p["id"],
         title=p["title"],
@@ -173,7 +176,7 @@ def reduce_create(agenda: Agenda, event: LoggedEvent) -> Agenda:
         location=p["location"],
         user_created=True,
     )
-    return with_events(agenda, [created])
+    return with_created(agenda, "event", created, EventState())
 
 
 def decide_update(agenda: Agenda, payload: dict) -> dict:
@@ -197,24 +200,22 @@ def decide_update(agenda: Agenda, payload: dict) -> dict:
     return {"event_id": payload["event_id"], **changes}
 
 
+# A logged field → the event's attribute it sets, read from its logged form.
+EVENT_ATTRIBUTES = {
+    "title": ("title", str),
+    "date": ("day", times.parse_date),
+    "time": ("start", times.parse_clock),
+    "endTime": ("end", times.parse_clock),
+    "calendar": ("calendar", str),
+    "description": ("description", str),
+    "location": ("location", str),
+}
+
+
 def reduce_update(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    return with_event(agenda, event.payload["event_id"], **_event_fields(event.payload))
-
-
-def _event_fields(p: Mapping) -> dict:
-    fields = {}
-    for name, attribute, convert in (
-        ("title", "title", str),
-        ("date", "day", times.parse_date),
-        ("time", "start", times.parse_clock),
-        ("endTime", "end", times.parse_clock),
-        ("calendar", "calendar", str),
-        ("description", "description", str),
-        ("location", "location", str),
-    ):
-        if name in p:
-            fields[attribute] = convert(p[name])
-    return fields
+    p = event.payload
+    changes = {attr: read(p[name]) for name, (attr, read) in EVENT_ATTRIBUTES.items() if name in p}
+    return with_changed(agenda, "events", p["event_id"], **changes)
 
 
 def decide_reschedule(agenda: Agenda, payload: dict) -> dict:
@@ -233,15 +234,6 @@ def decide_reschedule(agenda: Agenda, payload: dict) -> dict:
     }
 
 
-def decide_delete(agenda: Agenda, payload: dict) -> dict:
-    existing_event(agenda, payload["event_id"])
-    return payload
-
-
-def reduce_delete(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    return with_event_state(agenda, event.payload["event_id"], deleted=True)
-
-
 # --- tasks -----------------------------------------------------------------------------------------
 
 
@@ -256,11 +248,9 @@ def decide_create_task(agenda: Agenda, payload: dict) -> dict:
 
 def reduce_create_task(agenda: Agenda, event: LoggedEvent) -> Agenda:
     p = event.payload
-    if p["id"] in agenda.tasks:
-        return agenda
     due = times.parse_date(p["dueDate"]) if p.get("dueDate") else None
     task = Task(id=p["id"], title=p["title"], due=due, user_created=True)
-    return with_tasks(agenda, [(task, TaskState())])
+    return with_created(agenda, "task", task, TaskState())
 
 
 def decide_toggle_task(agenda: Agenda, payload: dict) -> dict:
@@ -270,18 +260,8 @@ def decide_toggle_task(agenda: Agenda, payload: dict) -> dict:
 
 
 def reduce_toggle_task(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    return with_task_state(
-        agenda, event.payload["task_id"], completed=bool(event.payload["completed"])
-    )
-
-
-def decide_delete_task(agenda: Agenda, payload: dict) -> dict:
-    existing_task(agenda, payload["task_id"])
-    return payload
-
-
-def reduce_delete_task(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    return with_task_state(agenda, event.payload["task_id"], deleted=True)
+    completed = bool(event.payload["completed"])
+    return with_changed(agenda, "task_states", event.payload["task_id"], completed=completed)
 
 
 # --- where a person does it (Action.page) -----------------------------------------------------
@@ -300,25 +280,26 @@ def view_page(agenda: Agenda, payload: dict) -> PageStep:
     return PageStep(details_screen(agenda, payload["event_id"]))
 
 
+def typed(payload: dict, fields) -> dict[str, str]:
+    """The form values a person types: the payload's `fields` that are given."""
+    return {name: str(payload[name]) for name in fields if payload.get(name) is not None}
+
+
 def details_form(*fields: str):
     def page(agenda: Agenda, payload: dict) -> PageStep:
-        form = {name: str(payload[name]) for name in fields if payload.get(name) is not None}
-        return PageStep(details_screen(agenda, payload["event_id"]), form)
+        return PageStep(details_screen(agenda, payload["event_id"]), typed(payload, fields))
 
     return page
 
 
-def _form_values(payload: dict) -> dict[str, str]:
-    return {name: str(payload[name]) for name in EVENT_FIELDS if payload.get(name) is not None}
-
-
 def create_page(agenda: Agenda, payload: dict) -> PageStep:
-    return PageStep(f"events/new?{urlencode({'date': payload['date']})}", _form_values(payload))
+    date = urlencode({"date": payload["date"]})
+    return PageStep(f"events/new?{date}", typed(payload, EVENT_FIELDS))
 
 
 def edit_page(agenda: Agenda, payload: dict) -> PageStep:
     existing_event(agenda, payload["event_id"])
-    return PageStep(f"events/{payload['event_id']}/edit", _form_values(payload))
+    return PageStep(f"events/{payload['event_id']}/edit", typed(payload, EVENT_FIELDS))
 
 
 def task_list(*fields: str):
@@ -335,7 +316,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         "view_event": Action(
             EventId,
             decide_view,
-            reduce_view,
+            setting("event_states", "event_id", viewed=True),
             help="Open an event's details (marks an invitation viewed).",
             page=view_page,
         ),
@@ -360,7 +341,12 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Move an event to another date and start, keeping its length (form or drag).",
             page=details_form("date", "time"),
         ),
-        "delete_event": Action(EventId, decide_delete, reduce_delete, page=details_form()),
+        "delete_event": Action(
+            EventId,
+            naming(existing_event, "event_id"),
+            setting("event_states", "event_id", deleted=True),
+            page=details_form(),
+        ),
         "create_task": Action(
             NewTask, decide_create_task, reduce_create_task, page=task_list("title", "dueDate")
         ),
@@ -372,7 +358,10 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             page=task_list("task_id"),
         ),
         "delete_task": Action(
-            TaskId, decide_delete_task, reduce_delete_task, page=task_list("task_id")
+            TaskId,
+            naming(existing_task, "task_id"),
+            setting("task_states", "task_id", deleted=True),
+            page=task_list("task_id"),
         ),
     }
 )

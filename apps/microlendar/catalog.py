@@ -35,20 +35,6 @@ def is_task(record: Mapping[str, Any]) -> bool:
     return bool(record.get("is_task", False))
 
 
-def event_ids(catalog: Any, ids: list[str]) -> list[str]:
-    """`["*"]` = every record that is not a task; other lists as given."""
-    if ids == ["*"]:
-        return [i for i, r in records(catalog).items() if not is_task(r)]
-    return ids
-
-
-def task_ids(catalog: Any, ids: list[str]) -> list[str]:
-    """`["*"]` = every record flagged is_task; other lists as given."""
-    if ids == ["*"]:
-        return [i for i, r in records(catalog).items() if is_task(r)]
-    return ids
-
-
 def attendee(catalog: Any, user_id: str) -> Attendee | None:
     user = catalog.users.get(str(user_id))
     if user is None:

@@ -8,7 +8,7 @@ goes past midnight turns the page to the next day.
 
 from __future__ import annotations
 
-from datetime import date, datetime
+from datetime import datetime
 
 from apps.kit import simclock
 from apps.microlendar.screens import HOUR_PX
@@ -25,7 +25,3 @@ def calendar_moment(agenda: Agenda, page) -> datetime:
 def now_line_top(moment: datetime) -> int:
     """Pixels from the top of a day column to the current-time line."""
     return (moment.hour * 60 + moment.minute) * HOUR_PX // 60
-
-
-def today_of(moment: datetime) -> date:
-    return moment.date()

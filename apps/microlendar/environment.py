@@ -6,250 +6,194 @@ Scenario events (SentinelBench format; events and tasks share the catalog table 
   after it.
 - `new_event {event_id}` — one event appears on the calendar.
 - `new_task {event_id}` — one task appears in the task list (upstream keys it `event_id`).
+
+An id already delivered is left as it is (upstream appended a duplicate and reset its state,
+which could un-delete it); ids missing from the catalog, tasks given as events and events given
+as tasks are skipped (so `["*"]` splits the one table into events and tasks).
 """
 
 from __future__ import annotations
 
-import sqlite3
 from collections.abc import Mapping
 from dataclasses import replace
-from types import MappingProxyType
+from typing import Any, NamedTuple
 
 from pydantic import Field
 
-from apps.kit.legacy_tables import Table
+from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.tables import Rows, Table, tables
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times
 from apps.microlendar.actions import ACTIONS
 from apps.microlendar.bench import sample_pages
-from apps.microlendar.catalog import catalog_event, catalog_task, event_ids, task_ids
-from apps.microlendar.state import ENVIRONMENT, Agenda, empty_agenda, with_events, with_tasks
-from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
+from apps.microlendar.catalog import catalog_event, catalog_task
+from apps.microlendar.state import ENVIRONMENT, Agenda, EventState, empty_agenda
+from events.registry import Environment, ImplicitAction, counted
 from events.schemas import Payload
 
 DATE_PATTERN = r"^\d{4}-\d{2}-\d{2}$"
 
 # Counted right after the preload, by the core (upstream's names: eval_sql reads baseline_<name>).
-BASELINES: Mapping[str, Measure] = MappingProxyType(
+BASELINES = counted(
     {
-        name: timeless(count)
-        for name, count in {
-            "event_count": agenda_state.event_count,
-            "today_event_count": agenda_state.today_event_count,
-            "work_event_count": agenda_state.work_event_count,
-            "task_count": agenda_state.task_count,
-            "personal_event_count": agenda_state.personal_event_count,
-            "conflict_count": agenda_state.conflict_count,
-        }.items()
+        "event_count": agenda_state.event_count,
+        "today_event_count": agenda_state.today_event_count,
+        "work_event_count": agenda_state.work_event_count,
+        "task_count": agenda_state.task_count,
+        "personal_event_count": agenda_state.personal_event_count,
+        "conflict_count": agenda_state.conflict_count,
     }
 )
 
-
-def deliver_events(agenda: Agenda, ids: list[str]) -> Agenda:
-    """Put catalog events on the calendar. An id already there is left as it is (upstream
-    appended a duplicate and reset its state, which could un-delete it); ids missing from the
-    catalog, and tasks, are skipped."""
-    arrivals = []
-    for event_id in dict.fromkeys(ids):
-        if event_id in agenda.events:
-            continue
-        event = catalog_event(agenda.catalog, event_id)
-        if event is not None:
-            arrivals.append(event)
-    return with_events(agenda, arrivals) if arrivals else agenda
-
-
-def deliver_tasks(agenda: Agenda, ids: list[str]) -> Agenda:
-    arrivals = []
-    for task_id in dict.fromkeys(ids):
-        if task_id in agenda.tasks:
-            continue
-        task = catalog_task(agenda.catalog, task_id)
-        if task is not None:
-            arrivals.append(task)
-    return with_tasks(agenda, arrivals) if arrivals else agenda
+deliver_events = Delivery(
+    "events",
+    lambda agenda, event_id, stamp: catalog_event(agenda.catalog, event_id),
+    states="event_states",
+    fresh=EventState,
+)
+# A catalog task comes with its catalogued completion.
+deliver_tasks = Delivery(
+    "tasks",
+    lambda agenda, task_id, stamp: catalog_task(agenda.catalog, task_id),
+    states="task_states",
+)
 
 
-def reduce_preload_events(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    p = event.payload
-    dated = replace(
-        agenda,
-        today=times.parse_date(p["today"]) if p.get("today") else agenda.today,
-        initial_date=(
-            times.parse_date(p["initial_date"]) if p.get("initial_date") else agenda.initial_date
-        ),
-    )
-    dated = deliver_events(dated, event_ids(agenda.catalog, list(p.get("event_ids") or [])))
-    return deliver_tasks(dated, task_ids(agenda.catalog, list(p.get("task_ids") or [])))
+class CalendarDays(Payload):
+    """The preload's days: what "today" means for the baselines, and the day the UI opens on."""
 
-
-def reduce_new_event(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    return deliver_events(agenda, [event.payload["event_id"]])
-
-
-def reduce_new_task(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    return deliver_tasks(agenda, [event.payload["event_id"]])
-
-
-class PreloadEvents(Payload):
     today: str | None = Field(None, pattern=DATE_PATTERN, description="YYYY-MM-DD")
     initial_date: str | None = Field(None, pattern=DATE_PATTERN, description="YYYY-MM-DD")
-    event_ids: list[str] = Field([], description='catalog event ids; ["*"] = every event')
-    task_ids: list[str] = Field([], description='catalog task ids; ["*"] = every task')
 
 
-class NewEvent(Payload):
-    event_id: str = Field(description="catalog event id")
-
-
-class NewTask(Payload):
-    event_id: str = Field(description="catalog task id (upstream's key name)")
-
-
-EVENT_TYPES: Mapping[str, EventType] = MappingProxyType(
-    {
-        "preload_events": EventType(
-            schema=PreloadEvents,
-            reduce=reduce_preload_events,
-            help="The calendar at the start (today, the day shown first, events, tasks); "
-            "baselines are measured after it.",
-            catalog_refs={"event_ids": "events", "task_ids": "events"},
-            preload=True,
-        ),
-        "new_event": EventType(
-            schema=NewEvent,
-            reduce=reduce_new_event,
-            help="One event appears on the calendar.",
-            catalog_refs={"event_id": "events"},
-        ),
-        "new_task": EventType(
-            schema=NewTask,
-            reduce=reduce_new_task,
-            help="One task appears in the task list.",
-            catalog_refs={"event_id": "events"},
-        ),
+def set_days(agenda: Agenda, payload: Mapping[str, Any], at: float) -> Agenda:
+    """The preload's `today` and `initial_date`, where given."""
+    days = {
+        name: times.parse_date(payload[name])
+        for name in CalendarDays.model_fields
+        if payload.get(name)
     }
+    return replace(agenda, **days)
+
+
+EVENT_TYPES = event_types(
+    preload(
+        "preload_events",
+        {"event_ids": ("events", deliver_events), "task_ids": ("events", deliver_tasks)},
+        base=CalendarDays,
+        then=set_days,
+        environment=ENVIRONMENT,
+        help="The calendar at the start (today, the day shown first, events, tasks); "
+        "baselines are measured after it.",
+    ),
+    arrival(
+        "new_event", "event_id", "events", deliver_events, help="One event appears on the calendar."
+    ),
+    arrival(
+        "new_task",
+        "event_id",
+        "events",
+        deliver_tasks,
+        help="One task appears in the task list.",
+        description="catalog task id (upstream's key name)",
+    ),
 )
 
 
 # --- evaluation tables (upstream names and columns, so eval_sql runs unchanged) -----------------
+# Nothing on a calendar moves between events: `now` is unused. Catalog events show their current
+# title, times, calendar and description (upstream kept the rows as loaded, so edits never
+# reached eval_sql; no original eval_sql depends on that). Catalog tasks carry their due date
+# when the catalog gives one (upstream: always NULL). What the user created has tables of its own.
 
-EVENTS = Table(
-    "events",
-    (
-        "id TEXT PRIMARY KEY",
-        "title TEXT",
-        "start_time TEXT",
-        "end_time TEXT",
-        "category TEXT",
-        "is_task INTEGER",
-        "description TEXT",
+
+class Entry(NamedTuple):
+    """A row: an event (or task) with what the user did to it."""
+
+    item: Any
+    state: Any
+
+
+def entries(kind: str, *, user_created: bool) -> Rows[Agenda]:
+    """The catalog's (or the user's) `kind`s ("event", "task") with their states, in order."""
+
+    def rows(agenda: Agenda, now: float):
+        states = getattr(agenda, f"{kind}_states")
+        items = getattr(agenda, f"{kind}s").values()
+        return (Entry(i, states[i.id]) for i in items if i.user_created == user_created)
+
+    return rows
+
+
+def due(row: Entry) -> str | None:
+    return row.item.due.isoformat() if row.item.due else None
+
+
+CATALOG_EVENTS, USER_EVENTS = (entries("event", user_created=mine) for mine in (False, True))
+CATALOG_TASKS, USER_TASKS = (entries("task", user_created=mine) for mine in (False, True))
+
+materialize = tables(
+    Table(
+        "events",
+        CATALOG_EVENTS,
+        {
+            "id TEXT PRIMARY KEY": "item.id",
+            "title TEXT": "item.title",
+            "start_time TEXT": lambda row: times.iso(row.item.day, row.item.start),
+            "end_time TEXT": lambda row: times.iso(row.item.day, row.item.end),
+            "category TEXT": "item.calendar",
+            "is_task INTEGER": lambda row: False,
+            "description TEXT": "item.description",
+        },
+    ),
+    Table(
+        "event_states",
+        CATALOG_EVENTS,
+        {
+            "event_id TEXT PRIMARY KEY": "item.id",
+            "deleted INTEGER": "state.deleted",
+            "isViewed INTEGER": "state.viewed",
+        },
+    ),
+    Table(
+        "user_created_events",
+        USER_EVENTS,
+        {
+            "id TEXT PRIMARY KEY": "item.id",
+            "title TEXT": "item.title",
+            "date TEXT": lambda row: row.item.day.isoformat(),
+            "time TEXT": lambda row: times.hhmm(row.item.start),
+            "endTime TEXT": lambda row: times.hhmm(row.item.end),
+            "calendar TEXT": "item.calendar",
+            "deleted INTEGER": "state.deleted",
+        },
+    ),
+    Table(
+        "tasks",
+        CATALOG_TASKS,
+        {"id TEXT PRIMARY KEY": "item.id", "title TEXT": "item.title", "dueDate TEXT": due},
+    ),
+    Table(
+        "task_states",
+        CATALOG_TASKS,
+        {
+            "task_id TEXT PRIMARY KEY": "item.id",
+            "completed INTEGER": "state.completed",
+            "deleted INTEGER": "state.deleted",
+        },
+    ),
+    Table(
+        "user_created_tasks",
+        USER_TASKS,
+        {
+            "id TEXT PRIMARY KEY": "item.id",
+            "title TEXT": "item.title",
+            "dueDate TEXT": due,
+            "completed INTEGER": "state.completed",
+            "deleted INTEGER": "state.deleted",
+        },
     ),
 )
-EVENT_STATES = Table(
-    "event_states", ("event_id TEXT PRIMARY KEY", "deleted INTEGER", "isViewed INTEGER")
-)
-TASKS = Table("tasks", ("id TEXT PRIMARY KEY", "title TEXT", "dueDate TEXT"))
-TASK_STATES = Table(
-    "task_states", ("task_id TEXT PRIMARY KEY", "completed INTEGER", "deleted INTEGER")
-)
-USER_CREATED_EVENTS = Table(
-    "user_created_events",
-    (
-        "id TEXT PRIMARY KEY",
-        "title TEXT",
-        "date TEXT",
-        "time TEXT",
-        "endTime TEXT",
-        "calendar TEXT",
-        "deleted INTEGER",
-    ),
-)
-USER_CREATED_TASKS = Table(
-    "user_created_tasks",
-    (
-        "id TEXT PRIMARY KEY",
-        "title TEXT",
-        "dueDate TEXT",
-        "completed INTEGER",
-        "deleted INTEGER",
-    ),
-)
-
-
-def materialize(agenda: Agenda, now: float, conn: sqlite3.Connection) -> None:
-    """Write the six tables (nothing on a calendar moves between events: `now` is unused).
-
-    Catalog events show their current title, times, calendar and description (upstream kept the
-    rows as loaded, so edits never reached eval_sql; no original eval_sql depends on that).
-    Catalog tasks carry their due date when the catalog gives one (upstream: always NULL).
-    """
-    catalog_events = [e for e in agenda.events.values() if not e.user_created]
-    user_events = [e for e in agenda.events.values() if e.user_created]
-    EVENTS.write(
-        conn,
-        (
-            (
-                e.id,
-                e.title,
-                times.iso(e.day, e.start),
-                times.iso(e.day, e.end),
-                e.calendar,
-                False,
-                e.description,
-            )
-            for e in catalog_events
-        ),
-    )
-    EVENT_STATES.write(
-        conn,
-        (
-            (e.id, agenda.event_states[e.id].deleted, agenda.event_states[e.id].viewed)
-            for e in catalog_events
-        ),
-    )
-    USER_CREATED_EVENTS.write(
-        conn,
-        (
-            (
-                e.id,
-                e.title,
-                e.day.isoformat(),
-                times.hhmm(e.start),
-                times.hhmm(e.end),
-                e.calendar,
-                agenda.event_states[e.id].deleted,
-            )
-            for e in user_events
-        ),
-    )
-    catalog_tasks = [t for t in agenda.tasks.values() if not t.user_created]
-    TASKS.write(conn, ((t.id, t.title, _due(t)) for t in catalog_tasks))
-    TASK_STATES.write(
-        conn,
-        (
-            (t.id, agenda.task_states[t.id].completed, agenda.task_states[t.id].deleted)
-            for t in catalog_tasks
-        ),
-    )
-    USER_CREATED_TASKS.write(
-        conn,
-        (
-            (
-                t.id,
-                t.title,
-                _due(t),
-                agenda.task_states[t.id].completed,
-                agenda.task_states[t.id].deleted,
-            )
-            for t in agenda.tasks.values()
-            if t.user_created
-        ),
-    )
-
-
-def _due(task) -> str | None:
-    return task.due.isoformat() if task.due else None
 
 
 MICROLENDAR = Environment(

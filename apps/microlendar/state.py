@@ -15,9 +15,10 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from datetime import date, timedelta
 from types import MappingProxyType
-from typing import Any
+from typing import Any, ClassVar
 
-from apps.kit.frozen import with_changed, with_items
+from apps.kit.frozen import with_items
+from apps.kit.self_user import SelfUserState
 
 ENVIRONMENT = "microlendar"
 
@@ -30,9 +31,6 @@ CALENDAR_COLORS: Mapping[str, str] = MappingProxyType(
 DEFAULT_DURATION_MIN = 60  # an event without an end lasts an hour (upstream's conflict rule)
 DAY_MIN = 24 * 60
 
-FALLBACK_SELF: Mapping[str, Any] = MappingProxyType(
-    {"id": "self", "name": "Me", "email": "me@microlendar.local"}
-)
 EMPTY: Mapping = MappingProxyType({})
 
 
@@ -95,12 +93,9 @@ class TaskState:
 
 
 @dataclass(frozen=True)
-class Agenda:
-    # The catalog and self user are inputs, not state: excluded from equality so that two folds
-    # of the same log compare equal cheaply.
-    catalog: Any = field(compare=False, repr=False)
-    self_user: Mapping[str, Any] = field(
-        compare=False, repr=False, default_factory=lambda: FALLBACK_SELF
+class Agenda(SelfUserState):
+    FALLBACK: ClassVar[Mapping[str, str]] = MappingProxyType(
+        {"id": "self", "name": "Me", "email": "me@microlendar.local"}
     )
     today: date | None = None  # the preload's `today`: what "today" means for the baselines
     initial_date: date | None = None  # the preload's `initial_date`: the day the UI opens on
@@ -108,14 +103,6 @@ class Agenda:
     event_states: Mapping[str, EventState] = field(default_factory=lambda: EMPTY)
     tasks: Mapping[str, Task] = field(default_factory=lambda: EMPTY)
     task_states: Mapping[str, TaskState] = field(default_factory=lambda: EMPTY)
-
-    @property
-    def self_name(self) -> str:
-        return str(self.self_user.get("name") or FALLBACK_SELF["name"])
-
-    @property
-    def self_email(self) -> str:
-        return str(self.self_user.get("email") or FALLBACK_SELF["email"])
 
     def has_event(self, event_id: str) -> bool:
         """Delivered and not deleted: what the calendar shows."""
@@ -134,37 +121,19 @@ class Agenda:
         return sum(1 for t in self.tasks.values() if t.user_created)
 
 
-def empty_agenda(catalog: Any) -> Agenda:
-    return Agenda(catalog=catalog, self_user=getattr(catalog, "self_user", None) or FALLBACK_SELF)
+empty_agenda = Agenda.of
 
 
 # --- building new states (used by reducers only) --------------------------------------------
 
 
-def with_events(agenda: Agenda, arrivals: Iterable[CalendarEvent]) -> Agenda:
-    """Add events, each with a fresh state (not viewed, not deleted)."""
-    arrivals = list(arrivals)
-    agenda = with_items(agenda, "events", [(event.id, event) for event in arrivals])
-    return with_items(agenda, "event_states", [(event.id, EventState()) for event in arrivals])
-
-
-def with_event(agenda: Agenda, event_id: str, **changes: Any) -> Agenda:
-    """Edit an event's fields; an id that is gone leaves the calendar as it is."""
-    return with_changed(agenda, "events", event_id, **changes)
-
-
-def with_event_state(agenda: Agenda, event_id: str, **changes: Any) -> Agenda:
-    return with_changed(agenda, "event_states", event_id, **changes)
-
-
-def with_tasks(agenda: Agenda, arrivals: Iterable[tuple[Task, TaskState]]) -> Agenda:
-    arrivals = list(arrivals)
-    agenda = with_items(agenda, "tasks", [(task.id, task) for task, _ in arrivals])
-    return with_items(agenda, "task_states", [(task.id, state) for task, state in arrivals])
-
-
-def with_task_state(agenda: Agenda, task_id: str, **changes: Any) -> Agenda:
-    return with_changed(agenda, "task_states", task_id, **changes)
+def with_created(agenda: Agenda, kind: str, item: CalendarEvent | Task, state: Any) -> Agenda:
+    """Add what the user created (`kind` "event" or "task") with its state. An id already there
+    is the same creation replayed: the agenda is left as it is."""
+    if item.id in getattr(agenda, f"{kind}s"):
+        return agenda
+    agenda = with_items(agenda, f"{kind}s", [(item.id, item)])
+    return with_items(agenda, f"{kind}_states", [(item.id, state)])
 
 
 # --- what the calendar holds ---------------------------------------------------------------------

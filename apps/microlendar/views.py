@@ -21,7 +21,7 @@ from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, existing_event
 from apps.microlendar.clock import calendar_moment, now_line_top
 from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
-from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda
+from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda, CalendarEvent
 from events.registry import ActionRejected
 
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
@@ -96,6 +96,20 @@ class EventForm:
         fields = {name: request.POST.get(name, "").strip() for name in FORM_FIELDS}
         return cls(**fields, **extra)
 
+    @classmethod
+    def of(cls, event: CalendarEvent) -> EventForm:
+        """The form of an event as it stands (what the edit form starts from)."""
+        return cls(
+            title=event.title,
+            date=event.day.isoformat(),
+            time=times.hhmm(event.start),
+            endTime=times.hhmm(event.end),
+            calendar=event.calendar,
+            description=event.description,
+            location=event.location,
+            event_id=event.id,
+        )
+
     def payload(self) -> dict:
         return {name: getattr(self, name) for name in FORM_FIELDS if getattr(self, name) != ""}
 
@@ -158,23 +172,15 @@ def new_event(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def edit_event(request: HttpRequest, page: Page, event_id: str) -> HttpResponse:
     current = existing_event(page.state, event_id)
+    original = EventForm.of(current)
     if request.method == "GET":
-        form = EventForm(
-            title=current.title,
-            date=current.day.isoformat(),
-            time=times.hhmm(current.start),
-            endTime=times.hhmm(current.end),
-            calendar=current.calendar,
-            description=current.description,
-            location=current.location,
-            event_id=event_id,
-        )
-        return render_form(request, page, form)
+        return render_form(request, page, original)
     form = EventForm.typed(request, event_id=event_id)
-    original = _as_form(current)
     # Only what was changed is sent (an emptied description is a change; an unchanged time is not).
     changes = {
-        name: getattr(form, name) for name in FORM_FIELDS if getattr(form, name) != original[name]
+        name: getattr(form, name)
+        for name in FORM_FIELDS
+        if getattr(form, name) != getattr(original, name)
     }
     try:
         event = page.act("update_event", {"event_id": event_id, **changes})
@@ -182,18 +188,6 @@ def edit_event(request: HttpRequest, page: Page, event_id: str) -> HttpResponse:
         return render_form(request, page, form, error=str(exc), status=exc.status)
     messages.success(request, "Event updated")
     return after_save(request, page, event.payload.get("date", current.day.isoformat()))
-
-
-def _as_form(event) -> dict:
-    return {
-        "title": event.title,
-        "date": event.day.isoformat(),
-        "time": times.hhmm(event.start),
-        "endTime": times.hhmm(event.end),
-        "calendar": event.calendar,
-        "description": event.description,
-        "location": event.location,
-    }
 
 
 # --- acting on an event, on tasks ----------------------------------------------------------------

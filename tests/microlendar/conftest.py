@@ -5,15 +5,13 @@ from __future__ import annotations
 import pytest
 from django.test import Client
 
-from events import lifecycle
-from events.models import ClockMode
-from tests.microlendar.cast import scenario
+from tests.microlendar.cast import CAST
 
 
 @pytest.fixture
 def calendar_run(db):
     """A run of the cast scenario: preloaded at t=0 on Thu 18 Sep 2025, its virtual clock at 0."""
-    return lifecycle.create_run(scenario(), clock_mode=ClockMode.VIRTUAL)
+    return CAST.start()
 
 
 @pytest.fixture

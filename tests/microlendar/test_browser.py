@@ -1,32 +1,30 @@
 """MicroLendar in a real browser: an invitation appears on the live page, Chromium opens it and
 drags another event to the next day.
 
-The story: Chris opens the task URL (which starts the clock) on the week of Thursday 18 September
-2025. "Coffee with Hana" is added a few simulated seconds later and appears in the grid without a
-reload (live push). Chris opens it (the scenario's solution: its details viewed), closes it, drags
-"Lunch with Rosa" onto Friday, and reports back on the contact page. The grade must see exactly
-those two actions, the drop logged like the reschedule form's post.
+The story: Chris opens the task URL on the week of Thursday 18 September 2025. "Coffee with
+Hana" is added when the clock reaches it and appears in the grid without a reload (live push).
+Chris opens it (the scenario's solution: its details viewed), closes it, drags "Lunch with Rosa"
+onto Friday, and reports back on the contact page. The grade must see exactly those two actions,
+the drop logged like the reschedule form's post.
 """
 
 from __future__ import annotations
 
+import copy
 import re
 
 import pytest
 from playwright.sync_api import Page, expect
 
-from tests import control_api
-
 # tests/microlendar/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
+from tests.browser_inline import start_inline
 from tests.conftest import browser  # noqa: F401
-from tests.microlendar.cast import TODAY
-from tests.microlendar.cast import scenario as cast_scenario
+from tests.microlendar.cast import CAST, TODAY
 
 pytestmark = pytest.mark.browser
 
-ARRIVES_AT = 6.0  # simulated seconds; 1.5 wall seconds at speed factor 4
-SPEED_FACTOR = 4.0
+ARRIVES_AT = 6.0  # simulated seconds
 EVAL_SQL = """
 SELECT (SELECT isViewed FROM event_states WHERE event_id = 'td-05') = 1
   AND (SELECT date(start_time) FROM events WHERE id = 'td-03') = '2025-09-19'
@@ -35,7 +33,7 @@ SELECT (SELECT isViewed FROM event_states WHERE event_id = 'td-05') = 1
 
 
 def scenario() -> dict:
-    spec = cast_scenario()
+    spec = copy.deepcopy(dict(CAST.scenario))
     spec["id"] = "browser-microlendar-invite"
     spec["start_page"] = "HOST_ADDRESS/microlendar#week"  # upstream's hash form of the view
     spec["condition_at"] = ARRIVES_AT
@@ -51,26 +49,21 @@ def block(page: Page, title: str):
 
 
 def test_a_user_sees_an_event_arrive_opens_it_and_drags_another(live_site, browser):  # noqa: F811
-    run = control_api.call(
-        live_site,
-        "POST",
-        "/api/runs/",
-        {"scenario_json": scenario(), "clock_mode": "live", "speed_factor": SPEED_FACTOR},
-    )
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(8000)
+    story = start_inline(live_site, browser, scenario())
+    page = story.page
 
     # The task URL lands on the week view (the hash became ?view=week), today highlighted.
-    page.goto(run["task_url"])
     expect(page).to_have_url(re.compile(r"\?view=week$"))
     expect(page.get_by_role("heading", level=1, name="September 2025")).to_be_visible()
     expect(block(page, "Daily standup")).to_be_visible()
     expect(page.get_by_role("img", name=re.compile(r"^Current time"))).to_be_visible()
+    expect(block(page, "Coffee with Hana")).to_have_count(0)
 
     # The clock adds the event; the page shows it without being reloaded.
-    page.evaluate("window.__notReloaded = true")
-    expect(block(page, "Coffee with Hana")).to_be_visible(timeout=20000)
-    assert page.evaluate("window.__notReloaded === true")
+    story.watch_for_reload()
+    story.advance(ARRIVES_AT)
+    expect(block(page, "Coffee with Hana")).to_be_visible()
+    story.assert_not_reloaded()
 
     # Open its details (the viewed invitation), then close them.
     block(page, "Coffee with Hana").click()
@@ -86,11 +79,7 @@ def test_a_user_sees_an_event_arrive_opens_it_and_drags_another(live_site, brows
     expect(friday.get_by_role("link", name=re.compile(r"^Lunch with Rosa"))).to_be_visible()
     expect(block(page, "Lunch with Rosa")).to_have_count(0)
 
-    page.goto(run["contact_url"])
-    verdict = control_api.call(live_site, "POST", f"/api/runs/{run['id']}/evaluate/")
-    assert verdict["success"] is True, verdict["detail"]
-    logged = control_api.call(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    actions = [e for e in logged if e["kind"] == "action"]
-    assert [a["type"] for a in actions] == ["view_event", "reschedule_event"]
-    assert set(actions[1]["payload"]) == {"event_id", "date", "time", "endTime"}
-    assert actions[1]["payload"]["date"] == "2025-09-19" and TODAY == "2025-09-18"
+    actions = story.report()
+    assert [name for name, _ in actions] == ["view_event", "reschedule_event"]
+    assert set(actions[1][1]) == {"event_id", "date", "time", "endTime"}
+    assert actions[1][1]["date"] == "2025-09-19" and TODAY == "2025-09-18"

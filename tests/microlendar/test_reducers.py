@@ -10,7 +10,7 @@ import pytest
 from apps.microlendar import state as agenda_state
 from apps.microlendar.environment import MICROLENDAR
 from events.registry import ActionRejected
-from tests.microlendar.cast import PRELOADED, TASKS, act, preloaded, scenario_event
+from tests.microlendar.cast import CAST, PRELOADED, TASKS, act, preloaded
 
 
 def tables(agenda) -> sqlite3.Connection:
@@ -28,20 +28,18 @@ def test_the_preload_sets_the_days_and_delivers_events_and_tasks_in_order():
 
 
 def test_wildcards_split_the_one_catalog_table_into_events_and_tasks():
-    empty = MICROLENDAR.initial_state(preloaded().catalog)
-    payload = {"today": "2025-09-18", "event_ids": ["*"], "task_ids": ["*"]}
-    agenda = MICROLENDAR.apply(empty, scenario_event("preload_events", payload))
+    agenda = preloaded(event_ids=["*"], task_ids=["*"])
     assert len(agenda.events) >= 57 and len(agenda.tasks) >= 10
     assert not set(agenda.events) & set(agenda.tasks)
 
 
 def test_new_task_is_keyed_by_event_id_and_redelivery_changes_nothing():
     agenda = act(preloaded(), "delete_event", {"event_id": "td-01"})
-    again = MICROLENDAR.apply(agenda, scenario_event("new_event", {"event_id": "td-01"}, seq=3))
+    again = CAST.arrive(agenda, "new_event", {"event_id": "td-01"})
     assert again.event_states["td-01"].deleted  # upstream's re-fire un-deleted it
-    with_task = MICROLENDAR.apply(agenda, scenario_event("new_task", {"event_id": "tk-09"}))
+    with_task = CAST.arrive(agenda, "new_task", {"event_id": "tk-09"})
     assert "tk-09" in with_task.tasks
-    unknown = MICROLENDAR.apply(agenda, scenario_event("new_event", {"event_id": "nope"}))
+    unknown = CAST.arrive(agenda, "new_event", {"event_id": "nope"})
     assert unknown is agenda
 
 
