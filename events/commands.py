@@ -8,13 +8,13 @@ after the first contact.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 from events.clock import sim_now, wall_now
 from events.models import Event, EventKind, Run
 from events.notifications import log_grew
-from events.projection import Folded, folded_state
-from events.registry import ActionRejected, PayloadError, get_environment, validate_payload
+from events.projection import Folded, folded_after, folded_state
+from events.registry import ActionRejected, get_environment
 from events.scheduler import fire_due
 from events.store import append_event
 
@@ -31,31 +31,39 @@ def current_state(run: Run) -> Any:
     return current_folded(run).state
 
 
+class Acted(NamedTuple):
+    """An action logged: its event, and the run's state with it applied."""
+
+    event: Event
+    folded: Folded
+
+
 def perform_action(
-    run: Run, name: str, payload: dict[str, Any], *, wall: float | None = None
-) -> Event:
+    run: Run,
+    name: str,
+    payload: dict[str, Any],
+    *,
+    wall: float | None = None,
+    folded: Folded | None = None,
+) -> Acted:
     """Validate `payload`, decide against the state at `wall` (the operation's one clock
-    reading; default now) and log the action at that same simulated time."""
+    reading; default now) and log the action at that same simulated time.
+
+    `folded` is the state the caller already brought up to `wall` (a page request fired what
+    was due and folded once on arrival): the action is decided on it, and the new state is that
+    state with the one logged event applied — no second firing, no refold. Without it, what is
+    due is fired and the log folded first."""
     if run.closed_at is not None:
         raise ActionRejected("this run is closed", status=409)
     environment = get_environment(run.environment)
-    action = environment.actions.get(name)
-    if action is None:
-        raise ActionRejected(
-            f"unknown action {name!r} for {environment.name}; allowed: {', '.join(sorted(environment.actions))}",
-            status=400,  # the request names no such thing: a bad request, not a missing page
-        )
-    try:
-        validate_payload(action.schema, payload, what=f"action {name}")
-    except PayloadError as exc:
-        raise ActionRejected(str(exc)) from None
     wall = wall_now() if wall is None else wall
-    state = current_folded(run, wall=wall).state
+    if folded is None:
+        folded = current_folded(run, wall=wall)
     at = sim_now(run, wall)
-    recorded = action.decide_at(state, dict(payload), at)
-    event = append_event(run, EventKind.ACTION, name, recorded, at=at)
+    performed = environment.perform(folded.state, name, payload, at)
+    event = append_event(run, EventKind.ACTION, name, performed.payload, at=at)
     log_grew(run.pk, event.seq)  # other tabs of this run get pushed
-    return event
+    return Acted(event, folded_after(run, folded, event, performed.state))
 
 
 def record_view(run: Run, path: str, *, at: float, **details: Any) -> Event:

@@ -115,10 +115,12 @@ def advance(run: Run, to: float) -> FireResult:
 
 
 def complete(run: Run, *, wall: float | None = None) -> Run:
-    """Freeze the clock at its current value (idempotent)."""
+    """Freeze the clock at its value at wall time `wall` (default now: read once, so what is
+    fired and where the clock stops are the same moment). Idempotent."""
+    wall = wall_now() if wall is None else wall
     fire_due(run, wall=wall)
     if run.status != RunStatus.COMPLETED:
-        now = sim_now(run, wall_now() if wall is None else wall)
+        now = sim_now(run, wall)
         Run.objects.filter(pk=run.pk).exclude(status=RunStatus.COMPLETED).update(
             status=RunStatus.COMPLETED, sim_time=now
         )

@@ -117,3 +117,28 @@ def folded_state(run: Run, seq: int | None = None) -> Folded:
 def state_at(run: Run, seq: int | None = None) -> Any:
     """The environment state of `run` as of log position `seq` (default: the whole log)."""
     return folded_state(run, seq).state
+
+
+def folded_after(run: Run, before: Folded, event: Event, state: Any) -> Folded:
+    """`before` moved past `event`, which the caller logged and applied itself (`state`).
+
+    When `event` is the very next entry of the log, that is the fold: it is kept as the run's
+    cached fold and returned without reading the log. When someone else appended in between
+    (a scenario event fired by the ticker, another tab's action), the log is folded instead.
+    """
+    if event.seq != before.seq + 1:
+        return folded_state(run)
+    live_seq = event.seq if event.kind in LIVE_KINDS else before.live_seq
+    after = Folded(state, event.seq, live_seq, before.baselines)
+    _cache.put((run.pk, run.catalog_hash), after, unless=lambda current: current.seq >= after.seq)
+    return after
+
+
+def past_view(before: Folded, seq: int) -> Folded:
+    """`before` moved past a view event logged at `seq`: views never change state, so the
+    fold is the same state one entry further (valid only when `seq` is the next entry)."""
+    return (
+        Folded(before.state, seq, before.live_seq, before.baselines)
+        if seq == before.seq + 1
+        else before
+    )

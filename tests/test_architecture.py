@@ -158,3 +158,93 @@ def test_no_package_imports_itself_through_others():
 def test_the_cycle_finder_finds_a_cycle():
     graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
     assert cycles(graph) == [["a", "b", "c"]]
+
+
+# --- one environment shape ---------------------------------------------------------------------
+
+ENVIRONMENT_MODULES = (
+    "apps",  # its AppConfig: registration (apps.kit.environments.EnvironmentConfig)
+    "state",  # the immutable state and the questions asked of it
+    "catalog",  # catalog records → items
+    "actions",  # the agent's actions
+    "environment",  # scenario events, baselines, evaluation tables: the registration
+    "query",  # URL state of its screens
+    "screens",  # what each screen shows, from the state
+    "views",  # thin views
+    "urls",
+    "bench",  # sample pages for bench_pages
+)
+TEST_ONLY = {"tally"}  # an environment the tests install, without catalog or pages to speak of
+
+
+def environment_apps() -> list[Path]:
+    return sorted(
+        path.parent
+        for path in (REPO / "apps").glob("*/environment.py")
+        if path.parent.name not in TEST_ONLY
+    )
+
+
+def shape_problems(app: Path) -> list[str]:
+    name = app.name
+    problems = [
+        f"{name}: no {module}.py"
+        for module in ENVIRONMENT_MODULES
+        if not (app / f"{module}.py").is_file()
+    ]
+    for needed in (
+        "README.md",
+        f"templates/{name}/base.html",
+        f"static/{name}/{name}.css",
+        f"static/{name}/favicon.svg",
+    ):
+        if not (app / needed).is_file():
+            problems.append(f"{name}: no {needed}")
+    for template in (app / "templates").rglob("*.html"):
+        text = template.read_text(encoding="utf-8")
+        if "<style" in text:
+            problems.append(
+                f"{name}: inline styles in {template.relative_to(app)} (use static/{name}/{name}.css)"
+            )
+        if "toast" in text:
+            problems.append(
+                f"{name}: {template.relative_to(app)} renders toasts (the shared base does)"
+            )
+    for script in (app / "static" / name).glob("*.js"):
+        if script.name != f"{name}.js":
+            problems.append(f"{name}: script {script.name} (one script per environment: {name}.js)")
+    tree = ast.parse((app / "environment.py").read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef) and node.name.startswith("reduce_new_"):
+            problems.append(
+                f"{name}: hand-written arrival reducer {node.name} (apps.kit.arrivals.arrival)"
+            )
+        if isinstance(node, ast.ClassDef) and node.name.startswith("New"):
+            problems.append(
+                f"{name}: hand-written arrival payload {node.name} (apps.kit.arrivals.arrival)"
+            )
+    for module in app.rglob("*.py"):
+        source = module.read_text(encoding="utf-8")
+        if "CREATE TABLE" in source or "legacy_tables" in source:
+            problems.append(
+                f"{name}: {module.relative_to(app)} writes tables by hand (apps.kit.tables)"
+            )
+    return problems
+
+
+def test_every_environment_has_the_same_shape():
+    apps = environment_apps()
+    assert len(apps) >= 10
+    assert [problem for app in apps for problem in shape_problems(app)] == []
+
+
+def test_the_shape_check_names_what_is_missing(tmp_path):
+    app = tmp_path / "microbroken"
+    (app / "templates" / "microbroken").mkdir(parents=True)
+    (app / "environment.py").write_text("def reduce_new_thing(state, event):\n    return state\n")
+    (app / "templates" / "microbroken" / "page.html").write_text("<style>p{}</style>")
+    problems = shape_problems(app)
+    assert "microbroken: no screens.py" in problems
+    assert "microbroken: no static/microbroken/microbroken.css" in problems
+    assert any("inline styles in templates/microbroken/page.html" in p for p in problems)
+    assert any("hand-written arrival reducer reduce_new_thing" in p for p in problems)

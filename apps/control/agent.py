@@ -19,7 +19,7 @@ from apps.control.parsers import BadBody, body_limit, read_json
 from apps.kit.links import contact_path, start_page_path
 from apps.kit.pages import arrival_wall, run_for_token
 from events import lifecycle
-from events.commands import perform_action
+from events.commands import current_folded, perform_action
 from events.models import ClockMode, Run, RunStatus
 from events.registry import ActionRejected
 from events.schemas import text_problem
@@ -83,8 +83,15 @@ def run_action(request: HttpRequest, token: str) -> JsonResponse:
     payload = body.get("payload", {})
     if not isinstance(payload, dict):
         return JsonResponse({"detail": "payload must be an object"}, status=400)
+    wall = arrival_wall(request)  # timed at its arrival, like page actions and contacts
     try:
-        event = perform_action(run, body["action"], payload)
+        event, _ = perform_action(
+            run,
+            body["action"],
+            payload,
+            wall=wall,
+            folded=current_folded(run, wall=wall, reload=False),
+        )
     except ActionRejected as exc:
         return JsonResponse({"detail": str(exc)}, status=exc.status)
     return JsonResponse(

@@ -25,7 +25,7 @@ from apps.kit.query import InvalidQuery
 from events.clock import sim_now, wall_now
 from events.commands import current_folded, perform_action, record_view
 from events.models import Event, Run
-from events.projection import state_at
+from events.projection import Folded, past_view, state_at
 from events.registry import ActionRejected, Environment, get_environment
 
 
@@ -74,6 +74,9 @@ class Page:
     # without any event (a relative time ticks over, a price moves): live pages are re-rendered
     # and pushed then. None: nothing shown depends on the clock.
     next_change: float | None = None
+    # The fold `state` comes from (None for time travel): an action is decided on it and
+    # applied to it, so a page action fires and folds nothing more (events.commands).
+    folded: Folded | None = None
 
     @property
     def live_socket(self) -> str:
@@ -105,9 +108,11 @@ class Page:
             return None
         if self.live:
             raise LiveRenderActed()
-        event = perform_action(self.run, action, payload, wall=self.wall)
-        folded = current_folded(self.run, wall=self.wall)  # the live client starts after it
-        self.state, self.live_seq = folded.state, folded.live_seq
+        event, folded = perform_action(
+            self.run, action, payload, wall=self.wall, folded=self.folded
+        )
+        # The live client starts after the action: its own push is not sent back to it.
+        self.folded, self.state, self.live_seq = folded, folded.state, folded.live_seq
         return event
 
 
@@ -190,16 +195,18 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             wall=wall,
             live=live,
             live_seq=folded.live_seq,
+            folded=folded,
         )
         request.sentinel_page = page  # what a live render reads back (apps.kit.live)
         try:
             if request.method == "GET" and not live:
-                record_view(
+                viewed = record_view(
                     run,
                     request.get_full_path(),
                     at=page.now,
                     partial=bool(getattr(request, "htmx", False)),
                 )
+                page.folded = past_view(folded, viewed.seq)
             perform_implicit_actions(request, page, kwargs)
             return view(request, page, *args, **kwargs)
         except ActionRejected as exc:

@@ -14,12 +14,12 @@ on something far simpler than a real environment, while touching every part of t
 
 from __future__ import annotations
 
-import sqlite3
+from operator import itemgetter
 from typing import Annotated
 
 from pydantic import Field
 
-from apps.kit.legacy_tables import Table
+from apps.kit.tables import Table, tables
 from apps.tally.actions import ACTIONS, Count
 from apps.tally.state import TallyState, with_entry, with_level_points
 from events.registry import Environment, EventType, LoggedEvent, timeless
@@ -53,13 +53,14 @@ def reduce_level(state: TallyState, event: LoggedEvent) -> TallyState:
     return with_level_points(state, [(event.at, event.payload["value"])])
 
 
-ENTRIES = Table("entries", ("source TEXT", "n INTEGER", "at REAL"))
-LEVELS = Table("levels", ("value REAL",))
-
-
-def materialize(state: TallyState, now: float, conn: sqlite3.Connection) -> None:
-    ENTRIES.write(conn, state.entries)
-    LEVELS.write(conn, [(state.level_at(now),)])
+materialize = tables(
+    Table(
+        "entries",
+        lambda state, now: state.entries,  # (source, n, at) tuples
+        {"source TEXT": itemgetter(0), "n INTEGER": itemgetter(1), "at REAL": itemgetter(2)},
+    ),
+    Table("levels", lambda state, now: [state.level_at(now)], {"value REAL": float}),
+)
 
 
 TALLY = Environment(
