@@ -12,25 +12,24 @@ reaction is the self user's (the original always wrote the literal "user000").
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import replace
 from types import MappingProxyType
 from typing import Literal
 
 from pydantic import Field
 
-from apps.kit.deciding import found, new_id
+from apps.kit.deciding import checking, found, new_id
+from apps.kit.frozen import with_changed
+from apps.kit.without import without
 from apps.microchat.query import ChatQuery
 from apps.microchat.state import (
     REACTIONS,
     Chat,
     Conversation,
     Message,
-    with_conversation_state,
-    with_message_replaced,
+    unread_in,
     with_messages,
     with_reaction,
     with_read,
-    without_message,
 )
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
@@ -60,13 +59,17 @@ class Edit(MessageId):
     content: str
 
 
+IN_WORKSPACE = ("conversation", "in this workspace")
+IN_ANY_CHAT = ("message", "in any chat")
+
+
 def existing_conversation(chat: Chat, conversation_id: str) -> Conversation:
-    return found(chat.conversations, conversation_id, "conversation", "in this workspace")
+    return found(chat.conversations, conversation_id, *IN_WORKSPACE)
 
 
 def existing_message(chat: Chat, message_id: str) -> Message:
     """The message, or a 404: unknown and not-yet-arrived ids look the same."""
-    return found(chat.messages, message_id, "message", "in any chat")
+    return found(chat.messages, message_id, *IN_ANY_CHAT)
 
 
 def own_message(chat: Chat, message_id: str) -> Message:
@@ -76,14 +79,8 @@ def own_message(chat: Chat, message_id: str) -> Message:
     return message
 
 
-def decide_on_conversation(chat: Chat, payload: dict) -> dict:
-    existing_conversation(chat, payload["conversation_id"])
-    return payload
-
-
-def decide_on_message(chat: Chat, payload: dict) -> dict:
-    existing_message(chat, payload["message_id"])
-    return payload
+decide_on_conversation = checking("conversations", "conversation_id", *IN_WORKSPACE)
+decide_on_message = checking("messages", "message_id", *IN_ANY_CHAT)
 
 
 # --- reading --------------------------------------------------------------------------------
@@ -92,14 +89,10 @@ def decide_on_message(chat: Chat, payload: dict) -> dict:
 def decide_open(chat: Chat, payload: dict) -> dict:
     """Opening marks read what is unread in the chat at that moment (and only that: a message
     arriving while the chat stays open stays unread until it is opened again). Only an
-    opening that reads something is an action (see `environment.opens_unread`)."""
+    opening that reads something is an action (the implicit action applies only then)."""
     conversation_id = payload["conversation_id"]
     existing_conversation(chat, conversation_id)
-    unread = [
-        i
-        for i, m in chat.messages.items()
-        if m.conversation_id == conversation_id and not chat.read[i]
-    ]
+    unread = unread_in(chat, conversation_id)
     if not unread:
         # Opening a chat with nothing unread changes nothing, so nothing is logged (the page's
         # implicit action does not fire either).
@@ -132,7 +125,9 @@ def reduce_mark_unread(chat: Chat, event: LoggedEvent) -> Chat:
 
 def conversation_setting(**changes: bool) -> Callable[[Chat, LoggedEvent], Chat]:
     def reduce(chat: Chat, event: LoggedEvent) -> Chat:
-        return with_conversation_state(chat, event.payload["conversation_id"], **changes)
+        return with_changed(
+            chat, "conversation_states", event.payload["conversation_id"], **changes
+        )
 
     return reduce
 
@@ -202,12 +197,8 @@ def decide_edit(chat: Chat, payload: dict) -> dict:
 
 
 def reduce_edit(chat: Chat, event: LoggedEvent) -> Chat:
-    message = chat.messages.get(event.payload["message_id"])
-    if message is None:
-        return chat
-    return with_message_replaced(
-        chat, replace(message, content=event.payload["content"], edited=True)
-    )
+    p = event.payload
+    return with_changed(chat, "messages", p["message_id"], content=p["content"], edited=True)
 
 
 def decide_delete(chat: Chat, payload: dict) -> dict:
@@ -216,7 +207,7 @@ def decide_delete(chat: Chat, payload: dict) -> dict:
 
 
 def reduce_delete(chat: Chat, event: LoggedEvent) -> Chat:
-    return without_message(chat, event.payload["message_id"])
+    return without(chat, event.payload["message_id"], "messages", "read", "reactions")
 
 
 # --- where a person does it (Action.page) ------------------------------------------------------------

@@ -14,12 +14,14 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
+from apps.kit.arrivals import Stamp
 from apps.microchat.state import (
     ENVIRONMENT,
     REACTIONS,
     Attachment,
     Call,
     Channel,
+    Chat,
     Conversation,
     ConversationState,
     Message,
@@ -49,6 +51,12 @@ def _field(record: Mapping[str, Any], *names: str, default: Any = None) -> Any:
         if record.get(name) is not None:
             return record[name]
     return default
+
+
+def _name_of(catalog: Any, user_id: str | None, *, otherwise: str) -> str:
+    """A person's name from the user catalog, else `otherwise`."""
+    person = catalog.users.get(user_id) if user_id else None
+    return str(person["name"]) if person and person.get("name") else otherwise
 
 
 def _json_list(value: Any) -> list:
@@ -106,7 +114,6 @@ def catalog_message(
     if record is None:
         return None
     sender_id = str(_field(record, "sender_id", "senderId", default=""))
-    sender = catalog.users.get(sender_id) or {}
     attachments = catalog_attachments(record)
     minutes_ago = float(_field(record, "minutesAgo", default=DEFAULT_MINUTES_AGO))
     by_self = sender_id == self_id
@@ -114,7 +121,9 @@ def catalog_message(
         id=message_id,
         conversation_id=str(_field(record, "conversation_id", "conversationId", default="")),
         sender_id=sender_id,
-        sender_name=str(sender.get("name") or _field(record, "senderName", default="Unknown")),
+        sender_name=_name_of(
+            catalog, sender_id, otherwise=str(_field(record, "senderName", default="Unknown"))
+        ),
         content=str(record.get("content") or ""),
         sent_at=at - 60 * minutes_ago if preloaded else at,
         is_urgent=bool(record.get("isUrgent", False)),
@@ -135,81 +144,75 @@ def _schedule(record: Mapping[str, Any]) -> tuple[int, str, int] | None:
     return (int(schedule.get("day", 0)), str(schedule["start"]), int(schedule.get("minutes", 30)))
 
 
-def catalog_conversations(
-    catalog: Any, self_id: str
-) -> list[tuple[Conversation, ConversationState]]:
-    """Every conversation of the catalog; a direct chat is named after the other person."""
-    result = []
-    for record in catalog.table(ENVIRONMENT, "conversations").values():
-        participants = tuple(str(p) for p in record.get("participantIds") or ())
-        kind = str(record.get("type") or "group")
-        name = str(record.get("name") or "")
-        if kind == "direct":
-            other = next((p for p in participants if p != self_id), None)
-            person = catalog.users.get(other) if other else None
-            name = str(person.get("name")) if person and person.get("name") else name
-        result.append(
-            (
-                Conversation(
-                    id=str(record["id"]),
-                    type=kind,
-                    name=name or "Untitled chat",
-                    participant_ids=participants,
-                    avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
-                    team_id=_field(record, "teamId", "team_id"),
-                    order=int(record.get("order") or 0),
-                    schedule=_schedule(record),
-                ),
-                ConversationState(
-                    is_pinned=bool(record.get("isPinned", False)),
-                    is_muted=bool(record.get("isMuted", False)),
-                ),
-            )
+def make_conversation(
+    chat: Chat, conversation_id: str, stamp: Stamp
+) -> tuple[Conversation, ConversationState] | None:
+    """A conversation of the workspace; a direct chat is named after the other person."""
+    record = chat.catalog.table(ENVIRONMENT, "conversations").get(conversation_id)
+    if record is None:
+        return None
+    participants = tuple(str(p) for p in record.get("participantIds") or ())
+    kind = str(record.get("type") or "group")
+    name = str(record.get("name") or "")
+    if kind == "direct":
+        other = next((p for p in participants if p != chat.self_id), None)
+        name = _name_of(chat.catalog, other, otherwise=name)
+    conversation = Conversation(
+        id=conversation_id,
+        type=kind,
+        name=name or "Untitled chat",
+        participant_ids=participants,
+        avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
+        team_id=_field(record, "teamId", "team_id"),
+        order=int(record.get("order") or 0),
+        schedule=_schedule(record),
+    )
+    flags = ConversationState(
+        is_pinned=bool(record.get("isPinned", False)),
+        is_muted=bool(record.get("isMuted", False)),
+    )
+    return conversation, flags
+
+
+def make_team(chat: Chat, team_id: str, stamp: Stamp) -> Team | None:
+    record = chat.catalog.table(ENVIRONMENT, "teams").get(team_id)
+    if record is None:
+        return None
+    channels = tuple(
+        Channel(
+            id=str(c["id"]),
+            name=str(c.get("name") or ""),
+            description=str(c.get("description") or ""),
+            unread_count=int(c.get("unreadCount") or 0),
+            is_pinned=bool(c.get("isPinned", False)),
         )
-    return result
+        for c in record.get("channels") or ()
+        if isinstance(c, dict) and "id" in c
+    )
+    return Team(
+        id=team_id,
+        name=str(record.get("name") or ""),
+        description=str(record.get("description") or ""),
+        member_ids=tuple(str(m) for m in record.get("memberIds") or ()),
+        owner_id=record.get("ownerId"),
+        channels=channels,
+        avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
+        initials=str(record.get("avatarInitials") or ""),
+        order=int(record.get("order") or 0),
+    )
 
 
-def catalog_teams(catalog: Any) -> list[Team]:
-    teams = []
-    for record in catalog.table(ENVIRONMENT, "teams").values():
-        channels = tuple(
-            Channel(
-                id=str(c["id"]),
-                name=str(c.get("name") or ""),
-                description=str(c.get("description") or ""),
-                unread_count=int(c.get("unreadCount") or 0),
-                is_pinned=bool(c.get("isPinned", False)),
-            )
-            for c in record.get("channels") or ()
-            if isinstance(c, dict) and "id" in c
-        )
-        teams.append(
-            Team(
-                id=str(record["id"]),
-                name=str(record.get("name") or ""),
-                description=str(record.get("description") or ""),
-                member_ids=tuple(str(m) for m in record.get("memberIds") or ()),
-                owner_id=record.get("ownerId"),
-                channels=channels,
-                avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
-                initials=str(record.get("avatarInitials") or ""),
-                order=int(record.get("order") or 0),
-            )
-        )
-    return teams
-
-
-def catalog_call(catalog: Any, call_id: str, *, at: float | None) -> Call | None:
-    """A call from the log; `at` is set for one delivered by a `new_call` event."""
-    record = catalog.table(ENVIRONMENT, "calls").get(call_id)
+def make_call(chat: Chat, call_id: str, stamp: Stamp) -> Call | None:
+    """A call of the log: one delivered by a `new_call` event carries its arrival time, one
+    preloaded the catalog's own words ("2 hours ago")."""
+    record = chat.catalog.table(ENVIRONMENT, "calls").get(call_id)
     if record is None:
         return None
     user_id = _field(record, "userId", "user_id")
-    user = catalog.users.get(user_id) if user_id else None
     return Call(
         id=call_id,
         # The newer original handler names a person's call after the person.
-        name=str(user.get("name")) if user and user.get("name") else str(record.get("name", "")),
+        name=_name_of(chat.catalog, user_id, otherwise=str(record.get("name", ""))),
         # The original wrote `callerId`, which its catalog never sets (its UI read `userId`):
         # the column now names the caller whenever the catalog does either way.
         caller_id=_field(record, "callerId", "userId"),
@@ -218,6 +221,6 @@ def catalog_call(catalog: Any, call_id: str, *, at: float | None) -> Call | None
         missed=bool(record.get("missed", False)),
         duration=str(record.get("duration") or ""),
         time_text=str(record.get("time") or ""),
-        at=at,
+        at=None if stamp.preloaded else stamp.at,
         order=int(record.get("order") or 0),
     )

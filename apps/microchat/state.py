@@ -10,9 +10,11 @@ the content.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
+
+from apps.kit.frozen import CatalogState, with_items
 
 ENVIRONMENT = "microchat"
 CONVERSATION_TYPES: tuple[str, ...] = ("direct", "group", "meeting")
@@ -113,10 +115,8 @@ Reactions = tuple[tuple[str, tuple[str, ...]], ...]  # ((reaction, user ids), â€
 
 
 @dataclass(frozen=True)
-class Chat:
-    # The catalog and self user are inputs, not state: excluded from equality so two folds of
-    # the same log compare equal cheaply.
-    catalog: Any = field(compare=False, repr=False)
+class Chat(CatalogState):
+    # The self user is an input, like the catalog: excluded from equality.
     self_user: Mapping[str, Any] = field(
         compare=False, repr=False, default_factory=lambda: FALLBACK_SELF
     )
@@ -160,58 +160,17 @@ def empty_chat(catalog: Any) -> Chat:
 # --- building new states (reducers only) -----------------------------------------------------
 
 
-def _frozen(mapping: dict) -> Mapping:
-    return MappingProxyType(mapping)
-
-
-def with_workspace(
-    chat: Chat,
-    conversations: Iterable[tuple[Conversation, ConversationState]],
-    teams: Iterable[Team],
-) -> Chat:
-    convs, states = dict(chat.conversations), dict(chat.conversation_states)
-    for conversation, conversation_state in conversations:
-        convs[conversation.id] = conversation
-        states[conversation.id] = conversation_state
-    all_teams = dict(chat.teams)
-    all_teams.update((team.id, team) for team in teams)
-    return replace(
-        chat,
-        conversations=_frozen(convs),
-        conversation_states=_frozen(states),
-        teams=_frozen(all_teams),
-    )
-
-
 def with_messages(chat: Chat, arrivals: Iterable[tuple[Message, bool, Reactions]]) -> Chat:
     """Add messages (content, read, reactions), keeping delivery order."""
-    messages, read, reactions = dict(chat.messages), dict(chat.read), dict(chat.reactions)
-    for message, is_read, message_reactions in arrivals:
-        messages[message.id] = message
-        read[message.id] = is_read
-        if message_reactions:
-            reactions[message.id] = message_reactions
-    return replace(
-        chat, messages=_frozen(messages), read=_frozen(read), reactions=_frozen(reactions)
-    )
+    arrivals = list(arrivals)
+    chat = with_items(chat, "messages", ((m.id, m) for m, _, _ in arrivals))
+    chat = with_items(chat, "read", ((m.id, is_read) for m, is_read, _ in arrivals))
+    return with_items(chat, "reactions", ((m.id, r) for m, _, r in arrivals if r))
 
 
 def with_read(chat: Chat, message_ids: Iterable[str], is_read: bool) -> Chat:
-    changed = [i for i in message_ids if i in chat.read and chat.read[i] != is_read]
-    if not changed:
-        return chat
-    read = dict(chat.read)
-    read.update(dict.fromkeys(changed, is_read))
-    return replace(chat, read=_frozen(read))
-
-
-def with_conversation_state(chat: Chat, conversation_id: str, **changes: Any) -> Chat:
-    """Pin or mute a conversation; an id that is not in the workspace changes nothing."""
-    if conversation_id not in chat.conversations:
-        return chat
-    states = dict(chat.conversation_states)
-    states[conversation_id] = replace(states.get(conversation_id, ConversationState()), **changes)
-    return replace(chat, conversation_states=_frozen(states))
+    """Mark messages read or unread; ids already so, or not there, change nothing."""
+    return with_items(chat, "read", ((i, is_read) for i in message_ids if i in chat.read))
 
 
 def with_reaction(chat: Chat, message_id: str, reaction: str, user_id: str, on: bool) -> Chat:
@@ -227,35 +186,7 @@ def with_reaction(chat: Chat, message_id: str, reaction: str, user_id: str, on: 
         current[reaction] = users
     else:
         current.pop(reaction, None)
-    reactions = dict(chat.reactions)
-    reactions[message_id] = tuple(current.items())
-    return replace(chat, reactions=_frozen(reactions))
-
-
-def with_message_replaced(chat: Chat, message: Message) -> Chat:
-    if message.id not in chat.messages:
-        return chat
-    messages = dict(chat.messages)
-    messages[message.id] = message
-    return replace(chat, messages=_frozen(messages))
-
-
-def without_message(chat: Chat, message_id: str) -> Chat:
-    if message_id not in chat.messages:
-        return chat
-    keep = lambda mapping: _frozen({k: v for k, v in mapping.items() if k != message_id})  # noqa: E731
-    return replace(
-        chat,
-        messages=keep(chat.messages),
-        read=keep(chat.read),
-        reactions=keep(chat.reactions),
-    )
-
-
-def with_calls(chat: Chat, calls: Iterable[Call]) -> Chat:
-    all_calls = dict(chat.calls)
-    all_calls.update((call.id, call) for call in calls)
-    return replace(chat, calls=_frozen(all_calls))
+    return with_items(chat, "reactions", [(message_id, tuple(current.items()))])
 
 
 # --- counts (baselines, badges) ---------------------------------------------------------------
@@ -263,6 +194,11 @@ def with_calls(chat: Chat, calls: Iterable[Call]) -> Chat:
 
 def unread_ids(chat: Chat) -> list[str]:
     return [i for i, is_read in chat.read.items() if not is_read]
+
+
+def unread_in(chat: Chat, conversation_id: str) -> list[str]:
+    """What opening the chat reads: its unread messages, in delivery order."""
+    return [i for i in unread_ids(chat) if chat.messages[i].conversation_id == conversation_id]
 
 
 def unread_count(chat: Chat) -> int:

@@ -12,10 +12,11 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
-from tests import control_api
+from tests.browser_story import TIMEOUT_MS
 
 # The Chromium `browser` fixture of tests/conftest.py (imported so the name is this module's).
 from tests.conftest import browser  # noqa: F401
+from tests.inline_story import inline_story
 
 pytestmark = pytest.mark.browser
 
@@ -51,9 +52,6 @@ def scenario() -> dict:
     }
 
 
-api = control_api.call
-
-
 def chat_row(page: Page, name: str):
     return page.get_by_role("list", name="Chats").get_by_role(
         "link", name=re.compile(rf"^(Unread: )?{re.escape(name)}\b")
@@ -61,29 +59,24 @@ def chat_row(page: Page, name: str):
 
 
 def test_a_user_sees_a_message_arrive_live_and_reads_and_likes_it(live_site, browser):  # noqa: F811
-    run = api(
-        live_site,
-        "POST",
-        "/api/runs/",
-        {"scenario_json": scenario(), "clock_mode": "live", "speed_factor": SPEED_FACTOR},
+    story = inline_story(
+        live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(5000)
+    page = story.page
 
     # The task URL starts the clock and lands in the chat list, Gabriel's chat already read.
-    page.goto(run["task_url"])
     expect(page.get_by_role("heading", level=1, name="Chat")).to_be_visible()
     expect(chat_row(page, "Gabriel Nwosu")).not_to_have_accessible_name(re.compile("^Unread:"))
 
     # The urgent message arrives: the row turns unread in place, without a reload.
-    page.evaluate("window.__not_reloaded = true")
+    story.watch_for_reload()
     expect(chat_row(page, "Gabriel Nwosu")).to_have_accessible_name(
-        re.compile(r"^Unread: Gabriel Nwosu.*card payments are failing"), timeout=15000
+        re.compile(r"^Unread: Gabriel Nwosu.*card payments are failing"), timeout=TIMEOUT_MS
     )
     expect(
         page.get_by_role("navigation", name="Apps").get_by_role("link", name=re.compile("^Chat"))
     ).to_have_accessible_name(re.compile(r"1 unread chat"))
-    assert page.evaluate("window.__not_reloaded") is True
+    story.assert_not_reloaded()
 
     # Opening the chat shows the message with its urgent marker and reads it.
     chat_row(page, "Gabriel Nwosu").click()
@@ -103,9 +96,4 @@ def test_a_user_sees_a_message_arrive_live_and_reads_and_likes_it(live_site, bro
     ).to_have_accessible_name(re.compile(r"^Like 1: You"))
 
     # Report back, then grade: the two actions, and only them.
-    page.goto(run["contact_url"])
-    verdict = api(live_site, "POST", f"/api/runs/{run['id']}/evaluate/")
-    assert verdict["success"] is True, verdict["detail"]
-    assert verdict["actions"] == 2
-    logged = api(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    assert [e["type"] for e in logged if e["kind"] == "action"] == ["open_conversation", "react"]
+    assert [name for name, _ in story.report()] == ["open_conversation", "react"]

@@ -4,26 +4,20 @@ from __future__ import annotations
 
 import json
 import sqlite3
+from dataclasses import replace
 
 import pytest
 
 from apps.microchat import state as chats
 from apps.microchat.environment import MICROCHAT
-from events.catalog import read_catalog
 from events.registry import ActionRejected
-from tests.microchat.workspace import (
-    GABRIEL_FRESH,
-    GABRIEL_HISTORY,
-    NOOR_FILE,
-    PAYMENTS_DOWN,
-    act,
-    arrive,
-    preloaded,
-)
+from tests.microchat.workspace import CAST, GABRIEL_FRESH, GABRIEL_HISTORY, NOOR_FILE, PAYMENTS_DOWN
 
 
 def test_the_first_preload_loads_every_conversation_and_team_and_keeps_catalog_read_state():
-    chat = preloaded(GABRIEL_HISTORY + GABRIEL_FRESH, ["call-missed-01", "call-in-01"])
+    chat = CAST.preloaded(
+        message_ids=GABRIEL_HISTORY + GABRIEL_FRESH, call_ids=["call-missed-01", "call-in-01"]
+    )
     assert len(chat.conversations) >= 30 and len(chat.teams) == 10
     assert chat.conversations["direct-gabriel"].name == "Gabriel Nwosu"
     assert [chat.read[i] for i in GABRIEL_HISTORY + GABRIEL_FRESH] == [True] * 3 + [False] * 2
@@ -32,67 +26,69 @@ def test_the_first_preload_loads_every_conversation_and_team_and_keeps_catalog_r
 
 
 def test_history_is_stamped_minutes_before_the_preload_and_arrivals_at_their_event():
-    chat = arrive(preloaded(GABRIEL_HISTORY), PAYMENTS_DOWN, at=120.0)
+    chat = CAST.arrive(CAST.preloaded(), "new_message", {"message_id": PAYMENTS_DOWN}, at=120.0)
     assert chat.messages["dm-gabriel-01"].sent_at == -1500 * 60
     assert chat.messages[PAYMENTS_DOWN].sent_at == 120.0
     assert chat.read[PAYMENTS_DOWN] is False and chat.messages[PAYMENTS_DOWN].is_urgent
 
 
 def test_a_message_delivered_twice_is_one_message_and_keeps_what_the_user_did():
-    chat = arrive(preloaded([]), PAYMENTS_DOWN, at=5.0)
-    chat = act(chat, "open_conversation", {"conversation_id": "direct-gabriel"})
-    again = arrive(chat, PAYMENTS_DOWN, at=9.0)
+    chat = CAST.arrive(
+        CAST.preloaded(message_ids=[]), "new_message", {"message_id": PAYMENTS_DOWN}, at=5.0
+    )
+    chat = CAST.act(chat, "open_conversation", {"conversation_id": "direct-gabriel"})
+    again = CAST.arrive(chat, "new_message", {"message_id": PAYMENTS_DOWN}, at=9.0)
     assert list(again.messages).count(PAYMENTS_DOWN) == 1 and again.read[PAYMENTS_DOWN] is True
 
 
 def test_opening_reads_what_is_there_and_a_later_arrival_stays_unread_until_opened_again():
-    chat = preloaded(GABRIEL_HISTORY + GABRIEL_FRESH)
-    chat = act(chat, "open_conversation", {"conversation_id": "direct-gabriel"})
+    chat = CAST.preloaded(message_ids=GABRIEL_HISTORY + GABRIEL_FRESH)
+    chat = CAST.act(chat, "open_conversation", {"conversation_id": "direct-gabriel"})
     assert all(chat.read[i] for i in GABRIEL_FRESH)
-    chat = arrive(chat, PAYMENTS_DOWN, at=30.0)
+    chat = CAST.arrive(chat, "new_message", {"message_id": PAYMENTS_DOWN}, at=30.0)
     assert chat.read[PAYMENTS_DOWN] is False
     assert chats.unread_by_conversation(chat) == {"direct-gabriel": 1}
 
 
 def test_opening_a_chat_with_nothing_unread_is_not_an_action():
-    chat = preloaded(GABRIEL_HISTORY)
+    chat = CAST.preloaded()
     with pytest.raises(ActionRejected, match="nothing unread"):
-        act(chat, "open_conversation", {"conversation_id": "direct-gabriel"})
+        CAST.act(chat, "open_conversation", {"conversation_id": "direct-gabriel"})
     with pytest.raises(ActionRejected, match="no conversation"):
-        act(chat, "open_conversation", {"conversation_id": "direct-nobody"})
+        CAST.act(chat, "open_conversation", {"conversation_id": "direct-nobody"})
 
 
 def test_mark_unread_makes_the_newest_message_from_someone_else_unread():
-    chat = preloaded(GABRIEL_HISTORY)
-    chat = act(chat, "mark_unread", {"conversation_id": "direct-gabriel"})
+    chat = CAST.preloaded()
+    chat = CAST.act(chat, "mark_unread", {"conversation_id": "direct-gabriel"})
     assert chats.unread_ids(chat) == ["dm-gabriel-03"]
 
 
 def test_favourite_and_mute_are_set_not_toggled():
-    chat = preloaded([])
-    twice = act(
-        act(chat, "pin", {"conversation_id": "direct-noor"}),
+    chat = CAST.preloaded(message_ids=[])
+    twice = CAST.act(
+        CAST.act(chat, "pin", {"conversation_id": "direct-noor"}),
         "pin",
         {"conversation_id": "direct-noor"},
     )
     assert twice.pinned("direct-noor")
-    assert not act(twice, "unpin", {"conversation_id": "direct-noor"}).pinned("direct-noor")
-    assert act(chat, "mute", {"conversation_id": "direct-noor"}).muted("direct-noor")
+    assert not CAST.act(twice, "unpin", {"conversation_id": "direct-noor"}).pinned("direct-noor")
+    assert CAST.act(chat, "mute", {"conversation_id": "direct-noor"}).muted("direct-noor")
 
 
 def test_reactions_are_the_self_users_and_an_empty_reaction_disappears():
-    chat = preloaded(["dm-maya-03"])  # Chris already liked it in the catalog
+    chat = CAST.preloaded(message_ids=["dm-maya-03"])  # Chris already liked it in the catalog
     assert chat.reactions["dm-maya-03"] == (("like", ("user000",)),)
-    chat = act(chat, "react", {"message_id": "dm-maya-03", "reaction": "heart"})
-    chat = act(chat, "unreact", {"message_id": "dm-maya-03", "reaction": "like"})
+    chat = CAST.act(chat, "react", {"message_id": "dm-maya-03", "reaction": "heart"})
+    chat = CAST.act(chat, "unreact", {"message_id": "dm-maya-03", "reaction": "like"})
     assert chat.reactions["dm-maya-03"] == (("heart", ("user000",)),)
     with pytest.raises(ActionRejected, match="'reaction'"):
-        act(chat, "react", {"message_id": "dm-maya-03", "reaction": "thumbsup"})
+        CAST.act(chat, "react", {"message_id": "dm-maya-03", "reaction": "thumbsup"})
 
 
 def test_sending_replying_editing_and_deleting_your_own_message():
-    chat = preloaded(GABRIEL_HISTORY)
-    chat = act(
+    chat = CAST.preloaded()
+    chat = CAST.act(
         chat,
         "send_message",
         {"conversation_id": "direct-gabriel", "content": "  On it!  ", "reply_to": "dm-gabriel-03"},
@@ -105,19 +101,19 @@ def test_sending_replying_editing_and_deleting_your_own_message():
         42.0,
         True,
     )
-    chat = act(chat, "edit_message", {"message_id": sent.id, "content": "On it now"})
+    chat = CAST.act(chat, "edit_message", {"message_id": sent.id, "content": "On it now"})
     assert chat.messages[sent.id].content == "On it now" and chat.messages[sent.id].edited
     with pytest.raises(ActionRejected, match="only yours"):
-        act(chat, "delete_message", {"message_id": "dm-gabriel-01"})
-    assert not act(chat, "delete_message", {"message_id": sent.id}).has_message(sent.id)
+        CAST.act(chat, "delete_message", {"message_id": "dm-gabriel-01"})
+    assert not CAST.act(chat, "delete_message", {"message_id": sent.id}).has_message(sent.id)
 
 
 def test_sending_checks_the_text_and_the_reply():
-    chat = preloaded([*GABRIEL_HISTORY, "dm-maya-01"])
+    chat = CAST.preloaded(message_ids=[*GABRIEL_HISTORY, "dm-maya-01"])
     with pytest.raises(ActionRejected, match="'content' is empty"):
-        act(chat, "send_message", {"conversation_id": "direct-gabriel", "content": "   "})
+        CAST.act(chat, "send_message", {"conversation_id": "direct-gabriel", "content": "   "})
     with pytest.raises(ActionRejected, match="not in conversation"):
-        act(
+        CAST.act(
             chat,
             "send_message",
             {"conversation_id": "direct-gabriel", "content": "hi", "reply_to": "dm-maya-01"},
@@ -131,8 +127,13 @@ def tables(chat) -> sqlite3.Connection:
 
 
 def test_the_evaluation_tables_have_the_originals_shape_and_leave_sent_messages_apart():
-    chat = arrive(preloaded(GABRIEL_HISTORY, ["call-missed-01"]), NOOR_FILE, at=3.0)
-    chat = act(
+    chat = CAST.arrive(
+        CAST.preloaded(call_ids=["call-missed-01"]),
+        "new_message",
+        {"message_id": NOOR_FILE},
+        at=3.0,
+    )
+    chat = CAST.act(
         chat,
         "send_message",
         {"conversation_id": "direct-gabriel", "content": "payment processing service is down"},
@@ -161,8 +162,9 @@ def test_the_evaluation_tables_have_the_originals_shape_and_leave_sent_messages_
 
 
 def test_baselines_are_the_originals_counts():
-    chat = preloaded(
-        [*GABRIEL_FRESH, "mention-pm-guild-07", "urg-maya-11"], ["call-missed-01", "call-in-01"]
+    chat = CAST.preloaded(
+        message_ids=[*GABRIEL_FRESH, "mention-pm-guild-07", "urg-maya-11"],
+        call_ids=["call-missed-01", "call-in-01"],
     )
     assert dict(MICROCHAT.measure_baselines(chat, 0.0)) == {
         "unread_count": 4,
@@ -228,7 +230,7 @@ def test_the_originals_record_shapes_are_read(tmp_path):
         (tmp_path / "microchat" / f"{table}.jsonl").write_text(
             "\n".join(json.dumps(r) for r in rows)
         )
-    chat = preloaded(["*"], ["*"], catalog=read_catalog(tmp_path))
+    chat = replace(CAST, catalog_dir=tmp_path).preloaded(message_ids=["*"], call_ids=["*"])
     assert chat.conversations["direct-ada"].name == "Ada Lane"
     assert chat.reactions["m1"] == (("like", ("user001",)),)
     assert (
