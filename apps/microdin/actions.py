@@ -10,16 +10,17 @@ repeated request cannot undo itself; the like count moves with them (±1, as in 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import replace
 from types import MappingProxyType
-from typing import Any, Literal
+from typing import Literal
 from urllib.parse import quote
 
 from pydantic import Field
 
-from apps.kit.deciding import checking, found, new_id, required_text
-from apps.kit.frozen import with_items
+from apps.kit import feeds
+from apps.kit.deciding import found, new_id
+from apps.kit.frozen import with_changed, with_items
 from apps.kit.social import Comment, post_actions
 from apps.microdin import catalog as records
 from apps.microdin.query import JobsQuery, MessagingQuery
@@ -31,7 +32,6 @@ from apps.microdin.state import (
     Network,
     ProfileSection,
     status,
-    with_state,
 )
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
@@ -70,15 +70,6 @@ class AddProfileSection(Payload):
     content: str = ""
 
 
-def setting(field: str, key: str, **changes: Any) -> Callable[[Network, LoggedEvent], Network]:
-    """A reducer setting fields of the item's user-side record (liked, read, applied…)."""
-
-    def reduce(network: Network, event: LoggedEvent) -> Network:
-        return with_state(network, field, event.payload[key], **changes)
-
-    return reduce
-
-
 # --- posts -----------------------------------------------------------------------------------
 
 
@@ -89,7 +80,7 @@ def reduce_comment(network: Network, event: LoggedEvent) -> Network:
     if current is None:
         return network
     comment = Comment(event.payload["id"], network.me, event.payload["text"], 0, event.at)
-    return with_state(network, "post_states", post_id, comments=(*current.comments, comment))
+    return with_changed(network, "post_states", post_id, comments=(*current.comments, comment))
 
 
 # --- invitations -----------------------------------------------------------------------------
@@ -107,11 +98,6 @@ def decide_answer(network: Network, payload: dict) -> dict:
 
 
 # --- messaging -------------------------------------------------------------------------------
-
-
-def decide_send(network: Network, payload: dict) -> dict:
-    found(network.conversations, payload["conversation_id"], "conversation", WHERE)
-    return {**payload, "content": required_text(payload, "content"), "id": new_id("user-msg")}
 
 
 def reduce_send(network: Network, event: LoggedEvent) -> Network:
@@ -137,26 +123,20 @@ def reduce_open(network: Network, event: LoggedEvent) -> Network:
     return with_items(network, "message_states", unread)
 
 
-def thread_with(network: Network, user_id: str) -> str | None:
-    return next((c.id for c in network.conversations.values() if c.other.id == user_id), None)
-
-
 def decide_start(network: Network, payload: dict) -> dict:
     """The existing one-to-one thread with the person, else a new empty one."""
     user_id = payload["user_id"]
     found(network.catalog.users, user_id, "member", WHERE)
     if user_id == network.me.id:
         raise ActionRejected("you cannot message yourself")
-    return {**payload, "conversation_id": thread_with(network, user_id) or new_id("user-conv")}
+    existing = feeds.thread_with(network, user_id)
+    return {**payload, "conversation_id": existing or new_id("user-conv")}
 
 
-def reduce_start(network: Network, event: LoggedEvent) -> Network:
-    p = event.payload
-    if p["conversation_id"] in network.conversations:
-        return network
-    person = records.person(network.catalog, p["user_id"])
-    conversation = Conversation(p["conversation_id"], person, len(network.conversations))
-    return with_items(network, "conversations", [(conversation.id, conversation)])
+def new_thread(network: Network, event: LoggedEvent) -> Conversation:
+    """An empty thread with the person, listed after the threads there are."""
+    person = records.person(network.catalog, event.payload["user_id"])
+    return Conversation(event.payload["conversation_id"], person, len(network.conversations))
 
 
 # --- jobs and profile ------------------------------------------------------------------------
@@ -187,25 +167,18 @@ def reduce_section(network: Network, event: LoggedEvent) -> Network:
 # out every scenario's solution through them (tests/environments/).
 
 
-def post_page(network: Network, payload: dict) -> PageStep:
-    found(network.posts, payload["post_id"], "post", WHERE)
-    form = {"text": payload["text"]} if "text" in payload else {}
-    return PageStep(f"feed/update/{quote(payload['post_id'])}/", form)
-
-
 def invitations_page(network: Network, payload: dict) -> PageStep:
     found(network.connections, payload["connection_id"], "connection request", WHERE)
     return PageStep("mynetwork/invitations/", {"connection_id": payload["connection_id"]})
 
 
-def thread_page(network: Network, payload: dict) -> PageStep:
-    found(network.conversations, payload["conversation_id"], "conversation", WHERE)
-    path = "messaging/" + MessagingQuery(conversation=payload["conversation_id"]).querystring()
-    return PageStep(path, {"content": payload["content"]} if "content" in payload else None)
-
-
-def profile_page(network: Network, payload: dict) -> PageStep:
-    return PageStep(f"in/{quote(payload['user_id'])}/", {})
+thread_page = feeds.thread_page(
+    lambda conversation_id: (
+        "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
+    ),
+    "content",
+    WHERE,
+)
 
 
 def notifications_page(network: Network, payload: dict) -> PageStep:
@@ -227,34 +200,37 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         **post_actions(
             WHERE,
-            lambda is_liked: setting("post_states", "post_id", is_liked=is_liked),
+            lambda is_liked: feeds.setting("post_states", "post_id", is_liked=is_liked),
             reduce_comment,
-            post_page,
+            feeds.post_page("feed/update/", WHERE),
         ),
         "accept_connection": Action(
             ConnectionId,
             decide_answer,
-            setting("connection_states", "connection_id", status="accepted"),
+            feeds.setting("connection_states", "connection_id", status="accepted"),
             help="Accept a pending invitation.",
             page=invitations_page,
         ),
         "ignore_connection": Action(
             ConnectionId,
             decide_answer,
-            setting("connection_states", "connection_id", status="ignored"),
+            feeds.setting("connection_states", "connection_id", status="ignored"),
             help="Ignore (reject) a pending invitation.",
             page=invitations_page,
         ),
-        "open_conversation": Action(
+        "open_conversation": feeds.marking(
             ConversationId,
-            checking("conversations", "conversation_id", "conversation", WHERE),
+            "conversations",
+            "conversation_id",
+            "conversation",
+            WHERE,
             reduce_open,
             help="Open a thread; this marks its messages read.",
             page=thread_page,
         ),
         "send_message": Action(
             SendMessage,
-            decide_send,
+            feeds.sending("content", "user-msg", WHERE),
             reduce_send,
             help="Send a message in a thread.",
             page=thread_page,
@@ -262,21 +238,24 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         "start_conversation": Action(
             StartConversation,
             decide_start,
-            reduce_start,
+            feeds.starting(new_thread),
             help="Open the thread with a person (a new one if there is none).",
-            page=profile_page,
+            page=feeds.profile_page("in/"),
         ),
-        "mark_notification_read": Action(
+        "mark_notification_read": feeds.marking(
             NotificationId,
-            checking("notifications", "notification_id", "notification", WHERE),
-            setting("notification_states", "notification_id", is_read=True),
+            "notifications",
+            "notification_id",
+            "notification",
+            WHERE,
+            feeds.setting("notification_states", "notification_id", is_read=True),
             help="Mark a notification read (what clicking it does).",
             page=notifications_page,
         ),
         "apply_job": Action(
             JobId,
             decide_apply,
-            setting("job_states", "job_id", is_applied=True),
+            feeds.setting("job_states", "job_id", is_applied=True),
             help="Apply to a job (there is no withdrawing).",
             page=job_page,
         ),

@@ -13,9 +13,12 @@ stamps every preloaded item five minutes before the start).
 from __future__ import annotations
 
 from collections.abc import Mapping
+from functools import partial
 from typing import Any
 
 from apps.kit import social
+from apps.kit.arrivals import Stamp
+from apps.kit.feeds import Members, arrived_at, thread_messages
 from apps.microdin.state import (
     ENVIRONMENT,
     Company,
@@ -24,6 +27,7 @@ from apps.microdin.state import (
     Conversation,
     Job,
     Message,
+    Network,
     Notification,
     NotificationState,
     Person,
@@ -47,11 +51,6 @@ def table(catalog: Any, name: str) -> Mapping[str, Mapping[str, Any]]:
     return catalog.table(ENVIRONMENT, name)
 
 
-def profile_record(catalog: Any, user_id: str) -> Mapping[str, Any]:
-    """The person's MicroDin profile (company, headline, numbers on the network)."""
-    return social.profile_record(catalog, ENVIRONMENT, user_id)
-
-
 def company(catalog: Any, company_id: str | None, name: str = "") -> Company | None:
     if not company_id and not name:
         return None
@@ -65,44 +64,37 @@ def company(catalog: Any, company_id: str | None, name: str = "") -> Company | N
     )
 
 
-def people(catalog: Any) -> Mapping[str, Person]:
-    """Every person of the catalog as a card shows them (built once per catalog)."""
-
-    def member(user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]) -> Person:
-        return Person(
-            id=user_id,
-            name=str(user.get("name") or UNKNOWN_MEMBER),
-            title=str(profile.get("headline") or user.get("jobTitle") or ""),
-            company=company(catalog, profile.get("companyId"), str(profile.get("company") or "")),
-            location=str(user.get("location") or ""),
-        )
-
-    return social.members(catalog, ENVIRONMENT, member)
+def member(
+    catalog: Any, user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]
+) -> Person:
+    """Someone as a card shows them; `profile` holds their company and headline on MicroDin."""
+    return Person(
+        id=user_id,
+        name=str(user.get("name") or UNKNOWN_MEMBER),
+        title=str(profile.get("headline") or user.get("jobTitle") or ""),
+        company=company(catalog, profile.get("companyId"), str(profile.get("company") or "")),
+        location=str(user.get("location") or ""),
+    )
 
 
-def catalog_people(catalog: Any) -> Mapping[str, Person]:
-    """Every member by id, in catalog order (computed once per catalog)."""
-    return catalog.index(people)
-
-
-def person(catalog: Any, user_id: str | None) -> Person:
-    found = catalog.index(people).get(user_id or "")
-    return found if found is not None else Person(id=str(user_id or ""), name=UNKNOWN_MEMBER)
-
-
-def self_person(catalog: Any) -> Person:
-    me = catalog.self_user
-    return person(catalog, me["id"]) if me else Person("me", "Me")
-
-
-def age(record: Mapping[str, Any]) -> float:
-    minutes = record.get("ageMinutes")
-    return float(minutes) * 60 if minutes is not None else PRELOAD_AGE_S
+MEMBERS = Members(
+    ENVIRONMENT,
+    member,
+    unknown=lambda user_id: Person(id=user_id, name=UNKNOWN_MEMBER),
+    myself=Person("me", "Me"),
+)
+person = MEMBERS.person  # (catalog, user id) → the member, or an unknown one
 
 
 def _order(record: Mapping[str, Any], fallback: int) -> int:
     value = record.get("order")
     return int(value) if isinstance(value, int | float) else fallback
+
+
+def arrival(record: Mapping[str, Any], stamp: Stamp) -> tuple[float, int]:
+    """When the item appeared and its place among equal times: the record's `order`, else its
+    place in the delivery."""
+    return arrived_at(record, stamp, PRELOAD_AGE_S), _order(record, stamp.order)
 
 
 def picture(record: Mapping[str, Any]) -> social.Picture | None:
@@ -114,17 +106,22 @@ def picture(record: Mapping[str, Any]) -> social.Picture | None:
     return drawn
 
 
-def catalog_post(catalog: Any, post_id: str, *, posted_at: float, order: int) -> Post | None:
+# --- items as they arrive (each a `make` of apps.kit.arrivals.Delivery) --------------------------
+
+
+def catalog_post(network: Network, post_id: str, stamp: Stamp) -> Post | None:
+    catalog = network.catalog
     record = table(catalog, "posts").get(post_id)
     if record is None:
         return None
+    posted_at, order = arrival(record, stamp)
     return Post(
         id=post_id,
         author=person(catalog, record.get("authorId")),
         content=str(record.get("content", "")),
         likes=int(record.get("likes") or 0),
         shares=int(record.get("shares") or 0),
-        comments=social.catalog_comments(record, post_id, lambda user_id: person(catalog, user_id)),
+        comments=social.catalog_comments(record, post_id, partial(person, catalog)),
         posted_at=posted_at,
         order=order,
         image=picture(record),
@@ -132,104 +129,51 @@ def catalog_post(catalog: Any, post_id: str, *, posted_at: float, order: int) ->
 
 
 def catalog_connection(
-    catalog: Any, connection_id: str, *, received_at: float, order: int
+    network: Network, connection_id: str, stamp: Stamp
 ) -> tuple[Connection, ConnectionState] | None:
-    record = table(catalog, "connections").get(connection_id)
+    """An invitation, with the status the catalog gives it (pending unless it says)."""
+    record = table(network.catalog, "connections").get(connection_id)
     if record is None:
         return None
+    received_at, order = arrival(record, stamp)
     connection = Connection(
         id=connection_id,
-        person=person(catalog, record.get("userId")),
+        person=person(network.catalog, record.get("userId")),
         mutual=int(record.get("mutualConnections") or 0),
         received_at=received_at,
         order=order,
     )
-    status = str(record.get("status") or "pending")
-    return connection, ConnectionState(status=status)
-
-
-def conversation_of_message(catalog: Any) -> Mapping[str, str]:
-    """message id → the id of the conversation record holding it (built once per catalog)."""
-    return {
-        str(m["id"]): conversation_id
-        for conversation_id, record in table(catalog, "messages").items()
-        for m in record.get("messages") or ()
-        if isinstance(m, Mapping) and "id" in m
-    }
-
-
-def catalog_conversation(catalog: Any, conversation_id: str, order: int) -> Conversation | None:
-    record = table(catalog, "messages").get(conversation_id)
-    if record is None:
-        return None
-    me = self_person(catalog)
-    others = [p for p in record.get("participantIds") or () if p != me.id]
-    return Conversation(
-        id=conversation_id,
-        other=person(catalog, others[0] if others else None),
-        order=_order(record, order),
-    )
-
-
-def message_records(catalog: Any, conversation_id: str) -> list[Mapping[str, Any]]:
-    record = table(catalog, "messages").get(conversation_id) or {}
-    return [m for m in record.get("messages") or () if isinstance(m, Mapping) and "id" in m]
-
-
-def preloaded_read(catalog: Any, conversation_id: str, message: Mapping[str, Any]) -> bool:
-    """A preloaded message's read flag: the record's `isRead`, else read unless it is among the
-    conversation's last `unreadCount` messages from the other person (the original's records
-    carry only that count)."""
-    if "isRead" in message:
-        return bool(message["isRead"])
-    record = table(catalog, "messages").get(conversation_id) or {}
-    me = self_person(catalog).id
-    incoming = [
-        m["id"]
-        for m in message_records(catalog, conversation_id)
-        if m.get("senderId") != me and not m.get("arrivesLater")
-    ]
-    unread = int(record.get("unreadCount") or 0)
-    return message["id"] not in (incoming[-unread:] if unread else [])
-
-
-def catalog_message(
-    catalog: Any, conversation_id: str, record: Mapping[str, Any], *, sent_at: float, order: int
-) -> Message:
-    return Message(
-        id=str(record["id"]),
-        conversation_id=conversation_id,
-        sender=person(catalog, record.get("senderId")),
-        content=str(record.get("text", record.get("content", ""))),
-        sent_at=sent_at,
-        order=_order(record, order),
-    )
+    return connection, ConnectionState(status=str(record.get("status") or "pending"))
 
 
 def catalog_notification(
-    catalog: Any, notification_id: str, *, at: float, order: int, keep_read: bool
+    network: Network, notification_id: str, stamp: Stamp
 ) -> tuple[Notification, NotificationState] | None:
-    record = table(catalog, "notifications").get(notification_id)
+    """A notification: preloaded, with the catalog's read flag; arriving later, unread."""
+    record = table(network.catalog, "notifications").get(notification_id)
     if record is None:
         return None
     kind = str(record.get("type") or "other")
+    at, order = arrival(record, stamp)
     notification = Notification(
         id=notification_id,
         type=kind,
-        actor=person(catalog, record.get("actorId")),
+        actor=person(network.catalog, record.get("actorId")),
         content=str(record.get("text") or DEFAULT_PHRASES.get(kind, "has a new update for you")),
         at=at,
         order=order,
         target_post_id=record.get("targetPostId"),
     )
-    read = bool(record.get("isRead", False)) if keep_read else False
+    read = bool(record.get("isRead", False)) and stamp.preloaded
     return notification, NotificationState(is_read=read)
 
 
-def catalog_job(catalog: Any, job_id: str, *, posted_at: float, order: int) -> Job | None:
+def catalog_job(network: Network, job_id: str, stamp: Stamp) -> Job | None:
+    catalog = network.catalog
     record = table(catalog, "jobs").get(job_id)
     if record is None:
         return None
+    posted_at, order = arrival(record, stamp)
     return Job(
         id=job_id,
         title=str(record.get("title", "")),
@@ -245,5 +189,59 @@ def catalog_job(catalog: Any, job_id: str, *, posted_at: float, order: int) -> J
     )
 
 
-def record_order(catalog: Any, name: str, item_id: str, fallback: int) -> int:
-    return _order(table(catalog, name).get(item_id) or {}, fallback)
+# --- threads: one record per conversation, its messages inside -----------------------------------
+
+
+def conversation_of_message(catalog: Any) -> Mapping[str, str]:
+    """message id → the id of the conversation record holding it (built once per catalog)."""
+    return {
+        str(m["id"]): conversation_id
+        for conversation_id, record in table(catalog, "messages").items()
+        for m in thread_messages(record)
+    }
+
+
+def catalog_conversation(catalog: Any, conversation_id: str, order: int) -> Conversation | None:
+    record = table(catalog, "messages").get(conversation_id)
+    if record is None:
+        return None
+    return Conversation(
+        id=conversation_id,
+        other=MEMBERS.other_in(catalog, record),
+        order=_order(record, order),
+    )
+
+
+def message_records(catalog: Any, conversation_id: str) -> list[Mapping[str, Any]]:
+    return thread_messages(table(catalog, "messages").get(conversation_id))
+
+
+def preloaded_read(catalog: Any, conversation_id: str, message: Mapping[str, Any]) -> bool:
+    """A preloaded message's read flag: the record's `isRead`, else read unless it is among the
+    conversation's last `unreadCount` messages from the other person (the original's records
+    carry only that count)."""
+    if "isRead" in message:
+        return bool(message["isRead"])
+    record = table(catalog, "messages").get(conversation_id) or {}
+    me = MEMBERS.me(catalog).id
+    incoming = [
+        m["id"]
+        for m in message_records(catalog, conversation_id)
+        if m.get("senderId") != me and not m.get("arrivesLater")
+    ]
+    unread = int(record.get("unreadCount") or 0)
+    return message["id"] not in (incoming[-unread:] if unread else [])
+
+
+def catalog_message(
+    catalog: Any, conversation_id: str, record: Mapping[str, Any], stamp: Stamp
+) -> Message:
+    sent_at, order = arrival(record, stamp)
+    return Message(
+        id=str(record["id"]),
+        conversation_id=conversation_id,
+        sender=person(catalog, record.get("senderId")),
+        content=str(record.get("text", record.get("content", ""))),
+        sent_at=sent_at,
+        order=order,
+    )

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from apps.kit.derived import per_state
+from apps.kit.feeds import likes_now, thread_with
 from apps.microdin import catalog as records
 from apps.microdin import state as net
 from apps.microdin.query import JobsQuery, MessagingQuery, NotificationsQuery, SearchQuery
@@ -93,7 +94,7 @@ def nav_badges(network: Network) -> NavBadges:
 def post_card(network: Network, post_id: str) -> PostCard:
     return PostCard(
         post=network.posts[post_id],
-        likes=net.likes_now(network, post_id),
+        likes=likes_now(network, post_id),
         is_liked=network.post_states[post_id].is_liked,
         comments=net.all_comments(network, post_id),
     )
@@ -136,7 +137,7 @@ def suggestions(network: Network) -> tuple[Person, ...]:
     """People you may know: members not connected and with no invitation on the screen."""
     known = {c.person.id for c in network.connections.values()}
     known |= set(network.stats.connected_ids) | {network.me.id}
-    people = records.catalog_people(network.catalog)
+    people = records.MEMBERS.everyone(network.catalog)
     return tuple(p for i, p in people.items() if i not in known)[:SUGGESTIONS]
 
 
@@ -283,7 +284,7 @@ def profile(network: Network, user_id: str) -> Profile | None:
     user = catalog.users.get(user_id)
     if user is None:
         return None
-    record = records.profile_record(catalog, user_id)
+    record = records.MEMBERS.profile(catalog, user_id)
     is_self = user_id == network.me.id
     scholar = (user.get("microscholar") or {}).get("affiliation")
     education = tuple(record.get("education") or ()) or (
@@ -302,9 +303,7 @@ def profile(network: Network, user_id: str) -> Profile | None:
         if is_self
         else int(record.get("profileViews") or 0),
         sections=network.sections if is_self else (),
-        conversation_id=next(
-            (c.id for c in network.conversations.values() if c.other.id == user_id), None
-        ),
+        conversation_id=thread_with(network, user_id),
     )
 
 
@@ -331,7 +330,7 @@ def company_page(network: Network, company_id: str) -> CompanyPage | None:
     )
     people = tuple(
         p
-        for p in records.catalog_people(network.catalog).values()
+        for p in records.MEMBERS.everyone(network.catalog).values()
         if p.company and p.company.id == company_id
     )
     return CompanyPage(company, cards, people)
@@ -351,7 +350,7 @@ def search(network: Network, query: SearchQuery) -> SearchResults:
         return SearchResults(query, (), (), ())
     people = tuple(
         p
-        for p in records.catalog_people(network.catalog).values()
+        for p in records.MEMBERS.everyone(network.catalog).values()
         if _contains(query.q, p.name, p.title, p.company.name if p.company else "")
     )
     companies = tuple(

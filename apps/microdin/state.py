@@ -10,14 +10,12 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from types import MappingProxyType
 from typing import Any
 
-from apps.kit.frozen import with_changed
+from apps.kit.frozen import EMPTY, CatalogState
 from apps.kit.social import Comment, Picture
 
 ENVIRONMENT = "microdin"
-EMPTY: Mapping = MappingProxyType({})
 
 CONNECTION_STATUSES = ("pending", "accepted", "ignored")
 NOTIFICATION_TYPES = ("like", "comment", "connection", "mention", "job", "profile_view", "other")
@@ -165,10 +163,8 @@ class ProfileStats:
 
 
 @dataclass(frozen=True)
-class Network:
-    # The catalog and the self user are inputs, not state: left out of equality so two folds of
-    # the same log compare equal cheaply.
-    catalog: Any = field(compare=False, repr=False)
+class Network(CatalogState):
+    # The self user is an input, not state (like the catalog): left out of equality.
     me: Person = field(compare=False, repr=False, default=Person("me", "Me"))
     posts: Mapping[str, Post] = field(default_factory=lambda: EMPTY)
     post_states: Mapping[str, PostState] = field(default_factory=lambda: EMPTY)
@@ -185,20 +181,7 @@ class Network:
     sections: tuple[ProfileSection, ...] = ()
 
 
-# --- building new states (reducers only) -----------------------------------------------------
-
-
-def with_state(network: Network, name: str, item_id: str, **changes: Any) -> Network:
-    """Change the user-side record `name[item_id]`; an id that is not there changes nothing."""
-    return with_changed(network, name, item_id, **changes)
-
-
-# --- questions --------------------------------------------------------------------------------
-
-
-def likes_now(network: Network, post_id: str) -> int:
-    """The post's like count including the self user's like (the original adjusts it ±1)."""
-    return network.posts[post_id].likes + int(network.post_states[post_id].is_liked)
+# --- questions (a post's likes, the thread with someone: apps.kit.feeds) -------------------------
 
 
 def all_comments(network: Network, post_id: str) -> tuple[Comment[Person], ...]:

@@ -15,10 +15,7 @@ from pathlib import Path
 from django.conf import settings
 
 from apps.microdin.environment import MICRODIN
-from apps.microdin.state import Network
-from apps.scenarios.format import parse_scenario
-from events.catalog import load_catalog
-from events.registry import ActionRejected, LoggedEvent, PayloadError, validate_payload
+from tests.kit import Cast
 
 ME = "user000"
 KUBERNETES_JOB = "job-09"
@@ -31,39 +28,12 @@ PRELOAD = {
 }
 LATE_JOB_AT = 120.0
 
-
-def catalog():
-    return load_catalog(Path(settings.SENTINEL_CATALOG_DIR))
-
-
-def scenario_event(type: str, payload: dict, *, at: float = 0.0, seq: int = 1) -> LoggedEvent:
-    return LoggedEvent(seq, at, "scenario", type, payload)
-
-
-def preloaded(**changes) -> Network:
-    """The network right after the cast's preload at t=0."""
-    network = MICRODIN.initial_state(catalog())
-    return MICRODIN.apply(network, scenario_event("preload_posts", {**PRELOAD, **changes}))
-
-
-def arrive(network: Network, type: str, payload: dict, at: float = LATE_JOB_AT) -> Network:
-    return MICRODIN.apply(network, scenario_event(type, payload, at=at, seq=2))
-
-
-def act(network: Network, name: str, payload: dict, *, at: float = 200.0) -> Network:
-    """Validate, decide and apply one agent action, as the core does (without a database)."""
-    action = MICRODIN.actions[name]
-    try:
-        validate_payload(action.schema, payload, what=f"action {name}")
-    except PayloadError as exc:
-        raise ActionRejected(str(exc)) from None
-    recorded = action.decide(network, dict(payload))
-    return MICRODIN.apply(network, LoggedEvent(100, at, "action", name, recorded))
-
-
-def cast_scenario(**overrides) -> dict:
-    """A run over the cast: preload at 0, the Kubernetes job at 120 (the condition)."""
-    data = {
+# A run over the cast: preload at 0, the Kubernetes job at 120 (the condition).
+CAST = Cast(
+    MICRODIN,
+    Path(settings.SENTINEL_CATALOG_DIR),
+    preload=("preload_posts", PRELOAD),
+    scenario={
         "id": "microdin-cast-kubernetes",
         "environment": "microdin",
         "start_page": "HOST_ADDRESS/microdin",
@@ -77,6 +47,7 @@ def cast_scenario(**overrides) -> dict:
         ],
         "eval_sql": f"SELECT EXISTS(SELECT 1 FROM job_states WHERE job_id='{KUBERNETES_JOB}' AND isApplied=1)",
         "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "active"},
-    }
-    data.update(overrides)
-    return parse_scenario(data, source="tests/microdin").to_run_spec()
+    },
+    acts_at=200.0,
+    arrives_at=LATE_JOB_AT,
+)

@@ -6,10 +6,11 @@ import sqlite3
 
 import pytest
 
+from apps.kit.feeds import likes_now
 from apps.microdin import state as net
 from apps.microdin.environment import MICRODIN
 from events.registry import ActionRejected
-from tests.microdin.cast import KUBERNETES_JOB, ME, act, arrive, preloaded
+from tests.microdin.cast import CAST, KUBERNETES_JOB, ME
 
 
 def tables(network) -> sqlite3.Connection:
@@ -19,7 +20,7 @@ def tables(network) -> sqlite3.Connection:
 
 
 def test_the_preload_keeps_catalog_read_flags_and_statuses():
-    network = preloaded()
+    network = CAST.preloaded()
     assert net.pending_connection_count(network) == 2
     assert net.unread_notification_count(network) == 1  # notif-11 is read in the catalog
     assert net.unread_in(network, "conv-02") == 2
@@ -28,29 +29,29 @@ def test_the_preload_keeps_catalog_read_flags_and_statuses():
 
 
 def test_a_new_job_arrives_newest_first_and_not_applied():
-    network = arrive(preloaded(), "new_job", {"job_id": KUBERNETES_JOB})
+    network = CAST.arrive(CAST.preloaded(), "new_job", {"job_id": KUBERNETES_JOB})
     assert net.newest_first(network.jobs, network.jobs, "posted_at")[0] == KUBERNETES_JOB
     assert network.job_states[KUBERNETES_JOB].is_applied is False
 
 
 def test_a_new_message_arrives_unread_in_its_thread():
-    network = act(preloaded(), "open_conversation", {"conversation_id": "conv-02"})
+    network = CAST.act(CAST.preloaded(), "open_conversation", {"conversation_id": "conv-02"})
     assert net.unread_in(network, "conv-02") == 0
-    network = arrive(network, "new_message", {"message_id": "msg-02-later"})
+    network = CAST.arrive(network, "new_message", {"message_id": "msg-02-later"})
     assert net.unread_in(network, "conv-02") == 1
     assert net.conversation_messages(network, "conv-02")[-1].id == "msg-02-later"
 
 
 def test_delivering_an_item_twice_changes_nothing():
-    network = act(preloaded(), "like_post", {"post_id": "post-01"})
-    again = arrive(network, "new_post", {"post_id": "post-01"})
+    network = CAST.act(CAST.preloaded(), "like_post", {"post_id": "post-01"})
+    again = CAST.arrive(network, "new_post", {"post_id": "post-01"})
     assert again == network
 
 
 def test_liking_moves_the_count_by_one_and_unliking_restores_it():
-    before = preloaded()
-    liked = act(before, "like_post", {"post_id": "post-01"})
-    assert net.likes_now(liked, "post-01") == net.likes_now(before, "post-01") + 1
+    before = CAST.preloaded()
+    liked = CAST.act(before, "like_post", {"post_id": "post-01"})
+    assert likes_now(liked, "post-01") == likes_now(before, "post-01") + 1
     row = (
         tables(liked)
         .execute(
@@ -58,36 +59,40 @@ def test_liking_moves_the_count_by_one_and_unliking_restores_it():
         )
         .fetchone()
     )
-    assert row == (net.likes_now(before, "post-01") + 1, 1)
-    assert act(liked, "unlike_post", {"post_id": "post-01"}) == before
+    assert row == (likes_now(before, "post-01") + 1, 1)
+    assert CAST.act(liked, "unlike_post", {"post_id": "post-01"}) == before
 
 
 def test_a_comment_is_added_under_the_post_by_the_self_user():
-    network = act(preloaded(), "comment_post", {"post_id": "post-01", "text": "Congratulations!"})
+    network = CAST.act(
+        CAST.preloaded(), "comment_post", {"post_id": "post-01", "text": "Congratulations!"}
+    )
     last = net.all_comments(network, "post-01")[-1]
     assert (last.author.id, last.text) == (ME, "Congratulations!")
 
 
 def test_an_empty_comment_or_message_is_refused_naming_the_field():
     with pytest.raises(ActionRejected, match="'text' is empty"):
-        act(preloaded(), "comment_post", {"post_id": "post-01", "text": "  "})
+        CAST.act(CAST.preloaded(), "comment_post", {"post_id": "post-01", "text": "  "})
     with pytest.raises(ActionRejected, match="'content' is empty"):
-        act(preloaded(), "send_message", {"conversation_id": "conv-02", "content": ""})
+        CAST.act(CAST.preloaded(), "send_message", {"conversation_id": "conv-02", "content": ""})
 
 
 def test_answering_an_invitation_sets_its_status_once():
-    network = act(preloaded(), "accept_connection", {"connection_id": "conn-01"})
-    network = act(network, "ignore_connection", {"connection_id": "conn-02"})
+    network = CAST.act(CAST.preloaded(), "accept_connection", {"connection_id": "conn-01"})
+    network = CAST.act(network, "ignore_connection", {"connection_id": "conn-02"})
     statuses = dict(tables(network).execute("SELECT connection_id, status FROM connection_states"))
     assert statuses == {"conn-01": "accepted", "conn-02": "ignored"}
     assert net.connections_count(network) == network.stats.connections + 1
     with pytest.raises(ActionRejected, match="already accepted") as refused:
-        act(network, "ignore_connection", {"connection_id": "conn-01"})
+        CAST.act(network, "ignore_connection", {"connection_id": "conn-01"})
     assert refused.value.status == 409
 
 
 def test_a_sent_message_is_stored_from_the_self_user_and_reads_the_thread():
-    network = act(preloaded(), "send_message", {"conversation_id": "conv-02", "content": "On it!"})
+    network = CAST.act(
+        CAST.preloaded(), "send_message", {"conversation_id": "conv-02", "content": "On it!"}
+    )
     assert net.unread_in(network, "conv-02") == 0
     sent = (
         tables(network)
@@ -101,38 +106,40 @@ def test_a_sent_message_is_stored_from_the_self_user_and_reads_the_thread():
 
 
 def test_starting_a_conversation_reuses_the_existing_thread_or_makes_one():
-    network = preloaded()
+    network = CAST.preloaded()
     decided = MICRODIN.actions["start_conversation"].decide(network, {"user_id": "user012"})
     assert decided["conversation_id"] == "conv-02"
-    network = act(network, "start_conversation", {"user_id": "user049"})
+    network = CAST.act(network, "start_conversation", {"user_id": "user049"})
     assert any(c.other.id == "user049" for c in network.conversations.values())
 
 
 def test_applying_is_once_and_unknown_or_future_jobs_are_404():
-    network = arrive(preloaded(), "new_job", {"job_id": KUBERNETES_JOB})
+    network = CAST.arrive(CAST.preloaded(), "new_job", {"job_id": KUBERNETES_JOB})
     with pytest.raises(ActionRejected) as missing:
-        act(preloaded(), "apply_job", {"job_id": KUBERNETES_JOB})  # not posted yet
+        CAST.act(CAST.preloaded(), "apply_job", {"job_id": KUBERNETES_JOB})  # not posted yet
     assert missing.value.status == 404
-    applied = act(network, "apply_job", {"job_id": KUBERNETES_JOB})
+    applied = CAST.act(network, "apply_job", {"job_id": KUBERNETES_JOB})
     assert net.applied_job_count(applied) == 1
     with pytest.raises(ActionRejected, match="already applied"):
-        act(applied, "apply_job", {"job_id": KUBERNETES_JOB})
+        CAST.act(applied, "apply_job", {"job_id": KUBERNETES_JOB})
 
 
 def test_reading_a_notification_lowers_the_badge():
-    network = act(preloaded(), "mark_notification_read", {"notification_id": "notif-01"})
+    network = CAST.act(CAST.preloaded(), "mark_notification_read", {"notification_id": "notif-01"})
     assert net.unread_notification_count(network) == 0
 
 
 def test_a_profile_section_needs_a_title_or_content():
-    network = act(preloaded(), "add_profile_section", {"type": "certification", "title": "CSPO"})
+    network = CAST.act(
+        CAST.preloaded(), "add_profile_section", {"type": "certification", "title": "CSPO"}
+    )
     assert [(s.type, s.title) for s in network.sections] == [("certification", "CSPO")]
     with pytest.raises(ActionRejected, match="'title'"):
-        act(network, "add_profile_section", {"type": "skill"})
+        CAST.act(network, "add_profile_section", {"type": "skill"})
 
 
 def test_baselines_are_the_originals_counts():
-    measured = MICRODIN.measure_baselines(preloaded(), 0.0)
+    measured = MICRODIN.measure_baselines(CAST.preloaded(), 0.0)
     assert dict(measured) == {
         "post_count": 2,
         "pending_connection_count": 2,
