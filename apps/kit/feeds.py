@@ -209,8 +209,15 @@ def profile_page(path: str) -> Callable[[Any, dict], PageStep]:
 
 
 def opening(
-    page: str, param: str, action: str, key: str, applies: Callable[[Any, str], bool]
+    page: str,
+    param: str,
+    action: str,
+    applies: Callable[[Any, str], bool],
+    *,
+    key: str | None = None,
 ) -> ImplicitAction:
     """Opening the page `page` with `param` (a thread, a post…) performs `action`
-    `{key: value}` when `applies(state, value)`: reloading an opened item changes nothing."""
-    return ImplicitAction(page, param, action, lambda value: {key: value}, applies)
+    `{key: value}` (`key` defaults to `param`) when `applies(state, value)`: reloading an opened
+    item changes nothing."""
+    field = key or param
+    return ImplicitAction(page, param, action, lambda value: {field: value}, applies)

@@ -302,11 +302,11 @@ MICRODIN = Environment(
             "messaging",
             "conversation",
             "open_conversation",
-            "conversation_id",
             lambda network, conversation_id: (
                 conversation_id in network.conversations
                 and network_state.unread_in(network, conversation_id) > 0
             ),
+            key="conversation_id",
         ),
     ),
     sample_pages=sample_pages,

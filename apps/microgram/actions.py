@@ -12,14 +12,15 @@ was client-only in the original and is logged here; so is reading activity.
 from __future__ import annotations
 
 import json
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import replace
 from types import MappingProxyType
 from urllib.parse import quote
 
 from pydantic import Field
 
-from apps.kit.deciding import checking, found, new_id, required_text
+from apps.kit import feeds
+from apps.kit.deciding import found, new_id
 from apps.kit.frozen import with_items
 from apps.kit.social import PostId, post_actions
 from apps.microgram.catalog import person
@@ -29,9 +30,7 @@ from apps.microgram.state import (
     SentMessage,
     UserComment,
     known_people,
-    thread_with,
     unread_in,
-    with_post_state,
 )
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
@@ -71,13 +70,6 @@ class Nothing(Payload):
 # --- posts -----------------------------------------------------------------------------------
 
 
-def setting_post(**changes: bool) -> Callable[[Gram, LoggedEvent], Gram]:
-    def reduce(gram: Gram, event: LoggedEvent) -> Gram:
-        return with_post_state(gram, event.payload["post_id"], **changes)
-
-    return reduce
-
-
 def reduce_comment(gram: Gram, event: LoggedEvent) -> Gram:
     p = event.payload
     if p["post_id"] not in gram.posts:
@@ -104,11 +96,6 @@ def reduce_read_conversation(gram: Gram, event: LoggedEvent) -> Gram:
     reads = dict(gram.read_messages)
     reads.update((m.id, True) for m in conversation.messages)
     return replace(gram, read_messages=MappingProxyType(reads))
-
-
-def decide_send(gram: Gram, payload: dict) -> dict:
-    found(gram.conversations, payload["conversation_id"], "conversation", WHERE)
-    return {**payload, "text": required_text(payload, "text"), "id": new_id("user-dm")}
 
 
 def reduce_send(gram: Gram, event: LoggedEvent) -> Gram:
@@ -140,7 +127,7 @@ def decide_start(gram: Gram, payload: dict) -> dict:
     """The thread with that person, else a new empty one — only with someone the self user
     follows (the original's New message dialog refused anyone else)."""
     user_id = payload["user_id"]
-    existing_thread = thread_with(gram, user_id)
+    existing_thread = feeds.thread_with(gram, user_id)
     if existing_thread is None:
         if user_id not in known_people(gram) or user_id == gram.me.id:
             raise ActionRejected(f"no member {user_id!r} to message on MicroGram", status=404)
@@ -149,12 +136,11 @@ def decide_start(gram: Gram, payload: dict) -> dict:
     return {**payload, "conversation_id": existing_thread or new_id("user-thread")}
 
 
-def reduce_start(gram: Gram, event: LoggedEvent) -> Gram:
+def new_thread(gram: Gram, event: LoggedEvent) -> Conversation:
+    """An empty thread with the person, its `data` as the original stored a new one."""
     p = event.payload
-    if p["conversation_id"] in gram.conversations:
-        return gram
     other = person(gram.catalog, p["user_id"])
-    conversation = Conversation(
+    return Conversation(
         id=p["conversation_id"],
         other=other,
         messages=(),
@@ -165,18 +151,17 @@ def reduce_start(gram: Gram, event: LoggedEvent) -> Gram:
         arrived_at=event.at,
         order=len(gram.conversations),
     )
-    return with_items(gram, "conversations", [(conversation.id, conversation)])
 
 
 def reduce_read_activity(gram: Gram, event: LoggedEvent) -> Gram:
     activity_id = event.payload["activity_id"]
-    if activity_id not in gram.activity or activity_id in gram.read_activity:
+    if gram.read_activity.get(activity_id) is not False:  # not there, or read already
         return gram
-    return replace(gram, read_activity=gram.read_activity | {activity_id})
+    return with_items(gram, "read_activity", [(activity_id, True)])
 
 
 def reduce_read_all_activity(gram: Gram, event: LoggedEvent) -> Gram:
-    return replace(gram, read_activity=frozenset(gram.activity))
+    return replace(gram, read_activity=MappingProxyType(dict.fromkeys(gram.activity, True)))
 
 
 # --- people ------------------------------------------------------------------------------------
@@ -208,30 +193,14 @@ def reduce_unfollow(gram: Gram, event: LoggedEvent) -> Gram:
 # out every scenario's solution through them (tests/environments/).
 
 
-def post_page(gram: Gram, payload: dict) -> PageStep:
-    found(gram.posts, payload["post_id"], "post", WHERE)
-    form = {"text": payload["text"]} if "text" in payload else {}
-    return PageStep(f"p/{quote(payload['post_id'])}/", form)
-
-
-def opened_post_page(gram: Gram, payload: dict) -> PageStep:
-    found(gram.posts, payload["post_id"], "post", WHERE)
-    return PageStep(f"p/{quote(payload['post_id'])}/", None)
+post_page = feeds.post_page("p/", WHERE)
+thread_page = feeds.thread_page(lambda thread_id: f"direct/t/{quote(thread_id)}/", "text", WHERE)
+profile_page = feeds.profile_page("profile/")
 
 
 def story_page(gram: Gram, payload: dict) -> PageStep:
     found(gram.stories, payload["story_id"], "story", WHERE)
     return PageStep(f"stories/{quote(payload['story_id'])}/", None)
-
-
-def thread_page(gram: Gram, payload: dict) -> PageStep:
-    found(gram.conversations, payload["conversation_id"], "conversation", WHERE)
-    form = {"text": payload["text"]} if "text" in payload else None
-    return PageStep(f"direct/t/{quote(payload['conversation_id'])}/", form)
-
-
-def profile_page(gram: Gram, payload: dict) -> PageStep:
-    return PageStep(f"profile/{quote(payload['user_id'])}/", {})
 
 
 def share_page(gram: Gram, payload: dict) -> PageStep:
@@ -245,49 +214,52 @@ def activity_page(gram: Gram, payload: dict) -> PageStep:
     return PageStep("activity/", form)
 
 
+def marking_post(help: str, page=post_page, **changes: bool) -> Action:
+    """A post's button: it sets fields of the post's user-side record (saved, viewed)."""
+    reduce = feeds.setting("post_states", "post_id", **changes)
+    return feeds.marking(PostId, "posts", "post_id", "post", WHERE, reduce, help=help, page=page)
+
+
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         **post_actions(
-            WHERE, lambda is_liked: setting_post(is_liked=is_liked), reduce_comment, post_page
+            WHERE,
+            lambda is_liked: feeds.setting("post_states", "post_id", is_liked=is_liked),
+            reduce_comment,
+            post_page,
         ),
-        "save_post": Action(
-            PostId,
-            checking("posts", "post_id", "post", WHERE),
-            setting_post(is_saved=True),
-            help="Save a post (it shows under Saved on your profile).",
-            page=post_page,
+        "save_post": marking_post(
+            "Save a post (it shows under Saved on your profile).", is_saved=True
         ),
-        "unsave_post": Action(
-            PostId,
-            checking("posts", "post_id", "post", WHERE),
-            setting_post(is_saved=False),
-            help="Remove a post from Saved.",
-            page=post_page,
+        "unsave_post": marking_post("Remove a post from Saved.", is_saved=False),
+        "view_post": marking_post(
+            "Open a post with its comments (what opening it does).",
+            page=feeds.post_page("p/", WHERE, form=False),
+            is_viewed=True,
         ),
-        "view_post": Action(
-            PostId,
-            checking("posts", "post_id", "post", WHERE),
-            setting_post(is_viewed=True),
-            help="Open a post with its comments (what opening it does).",
-            page=opened_post_page,
-        ),
-        "view_story": Action(
+        "view_story": feeds.marking(
             StoryId,
-            checking("stories", "story_id", "story", WHERE),
+            "stories",
+            "story_id",
+            "story",
+            WHERE,
             reduce_view_story,
             help="Watch a story (its ring turns grey).",
             page=story_page,
         ),
-        "read_conversation": Action(
+        "read_conversation": feeds.marking(
             ConversationId,
-            checking("conversations", "conversation_id", "conversation", WHERE),
+            "conversations",
+            "conversation_id",
+            "conversation",
+            WHERE,
             reduce_read_conversation,
             help="Open a DM thread; this marks its messages read.",
             page=thread_page,
         ),
         "send_message": Action(
             SendMessage,
-            decide_send,
+            feeds.sending("text", "user-dm", WHERE),
             reduce_send,
             help="Send a message in a DM thread.",
             page=thread_page,
@@ -302,16 +274,12 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         "start_conversation": Action(
             UserId,
             decide_start,
-            reduce_start,
+            feeds.starting(new_thread),
             help="Open the DM thread with a person you follow (a new one if there is none).",
             page=profile_page,
         ),
         "follow_user": Action(
-            UserId,
-            decide_follow,
-            reduce_follow,
-            help="Follow a member.",
-            page=profile_page,
+            UserId, decide_follow, reduce_follow, help="Follow a member.", page=profile_page
         ),
         "unfollow_user": Action(
             UserId,
@@ -320,9 +288,12 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Stop following a member.",
             page=profile_page,
         ),
-        "mark_activity_read": Action(
+        "mark_activity_read": feeds.marking(
             ActivityId,
-            checking("activity", "activity_id", "activity item", WHERE),
+            "activity",
+            "activity_id",
+            "activity item",
+            WHERE,
             reduce_read_activity,
             help="Mark one activity item read (what clicking it does).",
             page=activity_page,

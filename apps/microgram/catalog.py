@@ -15,13 +15,17 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping
+from functools import partial
 from typing import Any
 
 from apps.kit import social
+from apps.kit.arrivals import Stamp
+from apps.kit.feeds import Members, arrived_at, thread_messages
 from apps.microgram.state import (
     ENVIRONMENT,
     Activity,
     Conversation,
+    Gram,
     Message,
     Person,
     Post,
@@ -46,7 +50,9 @@ def table(catalog: Any, name: str) -> Mapping[str, Mapping[str, Any]]:
     return catalog.table(ENVIRONMENT, name)
 
 
-def member(user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]) -> Person:
+def member(
+    catalog: Any, user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]
+) -> Person:
     """A catalog user as MicroGram shows them; `profile` holds their numbers on MicroGram."""
     return Person(
         id=user_id,
@@ -61,19 +67,13 @@ def member(user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]) ->
     )
 
 
-def people(catalog: Any) -> Mapping[str, Person]:
-    """Every person of the catalog as MicroGram shows them (built once per catalog)."""
-    return social.members(catalog, ENVIRONMENT, member)
-
-
-def person(catalog: Any, user_id: str | None) -> Person:
-    found = catalog.index(people).get(user_id or "")
-    return found if found is not None else Person(str(user_id or ""), UNKNOWN, UNKNOWN)
-
-
-def self_person(catalog: Any) -> Person:
-    me = catalog.self_user
-    return person(catalog, me["id"]) if me else Person("me", "Me", "me")
+MEMBERS = Members(
+    ENVIRONMENT,
+    member,
+    unknown=lambda user_id: Person(user_id, UNKNOWN, UNKNOWN),
+    myself=Person("me", "Me", "me"),
+)
+person = MEMBERS.person  # (catalog, user id) → the member, or an unknown one
 
 
 def guess_subject(seed: str) -> str:
@@ -94,21 +94,22 @@ def max_order(catalog: Any, name: str) -> int:
     return max((int(r.get("order") or 0) for r in table(catalog, name).values()), default=0)
 
 
-def preload_age(catalog: Any, name: str, record: Mapping[str, Any]) -> float:
-    """Seconds before the preload the item appeared: `ageMinutes`, else the original's
-    fabricated age (10 minutes per order step below the table's highest order)."""
-    minutes = record.get("ageMinutes")
-    if minutes is None:
-        steps = catalog.index(_max_orders).get(name, 0) - int(record.get("order") or 0)
-        minutes = (steps + 1) * MINUTES_PER_ORDER_STEP
-    return float(minutes) * 60
-
-
 def _max_orders(catalog: Any) -> Mapping[str, int]:
     return {name: max_order(catalog, name) for name in ("posts", "stories", "messages", "activity")}
 
 
-def catalog_post(catalog: Any, post_id: str, *, posted_at: float) -> Post | None:
+def arrival(catalog: Any, name: str, record: Mapping[str, Any], stamp: Stamp) -> float:
+    """When the item appeared: now; preloaded, `ageMinutes` before the preload, else the
+    original's fabricated age (10 minutes per order step below the table's highest order)."""
+    steps = catalog.index(_max_orders).get(name, 0) - int(record.get("order") or 0)
+    return arrived_at(record, stamp, default_age_s=(steps + 1) * MINUTES_PER_ORDER_STEP * 60.0)
+
+
+# --- items as they arrive (each a `make` of apps.kit.arrivals.Delivery) --------------------------
+
+
+def catalog_post(gram: Gram, post_id: str, stamp: Stamp) -> Post | None:
+    catalog = gram.catalog
     record = table(catalog, "posts").get(post_id)
     if record is None:
         return None
@@ -119,14 +120,15 @@ def catalog_post(catalog: Any, post_id: str, *, posted_at: float) -> Post | None
         caption=str(record.get("caption") or ""),
         location=str(record.get("location") or ""),
         likes=int(record.get("likes") or 0),
-        comments=social.catalog_comments(record, post_id, lambda user_id: person(catalog, user_id)),
+        comments=social.catalog_comments(record, post_id, partial(person, catalog)),
         is_target=bool(record.get("isTargetPost")),
-        posted_at=posted_at,
+        posted_at=arrival(catalog, "posts", record, stamp),
         order=int(record.get("order") or 0),
     )
 
 
-def catalog_story(catalog: Any, story_id: str, *, posted_at: float) -> Story | None:
+def catalog_story(gram: Gram, story_id: str, stamp: Stamp) -> Story | None:
+    catalog = gram.catalog
     record = table(catalog, "stories").get(story_id)
     if record is None:
         return None
@@ -135,9 +137,31 @@ def catalog_story(catalog: Any, story_id: str, *, posted_at: float) -> Story | N
         author=person(catalog, record.get("authorId")),
         image=picture(record, "mediaUrl"),
         media_type=str(record.get("mediaType") or "image"),
-        posted_at=posted_at,
+        posted_at=arrival(catalog, "stories", record, stamp),
         order=int(record.get("order") or 0),
     )
+
+
+def catalog_activity(gram: Gram, activity_id: str, stamp: Stamp) -> tuple[Activity, bool] | None:
+    """An activity item and whether it is read: preloaded items keep the catalog's `isRead`
+    (older ones were seen before the task); what arrives later is unread."""
+    catalog = gram.catalog
+    record = table(catalog, "activity").get(activity_id)
+    if record is None:
+        return None
+    activity = Activity(
+        id=activity_id,
+        type=str(record.get("type") or "mention"),
+        actor=person(catalog, record.get("actorId")),
+        text=str(record.get("text") or ""),
+        target_post_id=record.get("targetPostId"),
+        posted_at=arrival(catalog, "activity", record, stamp),
+        order=int(record.get("order") or 0),
+    )
+    return activity, stamp.preloaded and bool(record.get("isRead"))
+
+
+# --- DM threads: one record per thread, its messages inside ---------------------------------------
 
 
 def conversation_data(catalog: Any, record: Mapping[str, Any]) -> str:
@@ -157,14 +181,11 @@ def conversation_data(catalog: Any, record: Mapping[str, Any]) -> str:
     return json.dumps(data, ensure_ascii=False)
 
 
-def catalog_conversation(
-    catalog: Any, conversation_id: str, *, arrived_at: float
-) -> Conversation | None:
+def catalog_conversation(gram: Gram, conversation_id: str, stamp: Stamp) -> Conversation | None:
+    catalog = gram.catalog
     record = table(catalog, "messages").get(conversation_id)
     if record is None:
         return None
-    me = self_person(catalog).id
-    others = [p for p in record.get("participantIds") or () if p != me]
     messages = tuple(
         Message(
             id=str(m["id"]),
@@ -177,49 +198,16 @@ def catalog_conversation(
     )
     return Conversation(
         id=conversation_id,
-        other=person(catalog, others[0] if others else None),
+        other=MEMBERS.other_in(catalog, record),
         messages=tuple(sorted(messages, key=lambda m: m.order)),
         last_message=str(record.get("lastMessage") or (messages[-1].text if messages else "")),
         data=conversation_data(catalog, record),
-        arrived_at=arrived_at,
+        arrived_at=arrival(catalog, "messages", record, stamp),
         order=int(record.get("order") or 0),
     )
 
 
 def initial_reads(catalog: Any, conversation_id: str) -> dict[str, bool]:
     """The read flag of each message as the catalog gives it (read when it says nothing)."""
-    record = table(catalog, "messages").get(conversation_id) or {}
-    return {
-        str(m["id"]): bool(m.get("isRead", True))
-        for m in record.get("messages") or ()
-        if isinstance(m, Mapping) and "id" in m
-    }
-
-
-# The original's wording for each kind of activity without its own text.
-ACTIVITY_PHRASES: Mapping[str, str] = {
-    "like": "liked your photo.",
-    "follow": "started following you.",
-    "comment": "commented:",
-    "mention": "mentioned you in a comment.",
-}
-
-
-def catalog_activity(catalog: Any, activity_id: str, *, posted_at: float) -> Activity | None:
-    record = table(catalog, "activity").get(activity_id)
-    if record is None:
-        return None
-    return Activity(
-        id=activity_id,
-        type=str(record.get("type") or "mention"),
-        actor=person(catalog, record.get("actorId")),
-        text=str(record.get("text") or ""),
-        target_post_id=record.get("targetPostId"),
-        posted_at=posted_at,
-        order=int(record.get("order") or 0),
-    )
-
-
-def activity_read(catalog: Any, activity_id: str) -> bool:
-    """Whether a preloaded activity item was already seen (the catalog's `isRead`)."""
-    return bool((table(catalog, "activity").get(activity_id) or {}).get("isRead"))
+    record = table(catalog, "messages").get(conversation_id)
+    return {str(m["id"]): bool(m.get("isRead", True)) for m in thread_messages(record)}

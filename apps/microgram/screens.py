@@ -10,7 +10,8 @@ import re
 from dataclasses import dataclass
 
 from apps.kit.derived import per_state
-from apps.microgram.catalog import people, person
+from apps.kit.feeds import likes_now
+from apps.microgram.catalog import MEMBERS, person
 from apps.microgram.state import (
     Activity,
     Conversation,
@@ -21,7 +22,6 @@ from apps.microgram.state import (
     comments_of,
     is_following,
     known_people,
-    likes_now,
     newest_first,
     unread_activity_count,
     unread_conversation_count,
@@ -161,7 +161,7 @@ def search_people(gram: Gram, q: str) -> tuple[Person, ...]:
         return ()
     found = (
         p
-        for p in gram.catalog.index(people).values()
+        for p in MEMBERS.everyone(gram.catalog).values()
         if p.id != gram.me.id
         and p.id in known_people(gram)
         and (needle in p.username.lower() or needle in p.name.lower())
@@ -224,7 +224,7 @@ def activity(gram: Gram) -> tuple[ActivityRow, ...]:
     return tuple(
         ActivityRow(
             item=a,
-            unread=a.id not in gram.read_activity,
+            unread=not gram.read_activity[a.id],
             post=gram.posts.get(a.target_post_id or ""),
             follows_back=is_following(gram, a.actor.id),
         )

@@ -10,15 +10,13 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from types import MappingProxyType
 from typing import Any
 
 from apps.kit.derived import per_state
-from apps.kit.frozen import with_changed
+from apps.kit.frozen import EMPTY, CatalogState
 from apps.kit.social import Comment, Picture
 
 ENVIRONMENT = "microgram"
-EMPTY: Mapping = MappingProxyType({})
 
 ACTIVITY_TYPES = ("like", "follow", "comment", "mention")
 
@@ -122,10 +120,8 @@ class UserComment:
 
 
 @dataclass(frozen=True)
-class Gram:
-    # The catalog and the self user are inputs, not state: left out of equality so two folds of
-    # the same log compare equal cheaply.
-    catalog: Any = field(compare=False, repr=False)
+class Gram(CatalogState):
+    # The self user is an input, not state (like the catalog): left out of equality.
     me: Person = field(compare=False, repr=False, default=Person("me", "Me", "me"))
     posts: Mapping[str, Post] = field(default_factory=lambda: EMPTY)
     post_states: Mapping[str, PostState] = field(default_factory=lambda: EMPTY)
@@ -135,26 +131,13 @@ class Gram:
     read_messages: Mapping[str, bool] = field(default_factory=lambda: EMPTY)  # nested id → read
     sent: tuple[SentMessage, ...] = ()
     activity: Mapping[str, Activity] = field(default_factory=lambda: EMPTY)
-    read_activity: frozenset[str] = frozenset()
+    read_activity: Mapping[str, bool] = field(default_factory=lambda: EMPTY)  # id → read
     followed: tuple[str, ...] = ()  # user ids, in the order followed
     user_comments: tuple[UserComment, ...] = ()
 
 
-# --- building new states (reducers only) -----------------------------------------------------
-
-
-def with_post_state(gram: Gram, post_id: str, **changes: Any) -> Gram:
-    """Change a post's user-side record; an id that is not there changes nothing."""
-    return with_changed(gram, "post_states", post_id, **changes)
-
-
-# --- questions --------------------------------------------------------------------------------
-
-
-def likes_now(gram: Gram, post_id: str) -> int:
-    """The post's like count with the self user's like counted once (the original's card
-    counted it twice: the server had already added it)."""
-    return gram.posts[post_id].likes + int(gram.post_states[post_id].is_liked)
+# --- questions (a post's likes, the thread with someone: apps.kit.feeds) ------------------------
+# (The original's card counted the self user's like twice: the server had already added it.)
 
 
 def comments_of(gram: Gram, post_id: str) -> tuple[Comment[Person], ...]:
@@ -177,11 +160,6 @@ def unread_in(gram: Gram, conversation_id: str) -> int:
     if conversation is None:
         return 0
     return sum(1 for m in conversation.messages if not gram.read_messages.get(m.id, True))
-
-
-def thread_with(gram: Gram, user_id: str) -> str | None:
-    """The DM thread with that person, if there is one."""
-    return next((c.id for c in gram.conversations.values() if c.other.id == user_id), None)
 
 
 def is_following(gram: Gram, user_id: str) -> bool:
@@ -228,7 +206,7 @@ def story_viewed_count(gram: Gram) -> int:
 
 
 def unread_activity_count(gram: Gram) -> int:
-    return sum(1 for i in gram.activity if i not in gram.read_activity)
+    return sum(1 for read in gram.read_activity.values() if not read)
 
 
 def unread_conversation_count(gram: Gram) -> int:

@@ -10,6 +10,7 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
+from apps.kit.feeds import thread_with
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.post_actions import act_on_post
 from apps.kit.rendering import (
@@ -21,7 +22,7 @@ from apps.kit.rendering import (
 from apps.microgram import screens
 from apps.microgram.catalog import person
 from apps.microgram.query import ExploreQuery, FeedQuery, ProfileQuery, SearchQuery
-from apps.microgram.state import Gram, comments_of, is_following, known_people, thread_with
+from apps.microgram.state import Gram, comments_of, is_following, known_people
 
 POST_ACTIONS = {
     "like_post": "",

@@ -15,10 +15,7 @@ from pathlib import Path
 from django.conf import settings
 
 from apps.microgram.environment import MICROGRAM
-from apps.microgram.state import Gram
-from apps.scenarios.format import parse_scenario
-from events.catalog import load_catalog
-from events.registry import ActionRejected, LoggedEvent, PayloadError, validate_payload
+from tests.kit import Cast
 
 ME = "user000"
 MARCO = "user012"
@@ -34,39 +31,12 @@ PRELOAD = {
 }
 ARRIVES_AT = 120.0
 
-
-def catalog():
-    return load_catalog(Path(settings.SENTINEL_CATALOG_DIR))
-
-
-def scenario_event(type: str, payload: dict, *, at: float = 0.0, seq: int = 1) -> LoggedEvent:
-    return LoggedEvent(seq, at, "scenario", type, payload)
-
-
-def preloaded(**changes) -> Gram:
-    """The app right after the cast's preload at t=0."""
-    gram = MICROGRAM.initial_state(catalog())
-    return MICROGRAM.apply(gram, scenario_event("preload_posts", {**PRELOAD, **changes}))
-
-
-def arrive(gram: Gram, type: str, payload: dict, at: float = ARRIVES_AT) -> Gram:
-    return MICROGRAM.apply(gram, scenario_event(type, payload, at=at, seq=2))
-
-
-def act(gram: Gram, name: str, payload: dict, *, at: float = 200.0) -> Gram:
-    """Validate, decide and apply one agent action, as the core does (without a database)."""
-    action = MICROGRAM.actions[name]
-    try:
-        validate_payload(action.schema, payload, what=f"action {name}")
-    except PayloadError as exc:
-        raise ActionRejected(str(exc)) from None
-    recorded = action.decide(gram, dict(payload))
-    return MICROGRAM.apply(gram, LoggedEvent(100, at, "action", name, recorded))
-
-
-def cast_scenario(**overrides) -> dict:
-    """A run over the cast: preload at 0; Marco's post and Rosa's thread at 120 (the condition)."""
-    data = {
+# A run over the cast: preload at 0; Marco's post and Rosa's thread at 120 (the condition).
+CAST = Cast(
+    MICROGRAM,
+    Path(settings.SENTINEL_CATALOG_DIR),
+    preload=("preload_posts", PRELOAD),
+    scenario={
         "id": "microgram-cast-mockup",
         "environment": "microgram",
         "start_page": "HOST_ADDRESS/microgram",
@@ -81,6 +51,7 @@ def cast_scenario(**overrides) -> dict:
         ],
         "eval_sql": f"SELECT EXISTS(SELECT 1 FROM post_states WHERE post_id='{DESK}' AND isLiked=1)",
         "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "active"},
-    }
-    data.update(overrides)
-    return parse_scenario(data, source="tests/microgram").to_run_spec()
+    },
+    acts_at=200.0,
+    arrives_at=ARRIVES_AT,
+)
