@@ -14,12 +14,15 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
-from typing import Any, Literal
+from typing import Literal
 from urllib.parse import urlencode
 
 from pydantic import Field
 
-from apps.kit.deciding import found, new_id
+from apps.kit.changing import setting
+from apps.kit.deciding import checking, found, new_id
+from apps.kit.frozen import with_changed, with_items
+from apps.kit.without import without
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import (
     FOLDERS,
@@ -28,10 +31,7 @@ from apps.micromail.state import (
     EmailState,
     Mail,
     attachment_shelf,
-    with_emails,
     with_favorite,
-    with_state,
-    without_email,
 )
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
@@ -50,27 +50,19 @@ class Move(EmailId):
     folder: Literal[FOLDERS]
 
 
+IN_MAILBOX = ("email", "in this mailbox")
+
+
 def existing_email(mail: Mail, email_id: str) -> Email:
     """The message, or a 404: unknown, purged and not-yet-arrived ids look the same."""
-    return found(mail.emails, email_id, "email", "in this mailbox")
+    return found(mail.emails, email_id, *IN_MAILBOX)
 
 
-def decide_on_email(mail: Mail, payload: dict) -> dict:
-    existing_email(mail, payload["email_id"])
-    return payload
-
-
-def setting(**changes: Any) -> Callable[[Mail, LoggedEvent], Mail]:
-    """A reducer that sets fields of the message's state (read, flagged, pinned)."""
-
-    def reduce(mail: Mail, event: LoggedEvent) -> Mail:
-        return with_state(mail, event.payload["email_id"], **changes)
-
-    return reduce
+decide_on_email = checking("emails", "email_id", *IN_MAILBOX)
 
 
 def reduce_move(mail: Mail, event: LoggedEvent) -> Mail:
-    return with_state(mail, event.payload["email_id"], folder=event.payload["folder"])
+    return with_changed(mail, "states", event.payload["email_id"], folder=event.payload["folder"])
 
 
 def decide_delete(mail: Mail, payload: dict) -> dict:
@@ -83,8 +75,8 @@ def reduce_delete(mail: Mail, event: LoggedEvent) -> Mail:
     """Move to Deleted Items; from Deleted Items or Drafts, purge the message for good."""
     email_id = event.payload["email_id"]
     if event.payload.get("permanent"):
-        return without_email(mail, email_id)
-    return with_state(mail, email_id, folder="deleted")
+        return without(mail, email_id, "emails", "states")
+    return with_changed(mail, "states", email_id, folder="deleted")
 
 
 # --- composing ------------------------------------------------------------------------------------
@@ -192,19 +184,25 @@ def written_by_self(mail: Mail, event: LoggedEvent) -> Email:
     )
 
 
+def filed(mail: Mail, email: Email, folder: str) -> Mail:
+    """Mail the self user wrote, in `folder`: read (one's own words), in place of an email with
+    the same id (a draft edited again)."""
+    mail = with_items(mail, "emails", [(email.id, email)])
+    return with_items(mail, "states", [(email.id, EmailState(folder=folder, is_read=True))])
+
+
 def reduce_send(mail: Mail, event: LoggedEvent) -> Mail:
-    """The message lands in Sent Items, read; a draft it was written from is removed."""
+    """The message lands in Sent Items; a draft it was written from is removed."""
     sent = written_by_self(mail, event)  # before the draft goes: its attachments come along
     draft_id = event.payload.get("draft_id")
     if draft_id:
-        mail = without_email(mail, draft_id)
-    return with_emails(mail, [(sent, EmailState(folder="sent", is_read=True))])
+        mail = without(mail, draft_id, "emails", "states")
+    return filed(mail, sent, "sent")
 
 
 def reduce_save_draft(mail: Mail, event: LoggedEvent) -> Mail:
     """Create a draft, or replace the content of the draft it edits (same id)."""
-    draft = written_by_self(mail, event)
-    return with_emails(mail, [(draft, EmailState(folder="drafts", is_read=True))])
+    return filed(mail, written_by_self(mail, event), "drafts")
 
 
 # --- favorites ------------------------------------------------------------------------------------
@@ -279,37 +277,36 @@ def favorites_page(mail: Mail, payload: dict) -> PageStep:
     return PageStep(MailboxQuery().querystring(), {"folder": payload["folder"]})
 
 
+pane_button = reading_pane()  # the action's button in the open message's reading pane
+
+
+def marked(page: Callable[[Mail, dict], PageStep] = pane_button, **flags: bool) -> Action:
+    """An action that sets flags of one message (read, flagged, pinned): set, not toggled."""
+    return Action(EmailId, decide_on_email, setting("states", "email_id", **flags), page=page)
+
+
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         "open_email": Action(
             EmailId,
             decide_on_email,
-            setting(is_read=True),
+            setting("states", "email_id", is_read=True),
             help="Open a message; like any mail client this marks it read.",
             page=open_page,
         ),
-        "mark_read": Action(
-            EmailId, decide_on_email, setting(is_read=True), page=bulk_mark_read_page
-        ),
-        "mark_unread": Action(
-            EmailId, decide_on_email, setting(is_read=False), page=reading_pane()
-        ),
-        "flag": Action(EmailId, decide_on_email, setting(is_flagged=True), page=reading_pane()),
-        "unflag": Action(EmailId, decide_on_email, setting(is_flagged=False), page=reading_pane()),
-        "pin": Action(EmailId, decide_on_email, setting(is_pinned=True), page=reading_pane()),
-        "unpin": Action(EmailId, decide_on_email, setting(is_pinned=False), page=reading_pane()),
-        "move": Action(
-            Move,
-            decide_on_email,
-            reduce_move,
-            page=reading_pane("folder"),
-        ),
+        "mark_read": marked(bulk_mark_read_page, is_read=True),
+        "mark_unread": marked(is_read=False),
+        "flag": marked(is_flagged=True),
+        "unflag": marked(is_flagged=False),
+        "pin": marked(is_pinned=True),
+        "unpin": marked(is_pinned=False),
+        "move": Action(Move, decide_on_email, reduce_move, page=reading_pane("folder")),
         "delete": Action(
             EmailId,
             decide_delete,
             reduce_delete,
             help="Move to Deleted Items; from Deleted Items or Drafts, delete permanently.",
-            page=reading_pane(),
+            page=pane_button,
         ),
         "send": Action(
             Compose,

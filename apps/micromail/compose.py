@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 from apps.kit.simclock import clock_time
 from apps.micromail.actions import existing_email
@@ -16,6 +17,7 @@ from apps.micromail.state import Email, Mail
 from events.registry import ActionRejected
 
 COMPOSE_MODES: tuple[str, ...] = ("new", "reply", "reply_all", "forward", "draft")
+ADDRESS_FIELDS = ("to", "cc", "bcc")
 _SEPARATORS = re.compile(r"[,;]")
 
 
@@ -29,6 +31,29 @@ class Composition:
     body: str = ""
     attachments: tuple[str, ...] = ()  # ids of documents in the mailbox (attachment_shelf)
     draft_id: str | None = None  # set when editing a draft: sending or saving replaces it
+
+    @classmethod
+    def typed(cls, form: Any) -> Composition:
+        """What was typed in the compose form (its POST data), to act on or to show again."""
+        draft_id = form.get("draft_id") or None
+        return cls(
+            "draft" if draft_id else "new",
+            *(tuple(split_addresses(form.get(field, ""))) for field in ADDRESS_FIELDS),
+            subject=form.get("subject", ""),
+            body=form.get("body", ""),
+            attachments=tuple(form.getlist("attachments")),
+            draft_id=draft_id,
+        )
+
+    def payload(self) -> dict:
+        """The `send` or `save_draft` payload of this composition."""
+        payload = {field: list(getattr(self, field)) for field in ADDRESS_FIELDS}
+        payload.update(subject=self.subject, body=self.body, attachments=list(self.attachments))
+        return {**payload, "draft_id": self.draft_id} if self.draft_id else payload
+
+    def address_fields(self) -> dict[str, str]:
+        """The address fields as typed: one text per field."""
+        return {field: join_addresses(getattr(self, field)) for field in ADDRESS_FIELDS}
 
 
 def split_addresses(text: str) -> list[str]:

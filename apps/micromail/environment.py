@@ -14,7 +14,7 @@ from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
 from apps.micromail.catalog import catalog_email, catalog_state
-from apps.micromail.state import ENVIRONMENT, Email, EmailState, Mail, empty_mail
+from apps.micromail.state import ENVIRONMENT, Email, EmailState, Mail
 from events.registry import Environment, ImplicitAction, counted
 
 # Upstream stamps preloaded mail "five minutes before start", so the list reads "5 min ago".
@@ -97,7 +97,7 @@ materialize = tables(
 MICROMAIL = Environment(
     name=ENVIRONMENT,
     title="MicroMail",
-    initial_state=empty_mail,
+    initial_state=Mail.of,
     event_types=EVENT_TYPES,
     actions=ACTIONS,
     baselines=BASELINES,

@@ -116,12 +116,23 @@ def row_label(email: Email, state: EmailState, ago: str) -> str:
     return " ".join(f"{part[:1].upper()}{part[1:].rstrip('.')}." for part in parts if part)
 
 
-_PICTURES = {
-    **dict.fromkeys(("png", "jpg", "jpeg", "gif", "webp", "svg"), "screenshot"),
-    **dict.fromkeys(("xlsx", "xls", "csv", "numbers"), "chart"),
-    **dict.fromkeys(("pptx", "ppt", "key"), "whiteboard"),
+# A file's kind by its extension: the colour of its icon (Office's: red PDF, blue Word…) and
+# how its preview shows it.
+FILE_KINDS = {
+    "pdf": "pdf",
+    **dict.fromkeys(("doc", "docx", "txt", "md", "rtf", "odt"), "doc"),
+    **dict.fromkeys(("xls", "xlsx", "csv", "numbers"), "sheet"),
+    **dict.fromkeys(("ppt", "pptx", "key"), "slides"),
+    **dict.fromkeys(("png", "jpg", "jpeg", "gif", "webp", "svg"), "image"),
+    **dict.fromkeys(("zip", "7z", "tar", "gz"), "archive"),
 }
-_DOCUMENTS = ("pdf", "docx", "doc", "txt", "md", "rtf", "odt")
+PICTURED = {"image": "screenshot", "sheet": "chart", "slides": "whiteboard"}  # apps/media subjects
+DOCUMENTS = ("pdf", "doc")
+
+
+def file_kind(name: str) -> str:
+    extension = name.rsplit(".", 1)[-1].lower() if "." in name else ""
+    return FILE_KINDS.get(extension, "file")
 
 
 def document_title(name: str) -> str:
@@ -145,11 +156,10 @@ def document_lines(body: str) -> tuple[str, ...]:
 def preview_of(email: Email, attachment: Attachment, close_url: str) -> Preview:
     """How the attachment previews, by its file type. A document shows the text it came with
     (the message's paragraphs under the document's title): no file content exists."""
-    extension = attachment.name.rsplit(".", 1)[-1].lower() if "." in attachment.name else ""
-    title = document_title(attachment.name)
-    if extension in _PICTURES:
-        return Preview(attachment, "picture", _PICTURES[extension], title, (), close_url)
-    if extension in _DOCUMENTS:
+    kind, title = file_kind(attachment.name), document_title(attachment.name)
+    if kind in PICTURED:
+        return Preview(attachment, "picture", PICTURED[kind], title, (), close_url)
+    if kind in DOCUMENTS:
         return Preview(attachment, "document", "", title, document_lines(email.body), close_url)
     return Preview(attachment, "none", "", title, (), close_url)
 

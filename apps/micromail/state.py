@@ -7,12 +7,12 @@ never mutated: a reducer returns a new `Mail` (cheap copies of small dicts). Eve
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
-from typing import Any
+from typing import ClassVar
 
-from apps.kit.frozen import CatalogState, with_changed, with_items
+from apps.kit.self_user import SelfUserState
 
 ENVIRONMENT = "micromail"
 
@@ -32,9 +32,6 @@ QUICK_FILTERS: tuple[str, ...] = ("all", "unread", "flagged", "mentions")
 # The original's Favorites section, top of the folder pane; the user may add and remove folders.
 DEFAULT_FAVORITES: tuple[str, ...] = ("inbox", "sent", "archive", "deleted")
 PREVIEW_LENGTH = 140
-
-# Used only when a catalog has no user marked isSelf (e.g. a minimal test catalog).
-FALLBACK_SELF: Mapping[str, Any] = MappingProxyType({"name": "Me", "email": "me@micromail.local"})
 
 EMPTY: Mapping = MappingProxyType({})
 
@@ -88,22 +85,14 @@ class EmailState:
 
 
 @dataclass(frozen=True)
-class Mail(CatalogState):
-    # The self user is an input, like the catalog: excluded from equality.
-    self_user: Mapping[str, Any] = field(
-        compare=False, repr=False, default_factory=lambda: FALLBACK_SELF
+class Mail(SelfUserState):
+    # Used only when a catalog has no user marked isSelf (e.g. a minimal test catalog).
+    FALLBACK: ClassVar[Mapping[str, str]] = MappingProxyType(
+        {"name": "Me", "email": "me@micromail.local"}
     )
     emails: Mapping[str, Email] = field(default_factory=lambda: EMPTY)  # in delivery order
     states: Mapping[str, EmailState] = field(default_factory=lambda: EMPTY)
     favorites: tuple[str, ...] = DEFAULT_FAVORITES  # folders, in the order they were added
-
-    @property
-    def self_name(self) -> str:
-        return str(self.self_user.get("name") or FALLBACK_SELF["name"])
-
-    @property
-    def self_email(self) -> str:
-        return str(self.self_user.get("email") or FALLBACK_SELF["email"])
 
     def has(self, email_id: str) -> bool:
         return email_id in self.emails
@@ -112,32 +101,7 @@ class Mail(CatalogState):
         return self.states[email_id].folder
 
 
-def empty_mail(catalog: Any) -> Mail:
-    return Mail(catalog=catalog, self_user=getattr(catalog, "self_user", None) or FALLBACK_SELF)
-
-
 # --- building new states (used by reducers only) --------------------------------------------
-
-
-def with_emails(mail: Mail, arrivals: Iterable[tuple[Email, EmailState]]) -> Mail:
-    """Add or replace messages, keeping delivery order for ids already present."""
-    arrivals = list(arrivals)
-    mail = with_items(mail, "emails", [(email.id, email) for email, _ in arrivals])
-    return with_items(mail, "states", [(email.id, state) for email, state in arrivals])
-
-
-def with_state(mail: Mail, email_id: str, **changes: Any) -> Mail:
-    """Change a message's flags or folder; an id that is gone leaves the mailbox as it is."""
-    return with_changed(mail, "states", email_id, **changes)
-
-
-def without_email(mail: Mail, email_id: str) -> Mail:
-    """Purge a message: gone from every folder and from the evaluation tables."""
-    if email_id not in mail.emails:
-        return mail
-    emails = {k: v for k, v in mail.emails.items() if k != email_id}
-    states = {k: v for k, v in mail.states.items() if k != email_id}
-    return replace(mail, emails=MappingProxyType(emails), states=MappingProxyType(states))
 
 
 def with_favorite(mail: Mail, folder: str, *, on: bool) -> Mail:
@@ -161,41 +125,20 @@ def attachment_shelf(mail: Mail) -> tuple[Attachment, ...]:
 # --- counts (baselines and badges) ---------------------------------------------------------------
 
 
-def _count(mail: Mail, predicate) -> int:
-    return sum(1 for i, s in mail.states.items() if predicate(mail.emails[i], s))
+def counting(predicate: Callable[[Email, EmailState], bool]) -> Callable[[Mail], int]:
+    """The count of messages for which `predicate(email, state)` holds."""
+    return lambda mail: sum(1 for i, s in mail.states.items() if predicate(mail.emails[i], s))
 
 
-def inbox_count(mail: Mail) -> int:
-    return _count(mail, lambda e, s: s.folder == "inbox")
-
-
-def unread_count(mail: Mail) -> int:
-    """Unread messages in the inbox (upstream's definition, also the Inbox badge)."""
-    return _count(mail, lambda e, s: s.folder == "inbox" and not s.is_read)
-
-
-def junk_count(mail: Mail) -> int:
-    return _count(mail, lambda e, s: s.folder == "junk")
-
-
-def attachment_count(mail: Mail) -> int:
-    return _count(mail, lambda e, s: e.has_attachment and s.folder != "deleted")
-
-
-def external_count(mail: Mail) -> int:
-    return _count(mail, lambda e, s: e.is_external and s.folder == "inbox")
-
-
-def urgent_count(mail: Mail) -> int:
-    return _count(mail, lambda e, s: e.importance == "high" and s.folder == "inbox")
-
-
-def mention_count(mail: Mail) -> int:
-    return _count(mail, lambda e, s: e.mentions_me and s.folder == "inbox")
-
-
-def cc_count(mail: Mail) -> int:
-    return _count(mail, lambda e, s: e.is_cc and s.folder == "inbox")
+# Upstream's definitions (eval_sql reads them as baselines); unread_count is also the Inbox badge.
+inbox_count = counting(lambda e, s: s.folder == "inbox")
+unread_count = counting(lambda e, s: s.folder == "inbox" and not s.is_read)
+junk_count = counting(lambda e, s: s.folder == "junk")
+attachment_count = counting(lambda e, s: e.has_attachment and s.folder != "deleted")
+external_count = counting(lambda e, s: e.is_external and s.folder == "inbox")
+urgent_count = counting(lambda e, s: e.importance == "high" and s.folder == "inbox")
+mention_count = counting(lambda e, s: e.mentions_me and s.folder == "inbox")
+cc_count = counting(lambda e, s: e.is_cc and s.folder == "inbox")
 
 
 def folder_badges(mail: Mail) -> dict[str, int]:

@@ -15,13 +15,7 @@ from django.views.decorators.http import require_GET, require_http_methods, requ
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.rendering import is_fragment, redirect_to, render_screen
 from apps.micromail.actions import existing_email
-from apps.micromail.compose import (
-    COMPOSE_MODES,
-    Composition,
-    join_addresses,
-    prefill,
-    split_addresses,
-)
+from apps.micromail.compose import COMPOSE_MODES, Composition, prefill
 from apps.micromail.query import MailboxQuery
 from apps.micromail.screens import (
     attachment_choices,
@@ -76,9 +70,7 @@ def base_context(page: Page, current_folder: str | None, back: str = "") -> dict
     }
 
 
-def render_mailbox(
-    request: HttpRequest, page: Page, query: MailboxQuery, status: int = 200
-) -> HttpResponse:
+def render_mailbox(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpResponse:
     screen = mailbox_screen(page.state, query, root_url(page))
     context = {
         **base_context(page, query.folder, screen.back),
@@ -86,7 +78,7 @@ def render_mailbox(
         "query": query,
         "self_url": root_url(page) + query.querystring(),
     }
-    return render_screen(request, page, "micromail/mailbox.html", context, status=status)
+    return render_screen(request, page, "micromail/mailbox.html", context)
 
 
 def back_to(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpResponse:
@@ -118,11 +110,6 @@ def _payload(action: str, email_id: str, request: HttpRequest) -> dict:
     return payload
 
 
-def _check_action(action: str | None) -> str:
-    one_of(action, EMAIL_ACTIONS, "email action")
-    return action
-
-
 def _confirmation(action: str, request: HttpRequest, count: int, permanent: bool = False) -> str:
     what = "1 email" if count == 1 else f"{count} emails"
     if action == "move":
@@ -139,36 +126,36 @@ def _returning(request: HttpRequest, action: str, acted_on: list[str]) -> Mailbo
     return back
 
 
+def act_on_emails(request: HttpRequest, page: Page, action: str, ids: list[str]) -> HttpResponse:
+    """`action` on each message of `ids` (move also takes the form's `folder`), then back to
+    the screen the form was on."""
+    permanent = False
+    for email_id in ids:
+        event = page.act(action, _payload(action, email_id, request))
+        permanent |= event.payload.get("permanent", False)
+    messages.success(request, _confirmation(action, request, len(ids), permanent))
+    return back_to(request, page, _returning(request, action, ids))
+
+
 @require_POST
 @run_page
 def email_action(request: HttpRequest, page: Page, email_id: str, action: str) -> HttpResponse:
     """`POST emails/<id>/<action>` (move also takes `folder`), then back to the same screen."""
-    action = _check_action(action)
-    event = page.act(action, _payload(action, email_id, request))
-    messages.success(
-        request, _confirmation(action, request, 1, event.payload.get("permanent", False))
-    )
-    return back_to(request, page, _returning(request, action, [email_id]))
+    return act_on_emails(request, page, one_of(action, EMAIL_ACTIONS, "email action"), [email_id])
 
 
 @require_POST
 @run_page
 def bulk_action(request: HttpRequest, page: Page) -> HttpResponse:
     """The checked messages (`ids`), one action each; all ids are checked before any acts."""
-    action = _check_action(request.POST.get("action"))
+    action = one_of(request.POST.get("action"), EMAIL_ACTIONS, "email action")
     ids = list(dict.fromkeys(request.POST.getlist("ids")))
     if not ids:
         messages.info(request, "Select at least one email first.")
         return back_to(request, page, _returning(request, action, []))
     for email_id in ids:
         existing_email(page.state, email_id)
-    permanent = False
-    for email_id in ids:
-        permanent |= page.act(action, _payload(action, email_id, request)).payload.get(
-            "permanent", False
-        )
-    messages.success(request, _confirmation(action, request, len(ids), permanent))
-    return back_to(request, page, _returning(request, action, ids))
+    return act_on_emails(request, page, action, ids)
 
 
 @require_POST
@@ -185,29 +172,6 @@ def favorite_action(request: HttpRequest, page: Page) -> HttpResponse:
     return back_to(request, page, MailboxQuery.from_querystring(request.POST.get("back", "")))
 
 
-def _typed(request: HttpRequest) -> dict:
-    payload = {
-        "to": split_addresses(request.POST.get("to", "")),
-        "cc": split_addresses(request.POST.get("cc", "")),
-        "bcc": split_addresses(request.POST.get("bcc", "")),
-        "subject": request.POST.get("subject", ""),
-        "body": request.POST.get("body", ""),
-        "attachments": request.POST.getlist("attachments"),
-    }
-    if request.POST.get("draft_id"):
-        payload["draft_id"] = request.POST["draft_id"]
-    return payload
-
-
-def address_fields(composition: Composition) -> dict:
-    """The address fields as typed: one text per field."""
-    return {
-        "to": join_addresses(composition.to),
-        "cc": join_addresses(composition.cc),
-        "bcc": join_addresses(composition.bcc),
-    }
-
-
 def render_compose(
     request: HttpRequest,
     page: Page,
@@ -219,7 +183,7 @@ def render_compose(
     chosen = set(composition.attachments)
     context = {
         **base_context(page, None),
-        **address_fields(composition),
+        **composition.address_fields(),
         "composition": composition,
         "attachment_choices": [(a, a.id in chosen) for a in attachment_choices(page.state)],
         "error": error,
@@ -248,17 +212,16 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
         raise ActionRejected(
             f"intent={intent!r} is not valid; allowed: {', '.join(COMPOSE_INTENTS)}"
         )
-    payload = _typed(request)
-    typed = _as_typed(payload)
+    typed = Composition.typed(request.POST)
     if intent == "edit":  # back from the discard confirmation: the form as it was
         return render_compose(request, page, typed)
     if intent == "discard":
-        context = {**base_context(page, None), **address_fields(typed), "typed": typed}
+        context = {**base_context(page, None), **typed.address_fields(), "typed": typed}
         return render_screen(request, page, "micromail/discard.html", context)
     if intent == "discard_confirmed":
         return discard(request, page, typed)
     try:
-        event = page.act(intent, payload)
+        event = page.act(intent, typed.payload())
     except ActionRejected as exc:
         if request.headers.get(AUTOSAVE_HEADER):
             return JsonResponse({"error": str(exc)}, status=exc.status)
@@ -272,20 +235,6 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
         )
     messages.success(request, "Draft saved")
     return redirect_to(page, MailboxQuery(folder="drafts").querystring())
-
-
-def _as_typed(payload: dict) -> Composition:
-    """What was typed in the compose form, to show it again."""
-    return Composition(
-        mode="draft" if payload.get("draft_id") else "new",
-        to=tuple(payload["to"]),
-        cc=tuple(payload["cc"]),
-        bcc=tuple(payload["bcc"]),
-        subject=payload["subject"],
-        body=payload["body"],
-        attachments=tuple(payload["attachments"]),
-        draft_id=payload.get("draft_id"),
-    )
 
 
 def discard(request: HttpRequest, page: Page, typed: Composition) -> HttpResponse:
