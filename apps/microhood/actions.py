@@ -10,17 +10,19 @@ explicit add/remove instead of the original's toggle, so a repeated request cann
 
 from __future__ import annotations
 
-import uuid
 from collections.abc import Mapping
+from dataclasses import replace
 from types import MappingProxyType
 from typing import Literal
 
 from pydantic import Field
 
+from apps.kit.deciding import found, new_id
+from apps.kit.frozen import with_items
 from apps.microhood import state as account
 from apps.microhood.catalog import watch_row
 from apps.microhood.orders import fill_price, marketable, settle, with_fill
-from apps.microhood.state import ORDER_TYPES, SIDES, Hood, Order, changed
+from apps.microhood.state import ORDER_TYPES, SIDES, Hood, Order, Stock, WatchRow
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
@@ -40,10 +42,8 @@ class CancelOrder(Payload):
     order_id: str = Field(description="id of a resting limit order")
 
 
-def listed(hood: Hood, symbol: str) -> str:
-    if not hood.has_stock(symbol):
-        raise ActionRejected(f"no stock {symbol!r} is listed", status=404)
-    return symbol
+def listed(hood: Hood, symbol: str) -> Stock:
+    return found(hood.stocks, symbol, "stock", "is listed")
 
 
 def new_order(payload: Mapping, at: float) -> Order:
@@ -94,7 +94,7 @@ def decide_place_order(hood: Hood, payload: dict, now: float) -> dict:
     else:
         payload["limit_price"] = None
     payload = {
-        "id": f"ord-{uuid.uuid4().hex[:10]}",
+        "id": new_id("ord"),
         **payload,
         "type": payload.get("type") or "market",
     }
@@ -108,10 +108,10 @@ def reduce_place_order(hood: Hood, event: LoggedEvent) -> Hood:
     order = new_order(event.payload, event.at)
     if not hood.has_stock(order.symbol):
         return hood
-    hood = changed(hood, orders=(*hood.orders, order))
+    hood = replace(hood, orders=(*hood.orders, order))
     if fills_now(hood, order, event.at):
         return with_fill(hood, order, event.at, fill_price(hood, order, event.at))
-    return changed(hood, buying_power=round(hood.buying_power - order.reserved, 2))
+    return replace(hood, buying_power=round(hood.buying_power - order.reserved, 2))
 
 
 def resting(hood: Hood, order_id: str) -> Order:
@@ -133,9 +133,9 @@ def reduce_cancel_order(hood: Hood, event: LoggedEvent) -> Hood:
     order = next((o for o in hood.orders if o.id == event.payload["order_id"]), None)
     if order is None or order.status != "pending":
         return hood
-    cancelled = Order(**{**order.__dict__, "status": "cancelled"})
+    cancelled = replace(order, status="cancelled")
     orders = tuple(cancelled if o.id == order.id else o for o in hood.orders)
-    return changed(hood, orders=orders, buying_power=round(hood.buying_power + order.reserved, 2))
+    return replace(hood, orders=orders, buying_power=round(hood.buying_power + order.reserved, 2))
 
 
 def decide_watch(hood: Hood, payload: dict) -> dict:
@@ -149,15 +149,13 @@ def watching(on: bool):
 
     def reduce(hood: Hood, event: LoggedEvent) -> Hood:
         symbol = event.payload["symbol"]
-        items = dict(hood.watch_items)
-        if on and symbol not in items:
-            row = watch_row(hood.catalog, symbol)
-            if row is None:
-                return hood
-            items[symbol] = MappingProxyType(row)
-        if symbol not in items:
+        row = hood.watchlist.get(symbol)
+        if row is None and on:
+            data = watch_row(hood.catalog, symbol)
+            row = None if data is None else WatchRow(symbol, MappingProxyType(data))
+        if row is None:
             return hood
-        return changed(hood, watch_items=items, watching={**hood.watching, symbol: on})
+        return with_items(hood, "watchlist", [(symbol, replace(row, on=on))])
 
     return reduce
 

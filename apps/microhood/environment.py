@@ -17,60 +17,89 @@ from __future__ import annotations
 import json
 import sqlite3
 from collections.abc import Mapping
+from dataclasses import replace
 from types import MappingProxyType
-from typing import Annotated
+from typing import Annotated, Any
 
 from pydantic import Field
 
-from apps.kit.legacy_tables import Table
+from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
+from apps.kit.columns import named
+from apps.kit.frozen import with_items
+from apps.kit.tables import KEY, Keyed, Table, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhood import state as account
 from apps.microhood.actions import ACTIONS
 from apps.microhood.bench import sample_pages
-from apps.microhood.catalog import (
-    listing,
-    news_item,
-    starting_price,
-    stock_record,
-    trace,
-    watch_row,
-)
+from apps.microhood.catalog import listing, news_item, starting_price, stock_record, trace
 from apps.microhood.orders import settle
 from apps.microhood.state import (
     DEFAULT_BUYING_POWER,
     ENVIRONMENT,
     Holding,
     Hood,
-    changed,
+    NewsItem,
+    Stock,
+    WatchRow,
     empty_hood,
 )
-from events.registry import (
-    Action,
-    Environment,
-    EventType,
-    LoggedEvent,
-    Measure,
-    Reducer,
-    timeless,
-)
+from events.registry import Environment, EventType, LoggedEvent, Reducer, counted
 from events.schemas import Payload
+
+# --- catalog items arriving -----------------------------------------------------------------
+
+
+def make_listing(hood: Hood, symbol: str, stamp: Stamp) -> tuple[Stock, Holding] | None:
+    """A listing and the position the catalog gives it (its price series comes once the preload
+    knows its waypoints: `open_account`)."""
+    record = stock_record(hood.catalog, symbol)
+    if record is None:
+        return None
+    return listing(record), Holding(
+        int(record.get("shares") or 0), float(record.get("avgCost") or 0.0)
+    )
+
+
+def make_watch_row(hood: Hood, symbol: str, stamp: Stamp) -> WatchRow | None:
+    row = hood.catalog.table(ENVIRONMENT, "watchlist").get(symbol)
+    return None if row is None else WatchRow(symbol, MappingProxyType(dict(row)))
+
+
+def make_story(hood: Hood, news_id: str, stamp: Stamp) -> NewsItem | None:
+    return news_item(hood.catalog, news_id, arrived_at=stamp.at, preloaded=stamp.preloaded)
+
+
+deliver_news = Delivery("news", make_story)
 
 # A waypoint as the original writes it: [time, price].
 TimePrice = Annotated[list[float], Field(min_length=2, max_length=2)]
 
 
-class PreloadStocks(Payload):
-    stock_symbols: list[str] = Field(default_factory=list, description='["*"] = every stock')
-    watchlist_symbols: list[str] = Field(default_factory=list, description='["*"] = all rows')
-    news_ids: list[str] = Field(default_factory=list, description='["*"] = every story')
+class AccountFields(Payload):
+    """The preload's fields besides its id lists."""
+
     buying_power: float = DEFAULT_BUYING_POWER
     price_waypoints: dict[str, list[TimePrice]] | None = Field(
         None, description="symbol → [[time, price], …] (overrides the catalog trace)"
     )
 
 
-class NewNews(Payload):
-    news_id: str = Field(description="catalog news id")
+def open_account(hood: Hood, payload: Mapping[str, Any], at: float) -> Hood:
+    """Once the listings, watchlist and news are in: each new listing's price series (from its
+    catalog price through the scenario's waypoints, else our catalog's trace), the buying power
+    and the opening value ("Today" is measured from it)."""
+    waypoints = payload.get("price_waypoints") or {}
+    prices = {}
+    for symbol in hood.stocks:
+        if symbol not in hood.prices:
+            points = waypoints[symbol] if symbol in waypoints else trace(hood.catalog, symbol)
+            start = starting_price(stock_record(hood.catalog, symbol))
+            prices[symbol] = Waypoints(start).with_points(points)
+        elif symbol in waypoints:  # listed before: its waypoints still apply (the original's rule)
+            prices[symbol] = hood.prices[symbol].with_points(waypoints[symbol])
+    buying_power = float(payload.get("buying_power", DEFAULT_BUYING_POWER))
+    hood = replace(with_items(hood, "prices", prices.items()), buying_power=buying_power)
+    return replace(hood, opening_value=account.portfolio_value(hood, at))
 
 
 class SetPrice(Payload):
@@ -78,166 +107,126 @@ class SetPrice(Payload):
     price: float | None = None
 
 
-def load_stocks(hood: Hood, symbols: list[str], waypoints: Mapping) -> Hood:
-    """Listings, holdings from the catalog, and each price series (skipping unknown symbols)."""
-    stocks, prices, holdings = dict(hood.stocks), dict(hood.prices), dict(hood.holdings)
-    for symbol in dict.fromkeys(symbols):
-        record = stock_record(hood.catalog, symbol)
-        if record is None:
-            continue
-        stocks[symbol] = listing(record)
-        shares = record.get("shares") or 0
-        holdings[symbol] = Holding(int(shares), float(record.get("avgCost") or 0.0))
-        points = waypoints[symbol] if symbol in waypoints else trace(hood.catalog, symbol)
-        prices[symbol] = Waypoints(starting_price(record)).with_points(points)
-    return changed(hood, stocks=stocks, prices=prices, holdings=holdings)
-
-
-def reduce_preload(hood: Hood, event: LoggedEvent) -> Hood:
-    p, catalog = event.payload, hood.catalog
-    waypoints = p.get("price_waypoints") or {}
-    listed = catalog.expand(ENVIRONMENT, "stocks", p.get("stock_symbols"))
-    hood = load_stocks(hood, listed, waypoints)
-    # Waypoints for a symbol loaded earlier but not listed now still apply (the original's rule).
-    prices = dict(hood.prices)
-    for symbol, points in waypoints.items():
-        if symbol in prices and symbol not in listed:
-            prices[symbol] = prices[symbol].with_points(points)
-    items, on = dict(hood.watch_items), dict(hood.watching)
-    for symbol in catalog.expand(ENVIRONMENT, "watchlist", p.get("watchlist_symbols")):
-        if symbol in catalog.table(ENVIRONMENT, "watchlist"):
-            items[symbol] = MappingProxyType(watch_row(catalog, symbol))
-            on[symbol] = True
-    news = list(hood.news)
-    for news_id in catalog.expand(ENVIRONMENT, "news", p.get("news_ids")):
-        story = news_item(catalog, news_id, arrived_at=event.at, preloaded=True)
-        if story is not None:
-            news.append(story)
-    hood = changed(
-        hood,
-        prices=prices,
-        watch_items=items,
-        watching=on,
-        news=tuple(news),
-        buying_power=float(p.get("buying_power", DEFAULT_BUYING_POWER)),
-    )
-    return changed(hood, opening_value=account.portfolio_value(hood, event.at))
-
-
-def reduce_new_news(hood: Hood, event: LoggedEvent) -> Hood:
-    news_id = event.payload["news_id"]
-    if any(n.id == news_id for n in hood.news):
-        return hood  # the same story delivered twice is shown once
-    story = news_item(hood.catalog, news_id, arrived_at=event.at)
-    return changed(hood, news=(*hood.news, story)) if story else hood
-
-
 def reduce_set_price(hood: Hood, event: LoggedEvent) -> Hood:
     symbol, value = event.payload.get("symbol"), event.payload.get("price")
     if symbol is None or value is None or symbol not in hood.prices:
         return hood
-    prices = {**hood.prices, symbol: hood.prices[symbol].with_point(event.at, value)}
-    return changed(hood, prices=prices)
+    return with_items(hood, "prices", [(symbol, hood.prices[symbol].with_point(event.at, value))])
 
 
-def settling(reduce: Reducer) -> Reducer:
+def settling(reduce: Reducer[Hood]) -> Reducer[Hood]:
     """`reduce`, after resting orders are settled up to the event's time."""
     return lambda hood, event: reduce(settle(hood, event.at), event)
 
 
-EVENT_TYPES: Mapping[str, EventType] = MappingProxyType(
-    {
-        "preload_stocks": EventType(
-            PreloadStocks,
-            settling(reduce_preload),
-            help="The account at the start: stocks, watchlist, news, buying power, price waypoints.",
-            catalog_refs={
-                "stock_symbols": "stocks",
-                "watchlist_symbols": "watchlist",
-                "news_ids": "news",
-            },
-            preload=True,
-        ),
-        "new_news": EventType(
-            NewNews,
-            settling(reduce_new_news),
-            help="A news story arrives.",
-            catalog_refs={"news_id": "news"},
-        ),
-        "set_price": EventType(
+DECLARED = event_types(
+    preload(
+        "preload_stocks",
+        {
+            "stock_symbols": ("stocks", Delivery("stocks", make_listing, states="holdings")),
+            "watchlist_symbols": ("watchlist", Delivery("watchlist", make_watch_row)),
+            "news_ids": ("news", deliver_news),
+        },
+        base=AccountFields,
+        then=open_account,
+        environment=ENVIRONMENT,
+        help="The account at the start: stocks, watchlist, news, buying power, price waypoints.",
+    ),
+    arrival(
+        "new_news",
+        "news_id",
+        "news",
+        deliver_news,
+        help="A news story arrives.",
+        description="catalog news id",
+    ),
+    (
+        "set_price",
+        EventType(
             SetPrice,
-            settling(reduce_set_price),
+            reduce_set_price,
             help="The price of a symbol jumps to `price` now (later waypoints ramp on from it).",
         ),
-    }
+    ),
 )
-
-SETTLED_ACTIONS: Mapping[str, Action] = MappingProxyType(
-    {
-        name: Action(
-            action.schema,
-            action.decide,
-            settling(action.reduce),
-            help=action.help,
-            page=action.page,
-            timed=action.timed,
-        )
-        for name, action in ACTIONS.items()
-    }
+EVENT_TYPES = MappingProxyType(
+    {name: replace(event, reduce=settling(event.reduce)) for name, event in DECLARED.items()}
+)
+SETTLED_ACTIONS = MappingProxyType(
+    {name: replace(action, reduce=settling(action.reduce)) for name, action in ACTIONS.items()}
 )
 
 # The original's metrics (eval_sql reads session_meta `baseline_<name>`), plus `news_count`,
-# which the original's news scenario reads but its handler never captured.
-BASELINES: Mapping[str, Measure] = MappingProxyType(
+# which the original's news scenario reads but its handler never captured. Three move with the
+# clock (they are read at the preload's moment); the others are counts of the state.
+BASELINES = MappingProxyType(
     {
         "portfolio_value": account.portfolio_value,
-        "buying_power": timeless(lambda hood: hood.buying_power),
         "positions_value": account.positions_value,
-        "order_count": timeless(lambda hood: len(account.filled_orders(hood))),
-        "watchlist_count": timeless(lambda hood: len(account.watchlist_symbols(hood))),
         "mcro_price": account.mcro_price,
-        "news_count": timeless(lambda hood: len(hood.news)),
+        **counted(
+            {
+                "buying_power": lambda hood: hood.buying_power,
+                "order_count": lambda hood: len(account.filled_orders(hood)),
+                "watchlist_count": lambda hood: len(account.watchlist_symbols(hood)),
+                "news_count": lambda hood: len(hood.news),
+            }
+        ),
     }
 )
 
 
 # --- evaluation tables (the original's names, columns and encodings) ---------------------------
 
-STOCKS = Table("stocks", ("symbol TEXT", "name TEXT", "color TEXT", "avgCost REAL"))
-STOCK_STATES = Table("stock_states", ("symbol TEXT", "shares INTEGER", "avgCost REAL"))
-WATCHLIST = Table("watchlist", ("symbol TEXT", "data TEXT"))
-WATCHLIST_STATES = Table("watchlist_states", ("symbol TEXT", "inWatchlist INTEGER"))
-NEWS = Table("news", ("id TEXT", "data TEXT"))
-ORDERS = Table(
-    "orders",
-    ("id TEXT", "symbol TEXT", "action TEXT", "quantity INTEGER", "price REAL", "type TEXT"),
+write_tables = tables(
+    Table(
+        "stocks",
+        lambda hood, now: hood.stocks.values(),
+        {**named("symbol TEXT", "name TEXT", "color TEXT"), "avgCost REAL": "catalog_avg_cost"},
+    ),
+    Table.keyed(
+        "stock_states",
+        "holdings",
+        {"symbol TEXT": KEY, "shares INTEGER": "shares", "avgCost REAL": "avg_cost"},
+    ),
+    Table(
+        "watchlist",
+        lambda hood, now: hood.watchlist.values(),
+        {"symbol TEXT": "symbol", "data TEXT": lambda row: json.dumps(dict(row.data))},
+    ),
+    Table(
+        "watchlist_states",
+        lambda hood, now: hood.watchlist.values(),
+        {"symbol TEXT": "symbol", "inWatchlist INTEGER": "on"},
+    ),
+    Table("news", lambda hood, now: hood.news.values(), named("id TEXT", "data TEXT")),
+    # Fills only: the original had no other orders.
+    Table(
+        "orders",
+        lambda hood, now: account.filled_orders(hood),
+        {
+            **named("id TEXT", "symbol TEXT"),
+            "action TEXT": "side",
+            **named("quantity INTEGER", "price REAL", "type TEXT"),
+        },
+    ),
+    # The price at `now`, unrounded.
+    Table(
+        "current_prices",
+        lambda hood, now: (Keyed(s, account.price(hood, s, now)) for s in hood.prices),
+        {"symbol TEXT": KEY, "price REAL": "value"},
+    ),
 )
-CURRENT_PRICES = Table("current_prices", ("symbol TEXT", "price REAL"))
 
 
 def materialize(hood: Hood, now: float, conn: sqlite3.Connection) -> None:
-    """The account as of `now`: resting orders settled, prices at `now` unrounded. `orders`
-    holds fills (the original had nothing else); `buying_power` joins session_meta."""
+    """The account as of `now`, resting orders settled; `buying_power` joins session_meta."""
     hood = settle(hood, now)
     conn.execute(
         "INSERT OR REPLACE INTO session_meta (key, value) VALUES ('buying_power', ?)",
         (str(hood.buying_power),),
     )
-    STOCKS.write(
-        conn, ((s.symbol, s.name, s.color, s.catalog_avg_cost) for s in hood.stocks.values())
-    )
-    STOCK_STATES.write(conn, ((sym, h.shares, h.avg_cost) for sym, h in hood.holdings.items()))
-    WATCHLIST.write(conn, ((sym, json.dumps(dict(row))) for sym, row in hood.watch_items.items()))
-    WATCHLIST_STATES.write(conn, ((sym, hood.watching.get(sym, False)) for sym in hood.watch_items))
-    NEWS.write(conn, ((n.id, n.data) for n in hood.news))
-    ORDERS.write(
-        conn,
-        (
-            (o.id, o.symbol, o.side, o.quantity, o.price, o.type)
-            for o in account.filled_orders(hood)
-        ),
-    )
-    CURRENT_PRICES.write(conn, ((sym, account.price(hood, sym, now)) for sym in hood.prices))
+    write_tables(hood, now, conn)
 
 
 MICROHOOD = Environment(

@@ -15,7 +15,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from apps.microhood.state import Holding, Hood, Order, changed, quote
+from apps.kit.frozen import with_items
+from apps.microhood.state import Holding, Hood, Order, quote
 
 
 def marketable(order_side: str, limit: float, market: float) -> bool:
@@ -35,19 +36,19 @@ def with_fill(hood: Hood, order: Order, at: float, paid: float) -> Hood:
     """Apply a fill: shares and average cost move, cash moves (a resting buy's reserve is
     released). Buying power is whatever is left: the original's rules, no margin."""
     held = hood.holding(order.symbol)
-    holdings = dict(hood.holdings)
     cash = hood.buying_power + order.reserved
     if order.side == "buy":
         shares = held.shares + order.quantity
         cost = held.shares * held.avg_cost + order.quantity * paid
-        holdings[order.symbol] = Holding(shares, round(cost / shares, 2) if shares else 0.0)
+        holding = Holding(shares, round(cost / shares, 2) if shares else 0.0)
         cash -= paid * order.quantity
     else:
-        holdings[order.symbol] = Holding(held.shares - order.quantity, held.avg_cost)
+        holding = Holding(held.shares - order.quantity, held.avg_cost)
         cash += paid * order.quantity
     filled = replace(order, status="filled", price=paid, filled_at=at)
     orders = tuple(filled if o.id == order.id else o for o in hood.orders)
-    return changed(hood, holdings=holdings, buying_power=round(cash, 2), orders=orders)
+    hood = replace(hood, buying_power=round(cash, 2), orders=orders)
+    return with_items(hood, "holdings", [(order.symbol, holding)])
 
 
 def next_fill(hood: Hood, until: float) -> tuple[float, Order] | None:

@@ -214,21 +214,16 @@ def stock_screen(hood: Hood, symbol: str, now: float, range_name: str, span: flo
         price=account.quote(hood, symbol, now),
         chart=chart(symbol, range_name, series.value_at, now, span),
         position=position(hood, symbol, now),
-        watching=hood.watching.get(symbol, False),
-        news=[n for n in newest_first(hood.news) if symbol in n.symbols],
+        watching=symbol in account.watchlist_symbols(hood),
+        news=[n for n in newest_first(hood.news.values()) if symbol in n.symbols],
         stats=stats,
     )
 
 
 def newest_first(news: Iterable[NewsItem]) -> list[NewsItem]:
-    """Newest story on top; stories of the same moment keep the later arrival first."""
-    ordered = list(news)
-    return [
-        n
-        for _, n in sorted(
-            enumerate(ordered), key=lambda p: (p[1].published_at, p[0]), reverse=True
-        )
-    ]
+    """Newest story on top; stories of the same moment keep the later arrival first (the sort
+    is stable, so equal times keep the reversed arrival order)."""
+    return sorted(reversed(list(news)), key=lambda n: n.published_at, reverse=True)
 
 
 @per_state()

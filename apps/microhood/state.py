@@ -9,17 +9,16 @@ with the one `now` of its operation — page, live push and evaluation alike.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
-from types import MappingProxyType
+from dataclasses import dataclass, field
 from typing import Any
 
+from apps.kit.frozen import EMPTY, CatalogState
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microhood"
 DEFAULT_BUYING_POWER = 10_000.0
 SIDES = ("buy", "sell")
 ORDER_TYPES = ("market", "limit")
-EMPTY: Mapping = MappingProxyType({})
 
 
 @dataclass(frozen=True)
@@ -37,6 +36,10 @@ class Stock:
     market_cap: float | None = None
     pe_ratio: float | None = None
     dividend_yield: float | None = None
+
+    @property
+    def id(self) -> str:  # what a delivery files it under
+        return self.symbol
 
 
 @dataclass(frozen=True)
@@ -81,24 +84,31 @@ class Order:
 
 
 @dataclass(frozen=True)
-class Hood:
-    catalog: Any
-    self_name: str = "Me"
-    self_username: str = "me"
-    stocks: Mapping[str, Stock] = field(
-        default_factory=lambda: EMPTY
-    )  # loaded listings, in preload order
-    prices: Mapping[str, Waypoints] = field(
-        default_factory=lambda: EMPTY
-    )  # symbol → price series (start = starting price)
-    holdings: Mapping[str, Holding] = field(
-        default_factory=lambda: EMPTY
-    )  # every symbol ever held or traded
-    watch_items: Mapping[str, Mapping[str, Any]] = field(
-        default_factory=lambda: EMPTY
-    )  # stored watchlist rows, never removed
-    watching: Mapping[str, bool] = field(default_factory=lambda: EMPTY)  # symbol → on the list now
-    news: tuple[NewsItem, ...] = ()  # arrival order
+class WatchRow:
+    """A stored watchlist row (the catalog's, or one built from the listing when the user adds
+    a symbol). Never removed: taking a symbol off the list clears `on`, as the original did."""
+
+    symbol: str
+    data: Mapping[str, Any]  # the row as the `watchlist.data` column holds it
+    on: bool = True
+
+    @property
+    def id(self) -> str:  # what a delivery files it under
+        return self.symbol
+
+
+@dataclass(frozen=True)
+class Hood(CatalogState):
+    # Who the user is comes from the catalog too: an input, not state.
+    self_name: str = field(default="Me", compare=False, repr=False)
+    self_username: str = field(default="me", compare=False, repr=False)
+    stocks: Mapping[str, Stock] = field(default_factory=lambda: EMPTY)  # in preload order
+    # symbol → price series (start = starting price)
+    prices: Mapping[str, Waypoints] = field(default_factory=lambda: EMPTY)
+    # every symbol ever held or traded
+    holdings: Mapping[str, Holding] = field(default_factory=lambda: EMPTY)
+    watchlist: Mapping[str, WatchRow] = field(default_factory=lambda: EMPTY)
+    news: Mapping[str, NewsItem] = field(default_factory=lambda: EMPTY)  # in arrival order
     buying_power: float = DEFAULT_BUYING_POWER
     orders: tuple[Order, ...] = ()  # placement order
     settled_to: float = 0.0  # resting orders are decided up to this simulated second
@@ -118,12 +128,6 @@ def empty_hood(catalog: Any) -> Hood:
         self_name=str(me.get("name") or "Me"),
         self_username=str(me.get("username") or "me"),
     )
-
-
-def changed(hood: Hood, **fields: Any) -> Hood:
-    """A new `Hood` with `fields` replaced; mappings are frozen so no reader can mutate them."""
-    frozen = {k: MappingProxyType(v) if isinstance(v, dict) else v for k, v in fields.items()}
-    return replace(hood, **frozen)
 
 
 # --- prices -----------------------------------------------------------------------------------
@@ -181,7 +185,7 @@ def shares_available(hood: Hood, symbol: str) -> int:
 
 
 def watchlist_symbols(hood: Hood) -> list[str]:
-    return [s for s, on in hood.watching.items() if on]
+    return [s for s, row in hood.watchlist.items() if row.on]
 
 
 def mcro_price(hood: Hood, now: float) -> float:

@@ -8,15 +8,14 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit.pages import Page, run_page
-from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.rendering import back_field, redirect_after, render_screen
 from apps.microhood import screens
 from apps.microhood import state as account
-from apps.microhood.query import RANGES, ChartQuery, InvalidQuery, SearchQuery, StockQuery
+from apps.microhood.query import RANGES, ChartQuery, SearchQuery, StockQuery
 from events.registry import ActionRejected
 
 SESSION_SPAN = 720.0  # the 1D chart's width in simulated seconds (the usual timeline end)
@@ -48,17 +47,10 @@ def sidebar(page: Page) -> dict:
     }
 
 
-def bad_query(exc: InvalidQuery) -> HttpResponse:
-    return HttpResponse(str(exc), status=exc.status, content_type="text/plain")
-
-
 @require_GET
 @run_page
 def home(request: HttpRequest, page: Page) -> HttpResponse:
-    try:
-        query = ChartQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = ChartQuery.from_params(request.GET)
     hood = page.state
     watch(page, [*hood.holdings, *account.watchlist_symbols(hood)])
     context = {
@@ -66,7 +58,7 @@ def home(request: HttpRequest, page: Page) -> HttpResponse:
         **sidebar(page),
         "query": query,
         "portfolio": screens.portfolio(hood, page.now, query.range, span(page)),
-        "news": screens.newest_first(hood.news)[:8],
+        "news": screens.newest_first(hood.news.values())[:8],
     }
     return render_screen(request, page, "microhood/home.html", context)
 
@@ -80,10 +72,7 @@ def listed(page: Page, symbol: str) -> str:
 @require_GET
 @run_page
 def stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
-    try:
-        query = StockQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = StockQuery.from_params(request.GET)
     listed(page, symbol)
     watch(page, [symbol, *page.state.holdings, *account.watchlist_symbols(page.state)])
     hood = screens.settled(page.state, page.now)
@@ -134,16 +123,12 @@ def place_order(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     placed = next((o for o in page.state.orders if o.id == event.payload["id"]), None)
     if placed is not None and placed.status == "filled":
         verb = "Bought" if placed.side == "buy" else "Sold"
-        messages.success(
-            request,
-            f"{verb} {screens.shares_text(placed.quantity)} of {symbol} at {screens.money(placed.price)}",
-        )
+        shares = screens.shares_text(placed.quantity)
+        done = f"{verb} {shares} of {symbol} at {screens.money(placed.price)}"
     else:
-        messages.success(
-            request,
-            f"Limit order placed: {payload['side']} {payload['quantity']} {symbol} at {screens.money(payload.get('limit_price') or 0)}",
-        )
-    return redirect_to(page, f"stocks/{symbol}?side={payload['side']}")
+        limit = screens.money(payload.get("limit_price") or 0)
+        done = f"Limit order placed: {payload['side']} {payload['quantity']} {symbol} at {limit}"
+    return redirect_after(request, page, f"stocks/{symbol}?side={payload['side']}", done)
 
 
 @require_POST
@@ -155,11 +140,8 @@ def watch_stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
         raise ActionRejected(f"intent={intent!r} is not valid; allowed: add, remove")
     action = "add_to_watchlist" if intent == "add" else "remove_from_watchlist"
     page.act(action, {"symbol": symbol})
-    messages.success(
-        request, f"{symbol} {'added to' if intent == 'add' else 'removed from'} your watchlist"
-    )
-    back = request.POST.get("back") or f"stocks/{symbol}"
-    return redirect_to(page, back if not back.startswith("/") else f"stocks/{symbol}")
+    done = f"{symbol} {'added to' if intent == 'add' else 'removed from'} your watchlist"
+    return redirect_after(request, page, back_field(request, f"stocks/{symbol}"), done)
 
 
 @require_GET
@@ -183,7 +165,7 @@ def watchlist(request: HttpRequest, page: Page) -> HttpResponse:
 @require_GET
 @run_page
 def news(request: HttpRequest, page: Page) -> HttpResponse:
-    context = {**base_context(page, "news"), "news": screens.newest_first(page.state.news)}
+    context = {**base_context(page, "news"), "news": screens.newest_first(page.state.news.values())}
     return render_screen(request, page, "microhood/news.html", context)
 
 
@@ -199,17 +181,13 @@ def orders(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def cancel_order(request: HttpRequest, page: Page) -> HttpResponse:
     page.act("cancel_order", {"order_id": request.POST.get("order_id", "")})
-    messages.success(request, "Order cancelled")
-    return redirect_to(page, "orders")
+    return redirect_after(request, page, "orders", "Order cancelled")
 
 
 @require_GET
 @run_page
 def search(request: HttpRequest, page: Page) -> HttpResponse:
-    try:
-        query = SearchQuery.from_params(request.GET)
-    except InvalidQuery as exc:
-        return bad_query(exc)
+    query = SearchQuery.from_params(request.GET)
     results = screens.search(page.state, query.q, page.now)
     watch(page, [r.symbol for r in results])
     context = {**base_context(page, "search"), "query": query, "results": results}

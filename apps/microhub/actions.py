@@ -19,7 +19,8 @@ from typing import Literal
 
 from pydantic import Field
 
-from apps.kit.deciding import found
+from apps.kit.deciding import found, required_text
+from apps.kit.frozen import with_items
 from apps.microhub.state import (
     MERGE_STRATEGIES,
     VISIBILITIES,
@@ -27,7 +28,6 @@ from apps.microhub.state import (
     Hub,
     Issue,
     UserRepo,
-    frozen,
     next_issue_number,
     with_issue_state,
 )
@@ -98,18 +98,11 @@ def existing_pr(hub: Hub, pr_id: str):
     return found(hub.prs, pr_id, "pull request", f"in {hub.owner}/{hub.name}")
 
 
-def not_blank(payload: dict, name: str) -> str:
-    value = payload.get(name, "").strip()
-    if not value:
-        raise ActionRejected(f"payload field '{name}' must not be blank")
-    return value
-
-
 # --- issues -----------------------------------------------------------------------------------------
 
 
 def decide_create_issue(hub: Hub, payload: dict) -> dict:
-    title = not_blank(payload, "title")
+    title = required_text(payload, "title")
     return {
         "id": f"user-issue-{len(hub.user_issues) + 1}",
         "title": title,
@@ -130,13 +123,8 @@ def reduce_create_issue(hub: Hub, event: LoggedEvent) -> Hub:
         opened_at=event.at,
         user_created=True,
     )
-    hub = replace(hub, user_issues=frozen({**hub.user_issues, issue.id: issue}))
+    hub = with_items(hub, "user_issues", [(issue.id, issue)])
     return with_issue_state(hub, issue.id, state="open")
-
-
-def decide_issue(hub: Hub, payload: dict) -> dict:
-    existing_issue(hub, payload["issue_id"])
-    return payload
 
 
 def decide_view_issue(hub: Hub, payload: dict) -> dict:
@@ -170,10 +158,11 @@ def decide_set_state(wanted: str) -> Callable[[Hub, dict], dict]:
 
 def decide_comment(target_type: str) -> Callable[[Hub, dict], dict]:
     key = f"{target_type}_id"
+    existing = existing_issue if target_type == "issue" else existing_pr
 
     def decide(hub: Hub, payload: dict) -> dict:
-        (existing_issue if target_type == "issue" else existing_pr)(hub, payload[key])
-        body = not_blank(payload, "body")
+        existing(hub, payload[key])
+        body = required_text(payload, "body")
         return {key: payload[key], "body": body, "id": f"user-comment-{len(hub.user_comments) + 1}"}
 
     return decide
@@ -213,57 +202,41 @@ def reduce_merge(hub: Hub, event: LoggedEvent) -> Hub:
     pr_id = event.payload["pr_id"]
     if pr_id not in hub.prs or pr_id in hub.merged:
         return hub
-    return replace(
-        hub,
-        merged=(*hub.merged, pr_id),
-        pr_states=frozen({**hub.pr_states, pr_id: "merged"}),
-    )
+    return with_items(replace(hub, merged=(*hub.merged, pr_id)), "pr_states", [(pr_id, "merged")])
 
 
-# --- star, watch, fork --------------------------------------------------------------------------
+# --- star, watch, fork ----------------------------------------------------------------------------
+
+VERBS = {"starred": "starred", "watched": "watching", "forked": "forked"}
 
 
-def decide_flag(flag: str, wanted: bool) -> Callable[[Hub, dict], dict]:
-    verb = {"starred": "starred", "watched": "watching", "forked": "forked"}[flag]
+def flag_action(flag: str, counter: str, wanted: bool) -> Action[Hub]:
+    """The button that sets the user's `flag` on the repository (set, not toggled) and moves
+    `counter` by one; a request that changes nothing is a 409."""
 
     def decide(hub: Hub, payload: dict) -> dict:
         if getattr(hub, flag) == wanted:
             raise ActionRejected(
-                f"you are {'already' if wanted else 'not'} {verb} {hub.owner}/{hub.name}", 409
+                f"you are {'already' if wanted else 'not'} {VERBS[flag]} {hub.owner}/{hub.name}",
+                409,
             )
         return payload
 
-    return decide
-
-
-def reduce_star(starred: bool) -> Callable[[Hub, LoggedEvent], Hub]:
     def reduce(hub: Hub, event: LoggedEvent) -> Hub:
-        if hub.starred == starred:
+        if getattr(hub, flag) == wanted:
             return hub
-        return replace(hub, starred=starred, star_offset=hub.star_offset + (1 if starred else -1))
+        return replace(
+            hub, **{flag: wanted, counter: getattr(hub, counter) + (1 if wanted else -1)}
+        )
 
-    return reduce
-
-
-def reduce_watch(watched: bool) -> Callable[[Hub, LoggedEvent], Hub]:
-    def reduce(hub: Hub, event: LoggedEvent) -> Hub:
-        if hub.watched == watched:
-            return hub
-        return replace(hub, watched=watched, watchers=hub.watchers + (1 if watched else -1))
-
-    return reduce
-
-
-def reduce_fork(hub: Hub, event: LoggedEvent) -> Hub:
-    """One way, as the original: a fork is not undone from here."""
-    return hub if hub.forked else replace(hub, forked=True, forks=hub.forks + 1)
+    return Action(NoFields, decide, reduce, page=on(""))
 
 
 # --- repositories -----------------------------------------------------------------------------
 
 
 def decide_create_repository(hub: Hub, payload: dict) -> dict:
-    name = not_blank(payload, "name")
+    name = required_text(payload, "name")
     if not REPO_NAME.fullmatch(name):
         raise ActionRejected(
             "payload field 'name' may only contain letters, digits, '.', '-' and '_'"
@@ -309,7 +282,7 @@ def reduce_settings(hub: Hub, event: LoggedEvent) -> Hub:
 
 def decide_follow(following: bool) -> Callable[[Hub, dict], dict]:
     def decide(hub: Hub, payload: dict) -> dict:
-        username = not_blank(payload, "username")
+        username = required_text(payload, "username")
         if username == hub.self_username:
             raise ActionRejected("you cannot follow yourself")
         if (username in hub.following) == following:
@@ -416,13 +389,12 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Merge an open pull request (merge, squash or rebase).",
             page=pr_page("strategy"),
         ),
-        "star": Action(NoFields, decide_flag("starred", True), reduce_star(True), page=on("")),
-        "unstar": Action(NoFields, decide_flag("starred", False), reduce_star(False), page=on("")),
-        "watch": Action(NoFields, decide_flag("watched", True), reduce_watch(True), page=on("")),
-        "unwatch": Action(
-            NoFields, decide_flag("watched", False), reduce_watch(False), page=on("")
-        ),
-        "fork": Action(NoFields, decide_flag("forked", True), reduce_fork, page=on("")),
+        "star": flag_action("starred", "star_offset", True),
+        "unstar": flag_action("starred", "star_offset", False),
+        "watch": flag_action("watched", "watchers", True),
+        "unwatch": flag_action("watched", "watchers", False),
+        # One way, as the original: a fork is not undone from here.
+        "fork": flag_action("forked", "forks", True),
         "create_repository": Action(
             NewRepository,
             decide_create_repository,

@@ -5,7 +5,8 @@ labels, and the tables the original only passed through (wiki, projects, release
 named by username; their display names come from the shared `users.json`.
 
 Ages: a catalog row has no date. As the original did, a preloaded row is `order × 30 min` old
-(one step more, so the newest does not read "just now"), plus the preload's age offset.
+(one step more, so the newest does not read "just now"), plus the preload's age offset; a row
+arriving during the task is dated then, and an issue or pull request has no answers yet.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from apps.kit.arrivals import Stamp
 from apps.microhub.state import (
     ENVIRONMENT,
     Check,
@@ -31,18 +33,19 @@ from apps.microhub.state import (
 STEP_S = 30 * 60.0  # the original's age step between catalog rows
 COMMENT_GAP_S = 20 * 60.0
 
-# Catalog table → evaluation table for rows the original exported as (id, JSON).
+# Tables the original only passed through: catalog table → the preload's id list. Each is
+# exported as an (id, JSON) table of the same name (`code-scanning` → `code_scanning`).
 PASS_THROUGH = {
-    "workflows": "workflows",
-    "wiki": "wiki",
-    "projects": "projects",
-    "activity": "activity",
-    "releases": "releases",
-    "labels": "labels",
-    "security": "security",
-    "code-scanning": "code_scanning",
-    "deployments": "deployments",
-    "packages": "packages",
+    "workflows": "workflow_ids",
+    "wiki": "wiki_ids",
+    "projects": "project_ids",
+    "activity": "activity_ids",
+    "releases": "release_ids",
+    "labels": "label_ids",
+    "security": "security_ids",
+    "code-scanning": "scanning_ids",
+    "deployments": "deployment_ids",
+    "packages": "package_ids",
 }
 
 
@@ -84,8 +87,10 @@ def labels(catalog: Any) -> Mapping[str, Label]:
     }
 
 
-def age_of(record: Mapping[str, Any]) -> float:
-    return (int(record.get("order") or 0) + 1) * STEP_S
+def dated(record: Mapping[str, Any], stamp: Stamp) -> float:
+    """When a row arrived: a preloaded one its age before the start (`stamp.at`), one arriving
+    during the task at that moment."""
+    return stamp.at - (int(record.get("order") or 0) + 1) * STEP_S if stamp.preloaded else stamp.at
 
 
 def _labels(catalog: Any, record: Mapping[str, Any]) -> tuple[Label, ...]:
@@ -93,7 +98,11 @@ def _labels(catalog: Any, record: Mapping[str, Any]) -> tuple[Label, ...]:
     return tuple(known[i] for i in record.get("labelIds") or () if i in known)
 
 
-def _comments(catalog: Any, record: Mapping[str, Any], opened_at: float) -> tuple[Comment, ...]:
+def _comments(catalog: Any, record: Mapping[str, Any], stamp: Stamp) -> tuple[Comment, ...]:
+    """The catalog thread of a preloaded issue or pull request; one arriving now has none yet."""
+    if not stamp.preloaded:
+        return ()
+    opened_at = dated(record, stamp)
     return tuple(
         Comment(
             id=str(c.get("id", f"{record['id']}-c{k}")),
@@ -110,50 +119,45 @@ def _comments(catalog: Any, record: Mapping[str, Any], opened_at: float) -> tupl
     )
 
 
-def catalog_issue(catalog: Any, issue_id: str, *, opened_at: float, number: int | None = None):
+def _post(catalog: Any, record: Mapping[str, Any], stamp: Stamp, number: int | None):
+    """What an issue and a pull request read alike; `number` None keeps the catalog's."""
+    author = str(record.get("author", ""))
+    return {
+        "number": int(record.get("number") or 0) if number is None else number,
+        "title": str(record.get("title", "")),
+        "body": str(record.get("body") or ""),
+        "state": str(record.get("state") or "open"),
+        "author": author,
+        "author_name": display_name(catalog, author),
+        "opened_at": dated(record, stamp),
+        "labels": _labels(catalog, record),
+        "comments": _comments(catalog, record, stamp),
+    }
+
+
+def catalog_issue(catalog: Any, issue_id: str, stamp: Stamp, number: int | None = None):
     record = table(catalog, "issues").get(issue_id)
     if record is None:
         return None
-    author = str(record.get("author", ""))
-    return Issue(
-        id=issue_id,
-        number=int(record.get("number") or 0) if number is None else number,
-        title=str(record.get("title", "")),
-        body=str(record.get("body", "")),
-        state=str(record.get("state") or "open"),
-        author=author,
-        author_name=display_name(catalog, author),
-        opened_at=opened_at,
-        assignees=persons(catalog, record.get("assignees")),
-        labels=_labels(catalog, record),
-        comments=_comments(catalog, record, opened_at),
-    )
+    assignees = persons(catalog, record.get("assignees"))
+    return Issue(id=issue_id, **_post(catalog, record, stamp, number), assignees=assignees)
 
 
-def catalog_pr(catalog: Any, pr_id: str, *, opened_at: float, number: int | None = None):
+def catalog_pr(catalog: Any, pr_id: str, stamp: Stamp, number: int | None = None):
     record = table(catalog, "prs").get(pr_id)
     if record is None:
         return None
-    author = str(record.get("author", ""))
     return PullRequest(
         id=pr_id,
-        number=int(record.get("number") or 0) if number is None else number,
-        title=str(record.get("title", "")),
-        body=str(record.get("body") or ""),
-        state=str(record.get("state") or "open"),
-        author=author,
-        author_name=display_name(catalog, author),
-        opened_at=opened_at,
+        **_post(catalog, record, stamp, number),
         source=str(record.get("sourceBranch", "")),
         target=str(record.get("targetBranch", "main")),
         review_status=str(record.get("reviewStatus") or "review-required"),
         reviewers=persons(catalog, record.get("reviewers")),
-        labels=_labels(catalog, record),
         checks=tuple(
             Check(str(c.get("name", "")), str(c.get("status", "")))
             for c in record.get("checks") or ()
         ),
-        comments=_comments(catalog, record, opened_at),
         commits=int(record.get("commits") or 0),
         additions=int(record.get("additions") or 0),
         deletions=int(record.get("deletions") or 0),
@@ -161,7 +165,7 @@ def catalog_pr(catalog: Any, pr_id: str, *, opened_at: float, number: int | None
     )
 
 
-def catalog_commit(catalog: Any, commit_id: str, *, at: float) -> Commit | None:
+def catalog_commit(catalog: Any, commit_id: str, stamp: Stamp) -> Commit | None:
     record = table(catalog, "commits").get(commit_id)
     if record is None:
         return None
@@ -173,7 +177,7 @@ def catalog_commit(catalog: Any, commit_id: str, *, at: float) -> Commit | None:
         message=str(record.get("message", "")),
         author=author,
         author_name=display_name(catalog, author),
-        at=at,
+        at=dated(record, stamp),
         additions=int(record.get("additions") or 0),
         deletions=int(record.get("deletions") or 0),
         files=tuple(str(f) for f in files) if isinstance(files, list) else (),
@@ -201,7 +205,7 @@ def catalog_file(catalog: Any, file_id: str) -> RepoFile | None:
     )
 
 
-def catalog_run(catalog: Any, run_id: str, *, at: float) -> WorkflowRun | None:
+def catalog_run(catalog: Any, run_id: str, stamp: Stamp) -> WorkflowRun | None:
     record = table(catalog, "workflow-runs").get(run_id)
     if record is None:
         return None
@@ -221,7 +225,7 @@ def catalog_run(catalog: Any, run_id: str, *, at: float) -> WorkflowRun | None:
         actor_name=display_name(catalog, actor),
         event=str(record.get("event", "")),
         duration=int(record.get("duration") or 0),
-        at=at,
+        at=dated(record, stamp),
         jobs=tuple(
             Job(
                 name=str(j.get("name", "")),

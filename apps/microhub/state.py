@@ -11,13 +11,12 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from types import MappingProxyType
 from typing import Any
 
+from apps.kit.frozen import EMPTY, CatalogState, with_items
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microhub"
-EMPTY: Mapping[str, Any] = MappingProxyType({})
 
 
 def nothing() -> Any:
@@ -25,7 +24,6 @@ def nothing() -> Any:
     return field(default_factory=lambda: EMPTY)
 
 
-ISSUE_STATES = ("open", "closed")
 MERGE_STRATEGIES = ("merge", "squash", "rebase")
 VISIBILITIES = ("public", "private")
 
@@ -56,19 +54,26 @@ class Comment:
     target_id: str = ""
 
 
-@dataclass(frozen=True)
-class Issue:
+@dataclass(frozen=True, kw_only=True)
+class Post:
+    """What an issue and a pull request share: a numbered, titled post and its discussion."""
+
     id: str
     number: int
     title: str
     body: str
-    state: str  # as the catalog (or the user) created it; the current one is in issue_states
-    author: str
+    # As created (by the catalog or the user); the current one is in issue_states / pr_states.
+    state: str
+    author: str  # username
     author_name: str
     opened_at: float
-    assignees: tuple[Person, ...] = ()
     labels: tuple[Label, ...] = ()
     comments: tuple[Comment, ...] = ()
+
+
+@dataclass(frozen=True, kw_only=True)
+class Issue(Post):
+    assignees: tuple[Person, ...] = ()
     user_created: bool = False
 
 
@@ -84,23 +89,13 @@ class Check:
     status: str  # success · failure · pending
 
 
-@dataclass(frozen=True)
-class PullRequest:
-    id: str
-    number: int
-    title: str
-    body: str
-    state: str  # catalog state: open · merged · closed
-    author: str
-    author_name: str
-    opened_at: float
+@dataclass(frozen=True, kw_only=True)
+class PullRequest(Post):
     source: str
     target: str
     review_status: str
     reviewers: tuple[Person, ...] = ()
-    labels: tuple[Label, ...] = ()
     checks: tuple[Check, ...] = ()
-    comments: tuple[Comment, ...] = ()
     commits: int = 0
     additions: int = 0
     deletions: int = 0
@@ -191,12 +186,10 @@ class UserRepo:
 
 
 @dataclass(frozen=True)
-class Hub:
-    # The run's catalog: the input every state of a run shares, not part of what it holds
-    # (left out of comparisons, so comparing two folds does not walk the whole catalog).
-    catalog: Any = field(compare=False, repr=False)
-    self_username: str
-    self_name: str
+class Hub(CatalogState):
+    # Who the user is comes from the catalog too: an input, not state.
+    self_username: str = field(compare=False, repr=False)
+    self_name: str = field(compare=False, repr=False)
     repo: Mapping[str, Any]  # the repository record (after preload overrides / settings)
     stars: Waypoints
     forks: int = 0
@@ -257,21 +250,20 @@ def stars_change_at(hub: Hub, now: float) -> float | None:
     return hub.stars.next_change(now, step=1)
 
 
-def frozen(mapping: Mapping) -> Mapping:
-    return MappingProxyType(dict(mapping))
-
-
 def with_issue_state(hub: Hub, issue_id: str, **changes: Any) -> Hub:
     current = hub.issue_states.get(issue_id, IssueState())
-    return replace(
-        hub, issue_states=frozen({**hub.issue_states, issue_id: replace(current, **changes)})
-    )
+    return with_items(hub, "issue_states", [(issue_id, replace(current, **changes))])
 
 
 def next_issue_number(hub: Hub) -> int:
     """The original's rule: one more than every loaded and user-created issue's number."""
     numbers = [i.number for i in hub.issues.values()] + [i.number for i in hub.user_issues.values()]
     return max(numbers, default=0) + 1
+
+
+def next_pr_number(hub: Hub) -> int:
+    """Pull requests share numbers with issues: one more than every issue and pull request."""
+    return max([next_issue_number(hub), *(pr.number + 1 for pr in hub.prs.values())])
 
 
 def open_issue_count(hub: Hub) -> int:

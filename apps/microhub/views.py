@@ -8,17 +8,15 @@ stale. Opening an issue marks it viewed: declared with the environment (`implici
 
 from __future__ import annotations
 
-from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
-from apps.kit.pages import Page, run_page
-from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.pages import Page, one_of, run_page
+from apps.kit.rendering import back_field, redirect_after, redirect_to, render_screen
 from apps.microhub import screens
 from apps.microhub.markup import render_markdown
-from apps.microhub.query import ActionsQuery, InvalidQuery, IssuesQuery, PullsQuery
+from apps.microhub.query import ActionsQuery, IssuesQuery, PullsQuery
 from apps.microhub.state import MERGE_STRATEGIES, Hub, star_count, stars_change_at
-from events.registry import ActionRejected
 
 REPO_ACTIONS = ("star", "unstar", "watch", "unwatch", "fork")
 ISSUE_ACTIONS = {"comment": "comment_issue", "close": "close_issue", "reopen": "reopen_issue"}
@@ -47,19 +45,6 @@ def show(request: HttpRequest, page: Page, template: str, tab: str, **context) -
     return render_screen(
         request, page, f"microhub/{template}", {**repo_header(page), "tab": tab, **context}
     )
-
-
-def query_of(cls, request: HttpRequest):
-    try:
-        return cls.from_params(request.GET)
-    except InvalidQuery as exc:
-        raise ActionRejected(str(exc), exc.status) from None
-
-
-def acted(request: HttpRequest, page: Page, path: str, done: str = "") -> HttpResponse:
-    if done:
-        messages.success(request, done)
-    return redirect_to(page, path)
 
 
 # --- code -----------------------------------------------------------------------------------------
@@ -126,7 +111,7 @@ def commits(request: HttpRequest, page: Page) -> HttpResponse:
 @require_GET
 @run_page
 def issues(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(IssuesQuery, request)
+    query = IssuesQuery.from_params(request.GET)
     hub = page.state
     open_count, closed_count = screens.search_counts(hub, query.q)
     return show(
@@ -153,7 +138,7 @@ def new_issue(request: HttpRequest, page: Page) -> HttpResponse:
             {"title": request.POST.get("title", ""), "body": request.POST.get("body", "")},
         )
         issue_id = event.payload["id"] if event else ""
-        return acted(request, page, f"issues/{issue_id}" if issue_id else "issues/")
+        return redirect_to(page, f"issues/{issue_id}" if issue_id else "issues/")
     return show(request, page, "new_issue.html", "issues")
 
 
@@ -179,16 +164,12 @@ def issue(request: HttpRequest, page: Page, issue_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def issue_action(request: HttpRequest, page: Page, issue_id: str, verb: str) -> HttpResponse:
-    action = ISSUE_ACTIONS.get(verb)
-    if action is None:
-        raise ActionRejected(
-            f"unknown issue action {verb!r}; allowed: {', '.join(ISSUE_ACTIONS)}", 404
-        )
+    action = ISSUE_ACTIONS[one_of(verb, ISSUE_ACTIONS, "issue action")]
     payload = {"issue_id": issue_id}
     if verb == "comment":
         payload["body"] = request.POST.get("body", "")
     page.act(action, payload)
-    return acted(request, page, f"issues/{issue_id}")
+    return redirect_to(page, f"issues/{issue_id}")
 
 
 # --- pull requests ----------------------------------------------------------------------------------
@@ -197,7 +178,7 @@ def issue_action(request: HttpRequest, page: Page, issue_id: str, verb: str) -> 
 @require_GET
 @run_page
 def pulls(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(PullsQuery, request)
+    query = PullsQuery.from_params(request.GET)
     return show(
         request,
         page,
@@ -231,16 +212,14 @@ def pull(request: HttpRequest, page: Page, pr_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def pull_action(request: HttpRequest, page: Page, pr_id: str, verb: str) -> HttpResponse:
-    action = PR_ACTIONS.get(verb)
-    if action is None:
-        raise ActionRejected(f"unknown pull request action {verb!r}; allowed: comment, merge", 404)
+    action = PR_ACTIONS[one_of(verb, PR_ACTIONS, "pull request action")]
     payload = {"pr_id": pr_id}
     if verb == "comment":
         payload["body"] = request.POST.get("body", "")
     else:
         payload["strategy"] = request.POST.get("strategy", "merge")
     page.act(action, payload)
-    return acted(
+    return redirect_after(
         request,
         page,
         f"pulls/{pr_id}",
@@ -254,7 +233,7 @@ def pull_action(request: HttpRequest, page: Page, pr_id: str, verb: str) -> Http
 @require_GET
 @run_page
 def actions(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(ActionsQuery, request)
+    query = ActionsQuery.from_params(request.GET)
     hub = page.state
     return show(
         request,
@@ -282,13 +261,8 @@ def run(request: HttpRequest, page: Page, run_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def repo_action(request: HttpRequest, page: Page, verb: str) -> HttpResponse:
-    if verb not in REPO_ACTIONS:
-        raise ActionRejected(f"unknown action {verb!r}; allowed: {', '.join(REPO_ACTIONS)}", 404)
-    page.act(verb, {})
-    back = request.POST.get("back", "")
-    return redirect_to(
-        page, back if back and not back.startswith(("/", "\\")) and "://" not in back else ""
-    )
+    page.act(one_of(verb, REPO_ACTIONS, "action"), {})
+    return redirect_to(page, back_field(request))
 
 
 @require_http_methods(["GET", "POST"])
@@ -304,7 +278,7 @@ def settings(request: HttpRequest, page: Page) -> HttpResponse:
         if "visibility" in changes and changes["visibility"] == page.state.visibility:
             del changes["visibility"]
         page.act("update_repository", changes)
-        return acted(request, page, "settings", "Repository settings saved")
+        return redirect_after(request, page, "settings", "Repository settings saved")
     return show(request, page, "settings.html", "settings")
 
 
@@ -322,7 +296,7 @@ def new_repository(request: HttpRequest, page: Page) -> HttpResponse:
                 "add_gitignore": "add_gitignore" in request.POST,
             },
         )
-        return acted(request, page, "repositories/", "Repository created")
+        return redirect_after(request, page, "repositories/", "Repository created")
     return show(request, page, "new_repository.html", "")
 
 

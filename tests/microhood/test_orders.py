@@ -8,19 +8,17 @@ import pytest
 from apps.microhood import state as account
 from apps.microhood.environment import MICROHOOD
 from apps.microhood.orders import settle
-from events.registry import ActionRejected, LoggedEvent, validate_payload
+from events.registry import ActionRejected, LoggedEvent
 from tests.microhood.timeline import OUR_SCENARIOS, fold_until, scenario
 
 SELL_TASK = scenario(OUR_SCENARIOS / "sell-order-absolute-active.json")  # MRDN jumps at 236.4
 
 
 def act(hood, name: str, payload: dict, at: float, seq: int = 1000):
-    """Validate, decide at `at` and apply, as the core does (without a database)."""
-    action = MICROHOOD.actions[name]
-    validate_payload(action.schema, payload, what=name)
-    recorded = action.decide_at(hood, dict(payload), at)
-    event = LoggedEvent(seq, at, "action", name, recorded)
-    return MICROHOOD.apply(hood, event), event
+    """Perform at `at` as the server does (without a database): the state after, and the event
+    as it would be logged (to replay it in a fold)."""
+    performed = MICROHOOD.perform(hood, name, payload, at)
+    return performed.state, LoggedEvent(seq, at, "action", name, performed.payload)
 
 
 def order(symbol: str, side: str, quantity: int, **more) -> dict:

@@ -5,6 +5,8 @@ of MyMicro Inc., seen by the self user Chris Taylor (ctaylor).
   pull requests pr1 (open, approved) and pr4 (merged), every commit but c26–c28, runs 1–7;
 - the star curve of the original's "stars" scenarios: 1,847 at 0, 2,000 at 587.31, 2,080 at 720;
 - later: issue i14 (TOTP) at 120, pull request pr5 at 150, commit c26 at 160, run-9 at 170.
+
+`CAST.act` happens at 200 unless told, `CAST.arrive` at 120 (when the TOTP issue is filed).
 """
 
 from __future__ import annotations
@@ -14,10 +16,7 @@ from pathlib import Path
 from django.conf import settings
 
 from apps.microhub.environment import MICROHUB
-from apps.microhub.state import Hub
-from apps.scenarios.format import parse_scenario
-from events.catalog import load_catalog
-from events.registry import ActionRejected, LoggedEvent, PayloadError, validate_payload
+from tests.kit import Cast
 
 ME = "ctaylor"
 STAR_WAYPOINTS = [[0.0, 1847], [587.31, 2000], [720.0, 2080]]
@@ -36,39 +35,12 @@ ARRIVALS = [
     {"time": 170.0, "type": "new_workflow_run", "payload": {"run_id": "run-9"}},
 ]
 
-
-def catalog():
-    return load_catalog(Path(settings.SENTINEL_CATALOG_DIR))
-
-
-def scenario_event(type: str, payload: dict, *, at: float = 0.0, seq: int = 1) -> LoggedEvent:
-    return LoggedEvent(seq, at, "scenario", type, payload)
-
-
-def preloaded(**changes) -> Hub:
-    """The repository right after the cast's preload at t=0."""
-    hub = MICROHUB.initial_state(catalog())
-    return MICROHUB.apply(hub, scenario_event("preload_repo", {**PRELOAD, **changes}))
-
-
-def arrive(hub: Hub, type: str, payload: dict, at: float = TOTP_AT) -> Hub:
-    return MICROHUB.apply(hub, scenario_event(type, payload, at=at, seq=2))
-
-
-def act(hub: Hub, name: str, payload: dict, *, at: float = 200.0) -> Hub:
-    """Validate, decide and apply one agent action, as the core does (without a database)."""
-    action = MICROHUB.actions[name]
-    try:
-        validate_payload(action.schema, payload, what=f"action {name}")
-    except PayloadError as exc:
-        raise ActionRejected(str(exc)) from None
-    recorded = action.decide(hub, dict(payload))
-    return MICROHUB.apply(hub, LoggedEvent(100, at, "action", name, recorded))
-
-
-def cast_scenario(**overrides) -> dict:
-    """A run over the cast: comment on the TOTP issue once it is filed (at 120)."""
-    data = {
+CAST = Cast(
+    MICROHUB,
+    Path(settings.SENTINEL_CATALOG_DIR),
+    preload=("preload_repo", PRELOAD),
+    # A run over the cast: comment on the TOTP issue once it is filed (at 120).
+    scenario={
         "id": "microhub-cast-totp",
         "environment": "microhub",
         "start_page": "HOST_ADDRESS/microhub",
@@ -80,6 +52,7 @@ def cast_scenario(**overrides) -> dict:
         "eval_sql": "SELECT EXISTS(SELECT 1 FROM user_created_comments "
         f"WHERE target_type='issue' AND target_id='{TOTP_ISSUE}')",
         "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "active"},
-    }
-    data.update(overrides)
-    return parse_scenario(data, source="tests/microhub").to_run_spec()
+    },
+    acts_at=200.0,
+    arrives_at=TOTP_AT,
+)

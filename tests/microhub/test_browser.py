@@ -17,7 +17,7 @@ import re
 import pytest
 from playwright.sync_api import expect
 
-from tests import control_api
+from tests.browser_story import BrowserStory
 
 pytestmark = pytest.mark.browser
 
@@ -25,15 +25,10 @@ SCENARIO = "microhub-compliance-absolute-active"
 FILED_AT = 287.16
 TITLE = "Audit log export for quarterly access reviews"
 
-api = control_api.call
-
 
 def test_a_pushed_issue_is_opened_and_commented_on(live_site, browser):
-    run = api(live_site, "POST", "/api/runs/", {"scenario": SCENARIO, "clock_mode": "virtual"})
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(10_000)
-
-    page.goto(run["task_url"])
+    story = BrowserStory.start(live_site, browser, SCENARIO)
+    page = story.page
     tabs = page.get_by_role("navigation", name="Repository").last
     expect(page.get_by_role("region", name="README")).to_be_visible()
     tabs.get_by_role("link", name=re.compile(r"^Issues")).click()
@@ -43,13 +38,12 @@ def test_a_pushed_issue_is_opened_and_commented_on(live_site, browser):
     ).to_be_visible()
     expect(issues.get_by_role("link", name=TITLE)).to_have_count(0)
     expect(page.get_by_label("open issues")).to_have_text("3")
-    page.wait_for_function("() => document.getElementById('sentinel-live')")
-    page.evaluate("window.loadedOnce = true")  # gone if the page reloads
+    story.watch_for_reload()
 
-    api(live_site, "POST", f"/api/runs/{run['id']}/advance/", {"time": FILED_AT})
+    story.advance(FILED_AT)
     expect(issues.get_by_role("link", name=TITLE)).to_be_visible()
     expect(page.get_by_label("open issues")).to_have_text("6")
-    assert page.evaluate("window.loadedOnce") is True, "the page reloaded"
+    story.assert_not_reloaded()
     expect(page.get_by_text("SOC 2 compliance reviews")).to_have_count(0)
 
     issues.get_by_role("link", name=TITLE).click()
@@ -59,11 +53,7 @@ def test_a_pushed_issue_is_opened_and_commented_on(live_site, browser):
     page.get_by_role("button", name="Comment", exact=True).click()
     expect(page.get_by_text("Thanks, routing this to the security team.")).to_be_visible()
 
-    page.goto(run["contact_url"])
-    verdict = api(live_site, "POST", f"/api/runs/{run['id']}/evaluate/")
-    assert verdict["success"] is True, verdict["detail"]
-    logged = api(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    assert [(e["type"], e["payload"]) for e in logged if e["kind"] == "action"] == [
+    assert story.report() == [
         ("view_issue", {"issue_id": "i20"}),
         (
             "comment_issue",

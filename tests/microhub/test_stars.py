@@ -25,7 +25,7 @@ from events.evaluation import grading_snapshot
 from events.models import ClockMode
 from events.registry import LoggedEvent
 from tests.environments.cases import UPSTREAM_CATALOGS, UPSTREAM_SCENARIOS
-from tests.microhub.cast import act, catalog, preloaded
+from tests.microhub.cast import CAST
 
 OURS = Path(__file__).resolve().parents[2] / "scenarios" / "microhub"
 STAR_SCENARIOS = ["stars-absolute-passive.json", "stars-relative-passive.json", "stars-noop.json"]
@@ -75,7 +75,7 @@ def reference_stars(initial: float, events: list[dict], now: float, offset: int 
 
 def folded(events: list[dict], now: float, source=None):
     """The environment's state with every event due by `now` applied, as the core fires them."""
-    hub = MICROHUB.initial_state(source or catalog())
+    hub = MICROHUB.initial_state(source or CAST.catalog())
     for seq, event in enumerate(sorted(events, key=lambda e: e["time"]), 1):
         if event["time"] <= now:
             hub = MICROHUB.apply(
@@ -106,7 +106,9 @@ def instants(events: list[dict]) -> list[float]:
 def test_the_star_count_matches_the_reference_model_at_every_instant(path):
     events = json.loads(path.read_text())["events"]
     # Each run's catalog: the original's scenarios run on the original's catalog.
-    source = load_catalog(UPSTREAM_CATALOGS) if UPSTREAM_SCENARIOS in path.parents else catalog()
+    source = (
+        load_catalog(UPSTREAM_CATALOGS) if UPSTREAM_SCENARIOS in path.parents else CAST.catalog()
+    )
     initial = MICROHUB.initial_state(source).stars.start  # the repository's stars
     ordered = sorted(events, key=lambda e: e["time"])
     hub, fired, mismatches = MICROHUB.initial_state(source), 0, []
@@ -166,10 +168,10 @@ def test_without_waypoints_a_delta_builds_on_the_flat_count_seeded_at_zero():
 
 
 def test_the_users_star_rides_on_top_of_the_curve_and_never_below_zero():
-    hub = preloaded(star_waypoints=[[0.0, 0.0], [100.0, 10.0]])
-    starred = act(hub, "star", {}, at=20.0)
+    hub = CAST.preloaded(star_waypoints=[[0.0, 0.0], [100.0, 10.0]])
+    starred = CAST.act(hub, "star", {}, at=20.0)
     assert star_count(starred, 50.0) == star_count(hub, 50.0) + 1 == 6
-    unstarred = act(starred, "unstar", {}, at=30.0)
+    unstarred = CAST.act(starred, "unstar", {}, at=30.0)
     assert star_count(unstarred, 0.0) == 0
 
 
