@@ -9,16 +9,12 @@ Every view serves the full page, or just its content when htmx asks for a fragme
 from __future__ import annotations
 
 from django.http import Http404, HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_POST
 
-from apps.kit.pages import Page, run_page
+from apps.kit import feed_views
+from apps.kit.feed_views import FeedPages, open_thread, shown
+from apps.kit.pages import Page
 from apps.kit.post_actions import act_on_post
-from apps.kit.rendering import (
-    back_field,
-    came_from,
-    redirect_after,
-    render_screen,
-)
+from apps.kit.rendering import back_field, came_from, redirect_after, redirect_to
 from apps.microdin import screens
 from apps.microdin.query import (
     JobsQuery,
@@ -26,9 +22,10 @@ from apps.microdin.query import (
     NotificationsQuery,
     SearchQuery,
 )
-from apps.microdin.state import SECTION_TYPES, Network, connections_count
+from apps.microdin.state import SECTION_TYPES, connections_count
 from events.registry import ActionRejected
 
+PAGES = FeedPages(badges=screens.nav_badges)
 POST_ACTIONS = {"like_post": "", "unlike_post": "", "comment_post": "Comment posted"}
 NOTIFICATION_FILTER_LABELS = (
     ("all", "All"),
@@ -46,59 +43,39 @@ SEARCH_KIND_LABELS = (
 INVITATION_VERBS = {"accept": "accept_connection", "ignore": "ignore_connection"}
 
 
-def base_context(page: Page, tab: str) -> dict:
-    network: Network = page.state
-    return {
-        "token": page.run.token,
-        "me": network.me,
-        "tab": tab,
-        "badges": screens.nav_badges(network),
-    }
-
-
-def show(request: HttpRequest, page: Page, template: str, tab: str, **context) -> HttpResponse:
-    return render_screen(
-        request, page, f"microdin/{template}", {**base_context(page, tab), **context}
-    )
-
-
 def ending(query, item: str) -> str:
     """The screen's query string without its open item, ready for `<item>=…` to be appended."""
     rest = query.but(**{item: None}).querystring()
     return rest + "&" if rest else "?"
 
 
+def thread_path(conversation_id: str) -> str:
+    return "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
+
+
 # --- home feed and posts -----------------------------------------------------------------------
 
 
-@require_GET
-@run_page
-def feed(request: HttpRequest, page: Page) -> HttpResponse:
+@PAGES.screen("feed.html", tab="home")
+def feed(request: HttpRequest, page: Page):
     network = page.state
-    return show(
-        request,
-        page,
-        "feed.html",
-        "home",
-        cards=screens.feed(network),
-        news=screens.news(network.catalog),
-        follow=screens.feed_suggestions(network),
-        stats=network.stats,
-        connections_count=connections_count(network),
-    )
+    return {
+        "cards": screens.feed(network),
+        "news": screens.news(network.catalog),
+        "follow": screens.feed_suggestions(network),
+        "stats": network.stats,
+        "connections_count": connections_count(network),
+    }
 
 
-@require_GET
-@run_page
-def post(request: HttpRequest, page: Page, post_id: str) -> HttpResponse:
-    if post_id not in page.state.posts:
-        raise Http404("no such post")  # unknown or not posted yet: alike
+@PAGES.screen("post.html", tab="home")
+def post(request: HttpRequest, page: Page, post_id: str):
+    shown(page.state.posts, post_id, "post")
     card = screens.post_card(page.state, post_id)
-    return show(request, page, "post.html", "home", cards=(card,), card=card)
+    return {"cards": (card,), "card": card}
 
 
-@require_POST
-@run_page
+@PAGES.form
 def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> HttpResponse:
     done = act_on_post(request, page, post_id, action, POST_ACTIONS)
     return redirect_after(request, page, came_from(request, page) + f"#post-{post_id}", done)
@@ -107,53 +84,31 @@ def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> 
 # --- my network ----------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
-def my_network(request: HttpRequest, page: Page) -> HttpResponse:
-    network = page.state
-    pending = screens.invitations(network)
-    return show(
-        request,
-        page,
-        "network.html",
-        "network",
-        invitations=pending[: screens.INVITATIONS_PREVIEW],
-        pending=len(pending),
-        suggestions=screens.suggestions(network),
-        connections=len(screens.connected_people(network)),
-    )
-
-
-@require_GET
-@run_page
-def invitations(request: HttpRequest, page: Page) -> HttpResponse:
+@PAGES.screen("network.html", tab="network")
+def my_network(request: HttpRequest, page: Page):
     pending = screens.invitations(page.state)
-    return show(
-        request,
-        page,
-        "invitations.html",
-        "network",
-        invitations=pending,
-        pending=len(pending),
-        connections=len(screens.connected_people(page.state)),
-    )
+    return {
+        "invitations": pending[: screens.INVITATIONS_PREVIEW],
+        "pending": len(pending),
+        "suggestions": screens.suggestions(page.state),
+        "connections": len(screens.connected_people(page.state)),
+    }
 
 
-@require_GET
-@run_page
-def connections(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(
-        request,
-        page,
-        "connections.html",
-        "network",
-        people=screens.connected_people(page.state),
-        pending=len(screens.invitations(page.state)),
-    )
+@PAGES.screen("invitations.html", tab="network")
+def invitations(request: HttpRequest, page: Page):
+    pending = screens.invitations(page.state)
+    connected = screens.connected_people(page.state)
+    return {"invitations": pending, "pending": len(pending), "connections": len(connected)}
 
 
-@require_POST
-@run_page
+@PAGES.screen("connections.html", tab="network")
+def connections(request: HttpRequest, page: Page):
+    pending = screens.invitations(page.state)
+    return {"people": screens.connected_people(page.state), "pending": len(pending)}
+
+
+@PAGES.form
 def answer_invitation(request: HttpRequest, page: Page, verb: str) -> HttpResponse:
     action = INVITATION_VERBS.get(verb)
     if action is None:
@@ -172,26 +127,15 @@ def answer_invitation(request: HttpRequest, page: Page, verb: str) -> HttpRespon
 # --- jobs -------------------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
-def jobs(request: HttpRequest, page: Page) -> HttpResponse:
+@PAGES.screen("jobs.html", tab="jobs")
+def jobs(request: HttpRequest, page: Page):
     query = JobsQuery.from_params(request.GET)
-    if query.job is not None and query.job not in page.state.jobs:
-        raise Http404("no such job")
+    shown(page.state.jobs, query.job, "job")
     screen = screens.jobs_screen(page.state, query)
-    return show(
-        request,
-        page,
-        "jobs.html",
-        "jobs",
-        screen=screen,
-        query=query,
-        list_query=ending(query, "job"),
-    )
+    return {"screen": screen, "query": query, "list_query": ending(query, "job")}
 
 
-@require_POST
-@run_page
+@PAGES.form
 def apply(request: HttpRequest, page: Page, job_id: str) -> HttpResponse:
     page.act("apply_job", {"job_id": job_id})
     job = page.state.jobs[job_id]
@@ -202,96 +146,54 @@ def apply(request: HttpRequest, page: Page, job_id: str) -> HttpResponse:
 # --- messaging ---------------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
-def messaging(request: HttpRequest, page: Page) -> HttpResponse:
+@PAGES.screen("messaging.html", tab="messaging")
+def messaging(request: HttpRequest, page: Page):
     query = MessagingQuery.from_params(request.GET)
-    if query.conversation is not None and query.conversation not in page.state.conversations:
-        raise Http404("no such conversation")
+    shown(page.state.conversations, query.conversation, "conversation")
     screen = screens.messaging_screen(page.state, query)
-    return show(
-        request,
-        page,
-        "messaging.html",
-        "messaging",
-        screen=screen,
-        query=query,
-        list_query=ending(query, "conversation"),
-    )
+    return {"screen": screen, "query": query, "list_query": ending(query, "conversation")}
 
 
-@require_POST
-@run_page
-def send_message(request: HttpRequest, page: Page, conversation_id: str) -> HttpResponse:
-    page.act(
-        "send_message",
-        {"conversation_id": conversation_id, "content": request.POST.get("content", "")},
-    )
-    return redirect_after(
-        request, page, "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
-    )
+send_message = feed_views.send_message("content", thread_path)
 
 
-@require_POST
-@run_page
+@PAGES.form
 def start_conversation(request: HttpRequest, page: Page) -> HttpResponse:
-    event = page.act("start_conversation", {"user_id": request.POST.get("user_id", "")})
-    conversation_id = event.payload["conversation_id"] if event else ""
-    return redirect_after(
-        request, page, "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
-    )
+    return open_thread(page, request.POST.get("user_id", ""), thread_path, "messaging/")
 
 
 # --- notifications ------------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
-def notifications(request: HttpRequest, page: Page) -> HttpResponse:
+@PAGES.screen("notifications.html", tab="notifications")
+def notifications(request: HttpRequest, page: Page):
     query = NotificationsQuery.from_params(request.GET)
     rows = screens.notifications_screen(page.state, query)
-    return show(
-        request,
-        page,
-        "notifications.html",
-        "notifications",
-        rows=rows,
-        query=query,
-        filters=NOTIFICATION_FILTER_LABELS,
-    )
+    return {"rows": rows, "query": query, "filters": NOTIFICATION_FILTER_LABELS}
 
 
-@require_POST
-@run_page
+@PAGES.form
 def read_notification(request: HttpRequest, page: Page) -> HttpResponse:
     """Clicking a notification marks it read and goes to what it is about."""
     notification_id = request.POST.get("notification_id", "")
     page.act("mark_notification_read", {"notification_id": notification_id})
     notification = page.state.notifications[notification_id]
-    return redirect_after(request, page, screens.notification_target(page.state, notification))
+    return redirect_to(page, screens.notification_target(page.state, notification))
 
 
 # --- profile, company, search ---------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
-def profile(request: HttpRequest, page: Page, user_id: str) -> HttpResponse:
+@PAGES.screen("profile.html")
+def profile(request: HttpRequest, page: Page, user_id: str):
     found = screens.profile(page.state, user_id)
     if found is None:
         raise Http404("no such member")
-    return show(
-        request,
-        page,
-        "profile.html",
-        "me" if found.is_self else "",
-        profile=found,
-        section_types=SECTION_TYPES,
-    )
+    tab = "me" if found.is_self else ""
+    return {"tab": tab, "profile": found, "section_types": SECTION_TYPES}
 
 
-@require_POST
-@run_page
+@PAGES.form
 def add_section(request: HttpRequest, page: Page, user_id: str) -> HttpResponse:
     if user_id != page.state.me.id:
         raise ActionRejected("only your own profile can be edited", 403)
@@ -300,20 +202,19 @@ def add_section(request: HttpRequest, page: Page, user_id: str) -> HttpResponse:
     return redirect_after(request, page, f"in/{user_id}/", "Section added to your profile")
 
 
-@require_GET
-@run_page
-def company(request: HttpRequest, page: Page, company_id: str) -> HttpResponse:
+@PAGES.screen("company.html")
+def company(request: HttpRequest, page: Page, company_id: str):
     found = screens.company_page(page.state, company_id)
     if found is None:
         raise Http404("no such company")
-    return show(request, page, "company.html", "", company_page=found)
+    return {"company_page": found}
 
 
-@require_GET
-@run_page
-def search(request: HttpRequest, page: Page) -> HttpResponse:
+@PAGES.screen("search.html")
+def search(request: HttpRequest, page: Page):
     query = SearchQuery.from_params(request.GET)
-    results = screens.search(page.state, query)
-    return show(
-        request, page, "search.html", "", results=results, query=query, kinds=SEARCH_KIND_LABELS
-    )
+    return {
+        "results": screens.search(page.state, query),
+        "query": query,
+        "kinds": SEARCH_KIND_LABELS,
+    }
