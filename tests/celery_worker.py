@@ -4,15 +4,34 @@ from __future__ import annotations
 
 import contextlib
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
+from pathlib import Path
 
 from django.conf import settings
 
 from sentinel_site.site_server import current_database_url, stop_process_group
 
 REPO = settings.BASE_DIR
+
+
+READY_WITHIN_S = 90.0  # a generous ceiling for a loaded machine; an idle one answers in ~2 s
+
+
+def wait_until_ready(process: subprocess.Popen) -> None:
+    """Until the worker answers a ping over the broker (it consumes tasks from then on), or it
+    exited (its log says why)."""
+    from sentinel_site.celery import app
+
+    deadline = time.monotonic() + READY_WITHIN_S
+    while time.monotonic() < deadline:
+        assert process.poll() is None, "the Celery worker exited at start; see var/celery-test.log"
+        if app.control.ping(timeout=0.5):
+            return
+    raise AssertionError(f"the Celery worker did not answer within {READY_WITHIN_S:g} s")
 
 
 @contextlib.contextmanager
@@ -25,6 +44,8 @@ def celery_worker():
     )  # tests.settings: with tally
     (REPO / "var").mkdir(exist_ok=True)
     log = open(REPO / "var" / "celery-test.log", "ab")  # noqa: SIM115 - the worker's, till it exits
+    # Beat's schedule of its own: workers of parallel test processes never share one.
+    schedule_dir = tempfile.mkdtemp(prefix="sentinel-beat-")
     process = subprocess.Popen(
         [
             sys.executable,
@@ -38,7 +59,7 @@ def celery_worker():
             "--concurrency=4",
             "--loglevel=INFO",
             "-s",
-            str(REPO / "var" / "celerybeat-schedule"),
+            str(Path(schedule_dir) / "celerybeat-schedule"),
         ],
         cwd=REPO,
         env=env,
@@ -47,9 +68,9 @@ def celery_worker():
         start_new_session=True,
     )
     try:
-        time.sleep(4.0)  # worker and beat connect to the broker
-        assert process.poll() is None, "the Celery worker exited at start; see var/celery-test.log"
+        wait_until_ready(process)
         yield process
     finally:
         stop_process_group(process)
         log.close()
+        shutil.rmtree(schedule_dir, ignore_errors=True)

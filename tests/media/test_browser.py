@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 
 from tests import control_api
+from tests.browser_story import TIMEOUT_MS
 
 # The Chromium fixture (tests/micromail/conftest.py is not in scope here, but be explicit).
 from tests.conftest import browser  # noqa: F401
@@ -54,7 +55,7 @@ def test_inbox_faces_are_decoded_images_with_real_pictures(live_site, browser): 
         live_site, "POST", "/api/runs/", {"scenario_json": scenario(), "clock_mode": "virtual"}
     )
     page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(5000)
+    page.set_default_timeout(TIMEOUT_MS)
     with page.expect_response(lambda response: "/media/avatars/" in response.url) as first:
         page.goto(run["task_url"])
     response = first.value

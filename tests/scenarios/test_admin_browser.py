@@ -9,6 +9,7 @@ from django.contrib.auth import get_user_model
 from django.core.management import call_command
 
 from apps.scenarios.models import Scenario
+from tests.browser_story import TIMEOUT_MS
 from tests.conftest import REPO
 
 pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
@@ -34,7 +35,7 @@ def test_an_author_moves_the_trigger_event_and_the_dry_run_flags_it(
 ):
     pk, trigger_time, event_count = inbox_scenario
     page = browser.new_page()
-    page.set_default_timeout(15_000)
+    page.set_default_timeout(TIMEOUT_MS)
     page.goto(f"{live_site}/admin/login/")
     page.fill("#id_username", AUTHOR)
     page.fill("#id_password", PASSWORD)
