@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from functools import partial
+from functools import partial, wraps
 from typing import Any, Generic, NamedTuple, TypeVar
 from urllib.parse import quote
 
@@ -24,6 +24,7 @@ from events.schemas import Payload
 
 Member = TypeVar("Member")  # a person as the app shows them (its own `Person`)
 S = TypeVar("S")
+Make = Callable[[Any, str, Stamp], Any]  # a Delivery's make: (state, item id, stamp) → item
 
 
 # --- members -------------------------------------------------------------------------------------
@@ -71,6 +72,22 @@ class Members(Generic[Member]):
 
 
 # --- catalog records -----------------------------------------------------------------------------
+
+
+def from_catalog(environment: str, table: str) -> Callable[[Callable[..., Any]], Make]:
+    """Decorator for the `make` of a `Delivery`: `make(state, item_id, record, stamp)` is given
+    the item's record of the catalog table `<environment>/<table>`; an id the table lacks makes
+    nothing (scenario validation names it to the author before a run starts)."""
+
+    def decorate(make: Callable[..., Any]) -> Make:
+        @wraps(make)
+        def made(state: Any, item_id: str, stamp: Stamp) -> Any:
+            record = state.catalog.table(environment, table).get(item_id)
+            return None if record is None else make(state, item_id, record, stamp)
+
+        return made
+
+    return decorate
 
 
 def arrived_at(record: Mapping[str, Any], stamp: Stamp, default_age_s: float) -> float:
@@ -132,6 +149,11 @@ def setting(field: str, key: str, **changes: Any) -> Reducer:
         return with_changed(state, field, event.payload[key], **changes)
 
     return reduce
+
+
+def liking(is_liked: bool) -> Reducer:
+    """How a feed keeps the self user's like: on the post's user-side record."""
+    return setting("post_states", "post_id", is_liked=is_liked)
 
 
 def marking(

@@ -18,7 +18,7 @@ from typing import Any
 
 from apps.kit import social
 from apps.kit.arrivals import Stamp
-from apps.kit.feeds import Members, arrived_at, thread_messages
+from apps.kit.feeds import Members, arrived_at, from_catalog, thread_messages
 from apps.microdin.state import (
     ENVIRONMENT,
     Company,
@@ -106,14 +106,12 @@ def picture(record: Mapping[str, Any]) -> social.Picture | None:
     return drawn
 
 
-# --- items as they arrive (each a `make` of apps.kit.arrivals.Delivery) --------------------------
+# --- items as they arrive (each the `make` of an apps.kit.arrivals.Delivery) ----------------------
 
 
-def catalog_post(network: Network, post_id: str, stamp: Stamp) -> Post | None:
+@from_catalog(ENVIRONMENT, "posts")
+def catalog_post(network: Network, post_id: str, record: Mapping, stamp: Stamp) -> Post:
     catalog = network.catalog
-    record = table(catalog, "posts").get(post_id)
-    if record is None:
-        return None
     posted_at, order = arrival(record, stamp)
     return Post(
         id=post_id,
@@ -128,13 +126,11 @@ def catalog_post(network: Network, post_id: str, stamp: Stamp) -> Post | None:
     )
 
 
+@from_catalog(ENVIRONMENT, "connections")
 def catalog_connection(
-    network: Network, connection_id: str, stamp: Stamp
-) -> tuple[Connection, ConnectionState] | None:
+    network: Network, connection_id: str, record: Mapping, stamp: Stamp
+) -> tuple[Connection, ConnectionState]:
     """An invitation, with the status the catalog gives it (pending unless it says)."""
-    record = table(network.catalog, "connections").get(connection_id)
-    if record is None:
-        return None
     received_at, order = arrival(record, stamp)
     connection = Connection(
         id=connection_id,
@@ -146,13 +142,11 @@ def catalog_connection(
     return connection, ConnectionState(status=str(record.get("status") or "pending"))
 
 
+@from_catalog(ENVIRONMENT, "notifications")
 def catalog_notification(
-    network: Network, notification_id: str, stamp: Stamp
-) -> tuple[Notification, NotificationState] | None:
+    network: Network, notification_id: str, record: Mapping, stamp: Stamp
+) -> tuple[Notification, NotificationState]:
     """A notification: preloaded, with the catalog's read flag; arriving later, unread."""
-    record = table(network.catalog, "notifications").get(notification_id)
-    if record is None:
-        return None
     kind = str(record.get("type") or "other")
     at, order = arrival(record, stamp)
     notification = Notification(
@@ -168,11 +162,9 @@ def catalog_notification(
     return notification, NotificationState(is_read=read)
 
 
-def catalog_job(network: Network, job_id: str, stamp: Stamp) -> Job | None:
+@from_catalog(ENVIRONMENT, "jobs")
+def catalog_job(network: Network, job_id: str, record: Mapping, stamp: Stamp) -> Job:
     catalog = network.catalog
-    record = table(catalog, "jobs").get(job_id)
-    if record is None:
-        return None
     posted_at, order = arrival(record, stamp)
     return Job(
         id=job_id,

@@ -102,8 +102,8 @@ def post_card(network: Network, post_id: str) -> PostCard:
 
 @per_state()
 def feed(network: Network) -> tuple[PostCard, ...]:
-    ids = net.newest_first(network.posts, network.posts, "posted_at")
-    return tuple(post_card(network, i) for i in ids)
+    posts = net.newest_first(network.posts.values(), "posted_at")
+    return tuple(post_card(network, post.id) for post in posts)
 
 
 def news(catalog: Any) -> tuple[Mapping[str, Any], ...]:
@@ -129,7 +129,9 @@ def feed_suggestions(network: Network) -> tuple[Company, ...]:
 
 @per_state()
 def invitations(network: Network) -> tuple[Invitation, ...]:
-    return tuple(Invitation(network.connections[i]) for i in net.pending_ids(network))
+    """Invitations waiting for an answer, newest first."""
+    pending = (c for c in network.connections.values() if net.status(network, c.id) == "pending")
+    return tuple(Invitation(c) for c in net.newest_first(pending, "received_at"))
 
 
 @per_state()
@@ -144,9 +146,9 @@ def suggestions(network: Network) -> tuple[Person, ...]:
 @per_state()
 def connected_people(network: Network) -> tuple[Person, ...]:
     accepted = [
-        network.connections[i].person
-        for i in net.newest_first(network.connections, network.connections, "received_at")
-        if net.status(network, i) == "accepted"
+        c.person
+        for c in net.newest_first(network.connections.values(), "received_at")
+        if net.status(network, c.id) == "accepted"
     ]
     already = [records.person(network.catalog, i) for i in network.stats.connected_ids]
     return tuple(accepted + already)
@@ -163,24 +165,21 @@ class JobsScreen:
     total: int
 
 
+def job_card(network: Network, job: Job, opened: bool) -> JobCard:
+    return JobCard(job, network.job_states[job.id].is_applied, opened)
+
+
 @per_state()
 def jobs_screen(network: Network, query: JobsQuery) -> JobsScreen:
     """The job list (title, company, location only) and the open posting with its requirements.
     `query.job` must be on the network (the view checks)."""
-    ids = [
-        i
-        for i in net.newest_first(network.jobs, network.jobs, "posted_at")
-        if (query.filter != "applied" or network.job_states[i].is_applied)
-        and _contains(
-            query.q, network.jobs[i].title, network.jobs[i].company.name, network.jobs[i].location
-        )
-    ]
     cards = tuple(
-        JobCard(network.jobs[i], network.job_states[i].is_applied, i == query.job) for i in ids
+        job_card(network, job, job.id == query.job)
+        for job in net.newest_first(network.jobs.values(), "posted_at")
+        if (query.filter != "applied" or network.job_states[job.id].is_applied)
+        and _contains(query.q, job.title, job.company.name, job.location)
     )
-    opened = None
-    if query.job:
-        opened = JobCard(network.jobs[query.job], network.job_states[query.job].is_applied, True)
+    opened = job_card(network, network.jobs[query.job], True) if query.job else None
     return JobsScreen(query, cards, opened, len(network.jobs))
 
 
@@ -248,10 +247,9 @@ def notification_target(network: Network, notification: Notification) -> str:
 def notifications_screen(
     network: Network, query: NotificationsQuery
 ) -> tuple[NotificationRow, ...]:
-    ids = net.newest_first(network.notifications, network.notifications, "at")
     rows = []
-    for i in ids:
-        notification, read = network.notifications[i], network.notification_states[i].is_read
+    for notification in net.newest_first(network.notifications.values(), "at"):
+        read = network.notification_states[notification.id].is_read
         if query.filter == "unread" and read:
             continue
         if (
@@ -324,10 +322,7 @@ def company_page(network: Network, company_id: str) -> CompanyPage | None:
     if company is None and not jobs:
         return None
     company = company or jobs[0].company
-    cards = tuple(
-        JobCard(j, network.job_states[j.id].is_applied, False)
-        for j in sorted(jobs, key=lambda j: (-j.posted_at, j.order))
-    )
+    cards = tuple(job_card(network, job, False) for job in net.newest_first(jobs, "posted_at"))
     people = tuple(
         p
         for p in records.MEMBERS.everyone(network.catalog).values()
@@ -359,9 +354,9 @@ def search(network: Network, query: SearchQuery) -> SearchResults:
         if e.get("type") == "company" and _contains(query.q, str(e.get("name", "")))
     )
     jobs = tuple(
-        network.jobs[i]
-        for i in net.newest_first(network.jobs, network.jobs, "posted_at")
-        if _contains(query.q, network.jobs[i].title, network.jobs[i].company.name)
+        job
+        for job in net.newest_first(network.jobs.values(), "posted_at")
+        if _contains(query.q, job.title, job.company.name)
     )
     if query.kind == "all":
         people = people[: SEARCH_LIMITS["people"]]

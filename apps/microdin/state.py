@@ -10,15 +10,14 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TypeVar
 
 from apps.kit.frozen import EMPTY, CatalogState
 from apps.kit.social import Comment, Picture
 
 ENVIRONMENT = "microdin"
+Item = TypeVar("Item")  # a post, a job… (anything stamped with a time and a catalog order)
 
-CONNECTION_STATUSES = ("pending", "accepted", "ignored")
-NOTIFICATION_TYPES = ("like", "comment", "connection", "mention", "job", "profile_view", "other")
 SECTION_TYPES = ("experience", "education", "skill", "certification", "project", "volunteering")
 
 
@@ -192,12 +191,6 @@ def status(network: Network, connection_id: str) -> str:
     return network.connection_states[connection_id].status
 
 
-def pending_ids(network: Network) -> list[str]:
-    """Invitations waiting for an answer, newest first."""
-    ids = [i for i, s in network.connection_states.items() if s.status == "pending"]
-    return newest_first(network.connections, ids, "received_at")
-
-
 def conversation_messages(network: Network, conversation_id: str) -> list[Message]:
     return sorted(
         (m for m in network.messages.values() if m.conversation_id == conversation_id),
@@ -213,13 +206,10 @@ def unread_in(network: Network, conversation_id: str) -> int:
     )
 
 
-def is_self(network: Network, person_id: str) -> bool:
-    return person_id == network.me.id
-
-
-def newest_first(items: Mapping[str, Any], ids: Iterable[str], stamp: str) -> list[str]:
-    """Newest first; equal times keep the catalog order (the original's list order)."""
-    return sorted(ids, key=lambda i: (-getattr(items[i], stamp), items[i].order))
+def newest_first(items: Iterable[Item], stamp: str) -> list[Item]:
+    """Newest first (the time `stamp`); equal times keep the catalog order (the original's list
+    order)."""
+    return sorted(items, key=lambda item: (-getattr(item, stamp), item.order))
 
 
 def connections_count(network: Network) -> int:

@@ -16,12 +16,7 @@ from apps.kit.pages import Page
 from apps.kit.post_actions import act_on_post
 from apps.kit.rendering import back_field, came_from, redirect_after, redirect_to
 from apps.microdin import screens
-from apps.microdin.query import (
-    JobsQuery,
-    MessagingQuery,
-    NotificationsQuery,
-    SearchQuery,
-)
+from apps.microdin.query import JobsQuery, MessagingQuery, NotificationsQuery, SearchQuery
 from apps.microdin.state import SECTION_TYPES, connections_count
 from events.registry import ActionRejected
 

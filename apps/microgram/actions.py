@@ -224,7 +224,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         **post_actions(
             WHERE,
-            lambda is_liked: feeds.setting("post_states", "post_id", is_liked=is_liked),
+            feeds.liking,
             reduce_comment,
             post_page,
         ),

@@ -20,7 +20,7 @@ from typing import Any
 
 from apps.kit import social
 from apps.kit.arrivals import Stamp
-from apps.kit.feeds import Members, arrived_at, thread_messages
+from apps.kit.feeds import Members, arrived_at, from_catalog, thread_messages
 from apps.microgram.state import (
     ENVIRONMENT,
     Activity,
@@ -105,14 +105,12 @@ def arrival(catalog: Any, name: str, record: Mapping[str, Any], stamp: Stamp) ->
     return arrived_at(record, stamp, default_age_s=(steps + 1) * MINUTES_PER_ORDER_STEP * 60.0)
 
 
-# --- items as they arrive (each a `make` of apps.kit.arrivals.Delivery) --------------------------
+# --- items as they arrive (each the `make` of an apps.kit.arrivals.Delivery) ----------------------
 
 
-def catalog_post(gram: Gram, post_id: str, stamp: Stamp) -> Post | None:
+@from_catalog(ENVIRONMENT, "posts")
+def catalog_post(gram: Gram, post_id: str, record: Mapping, stamp: Stamp) -> Post:
     catalog = gram.catalog
-    record = table(catalog, "posts").get(post_id)
-    if record is None:
-        return None
     return Post(
         id=post_id,
         author=person(catalog, record.get("authorId")),
@@ -127,11 +125,9 @@ def catalog_post(gram: Gram, post_id: str, stamp: Stamp) -> Post | None:
     )
 
 
-def catalog_story(gram: Gram, story_id: str, stamp: Stamp) -> Story | None:
+@from_catalog(ENVIRONMENT, "stories")
+def catalog_story(gram: Gram, story_id: str, record: Mapping, stamp: Stamp) -> Story:
     catalog = gram.catalog
-    record = table(catalog, "stories").get(story_id)
-    if record is None:
-        return None
     return Story(
         id=story_id,
         author=person(catalog, record.get("authorId")),
@@ -142,13 +138,13 @@ def catalog_story(gram: Gram, story_id: str, stamp: Stamp) -> Story | None:
     )
 
 
-def catalog_activity(gram: Gram, activity_id: str, stamp: Stamp) -> tuple[Activity, bool] | None:
+@from_catalog(ENVIRONMENT, "activity")
+def catalog_activity(
+    gram: Gram, activity_id: str, record: Mapping, stamp: Stamp
+) -> tuple[Activity, bool]:
     """An activity item and whether it is read: preloaded items keep the catalog's `isRead`
     (older ones were seen before the task); what arrives later is unread."""
     catalog = gram.catalog
-    record = table(catalog, "activity").get(activity_id)
-    if record is None:
-        return None
     activity = Activity(
         id=activity_id,
         type=str(record.get("type") or "mention"),
@@ -181,11 +177,11 @@ def conversation_data(catalog: Any, record: Mapping[str, Any]) -> str:
     return json.dumps(data, ensure_ascii=False)
 
 
-def catalog_conversation(gram: Gram, conversation_id: str, stamp: Stamp) -> Conversation | None:
+@from_catalog(ENVIRONMENT, "messages")
+def catalog_conversation(
+    gram: Gram, conversation_id: str, record: Mapping, stamp: Stamp
+) -> Conversation:
     catalog = gram.catalog
-    record = table(catalog, "messages").get(conversation_id)
-    if record is None:
-        return None
     messages = tuple(
         Message(
             id=str(m["id"]),

@@ -18,8 +18,6 @@ from apps.kit.social import Comment, Picture
 
 ENVIRONMENT = "microgram"
 
-ACTIVITY_TYPES = ("like", "follow", "comment", "mention")
-
 
 @dataclass(frozen=True)
 class Person:
@@ -164,10 +162,6 @@ def unread_in(gram: Gram, conversation_id: str) -> int:
 
 def is_following(gram: Gram, user_id: str) -> bool:
     return user_id in gram.followed
-
-
-def is_story_viewed(gram: Gram, story_id: str) -> bool:
-    return story_id in gram.viewed_stories
 
 
 # --- counts (baselines and badges: the original's definitions) --------------------------------

@@ -30,7 +30,7 @@ def test_the_preload_keeps_catalog_read_flags_and_statuses():
 
 def test_a_new_job_arrives_newest_first_and_not_applied():
     network = CAST.arrive(CAST.preloaded(), "new_job", {"job_id": KUBERNETES_JOB})
-    assert net.newest_first(network.jobs, network.jobs, "posted_at")[0] == KUBERNETES_JOB
+    assert net.newest_first(network.jobs.values(), "posted_at")[0].id == KUBERNETES_JOB
     assert network.job_states[KUBERNETES_JOB].is_applied is False
 
 
