@@ -17,29 +17,20 @@ from types import MappingProxyType
 
 from pydantic import Field
 
-from apps.microfy import library
-from apps.microfy.state import (
-    Music,
-    NowPlaying,
-    Playlist,
-    next_user_playlist_id,
-    with_followed,
-    with_track_state,
-    with_user_playlist,
-)
-from events.registry import Action, ActionRejected, LoggedEvent, PageStep
+from apps.kit.changing import setting
+from apps.kit.deciding import checking
+from apps.kit.frozen import with_changed, with_items
+from apps.kit.streaming import bounded_text, id_payload, numbered_id
+from apps.microfy import screens
+from apps.microfy.state import USER_PLAYLIST_PREFIX, Music, NowPlaying, Playlist, with_followed
+from events.registry import Action, ActionRejected, LoggedEvent, PageStep, Reducer
 from events.schemas import Payload
 
 NAME_MAX = 100
 DESCRIPTION_MAX = 300
 
-
-class TrackId(Payload):
-    track_id: str = Field(description="id of a track in the session")
-
-
-class ArtistId(Payload):
-    artist_id: str = Field(description="id of an artist shown in the session")
+TrackId = id_payload("TrackId", "track_id", "id of a track in the session")
+ArtistId = id_payload("ArtistId", "artist_id", "id of an artist shown in the session")
 
 
 class CreatePlaylist(Payload):
@@ -52,14 +43,11 @@ class AddToPlaylist(Payload):
     track_id: str = Field(description="id of a track in the session")
 
 
-def decide_on_track(music: Music, payload: dict) -> dict:
-    if not music.has(payload["track_id"]):
-        raise ActionRejected(f"no track {payload['track_id']!r} in this session", status=404)
-    return payload
+decide_on_track = checking("tracks", "track_id", "track", "in this session")
 
 
 def decide_on_artist(music: Music, payload: dict) -> dict:
-    if library.visible_artist(music, payload["artist_id"]) is None:
+    if screens.visible_artist(music, payload["artist_id"]) is None:
         raise ActionRejected(f"no artist {payload['artist_id']!r} in this session", status=404)
     return payload
 
@@ -70,35 +58,35 @@ def reduce_play(music: Music, event: LoggedEvent) -> Music:
     state = music.states.get(track_id)
     if state is None:
         return music
-    music = with_track_state(music, track_id, user_play_count=state.user_play_count + 1)
+    music = with_changed(music, "states", track_id, user_play_count=state.user_play_count + 1)
     return replace(music, now_playing=NowPlaying(track_id, event.at))
 
 
-def liking(value: bool):
-    def reduce(music: Music, event: LoggedEvent) -> Music:
-        return with_track_state(music, event.payload["track_id"], is_liked=value)
-
-    return reduce
-
-
-def following(value: bool):
+def following(value: bool) -> Reducer[Music]:
     def reduce(music: Music, event: LoggedEvent) -> Music:
         return with_followed(music, event.payload["artist_id"], value)
 
     return reduce
 
 
+def liking(value: bool) -> Reducer[Music]:
+    return setting("states", "track_id", is_liked=value)
+
+
 def decide_create_playlist(music: Music, payload: dict) -> dict:
-    name = payload["name"].strip()
-    if not name:
-        raise ActionRejected("name: a playlist needs a name")
-    if len(name) > NAME_MAX:
-        raise ActionRejected(f"name: at most {NAME_MAX} characters")
-    description = (payload.get("description") or "").strip()
-    if len(description) > DESCRIPTION_MAX:
-        raise ActionRejected(f"description: at most {DESCRIPTION_MAX} characters")
+    name = bounded_text(
+        payload,
+        "name",
+        NAME_MAX,
+        empty="a playlist needs a name",
+        too_long=f"at most {NAME_MAX} characters",
+    )
+    description = bounded_text(
+        payload, "description", DESCRIPTION_MAX, too_long=f"at most {DESCRIPTION_MAX} characters"
+    )
     # The id is chosen here and logged, so replay gives the playlist the same id.
-    return {"name": name, "description": description, "playlist_id": next_user_playlist_id(music)}
+    playlist_id = numbered_id(music.user_playlists, USER_PLAYLIST_PREFIX)
+    return {"name": name, "description": description, "playlist_id": playlist_id}
 
 
 def reduce_create_playlist(music: Music, event: LoggedEvent) -> Music:
@@ -112,7 +100,7 @@ def reduce_create_playlist(music: Music, event: LoggedEvent) -> Music:
         track_ids=(),
         user_created=True,
     )
-    return with_user_playlist(music, playlist)
+    return with_items(music, "user_playlists", [(playlist.id, playlist)])
 
 
 def decide_add_to_playlist(music: Music, payload: dict) -> dict:
@@ -130,7 +118,8 @@ def reduce_add_to_playlist(music: Music, event: LoggedEvent) -> Music:
     track_id = event.payload["track_id"]
     if playlist is None or track_id in playlist.track_ids:
         return music
-    return with_user_playlist(music, replace(playlist, track_ids=(*playlist.track_ids, track_id)))
+    track_ids = (*playlist.track_ids, track_id)
+    return with_changed(music, "user_playlists", playlist.id, track_ids=track_ids)
 
 
 def on_track_page(music: Music, payload: dict) -> PageStep:
@@ -141,43 +130,21 @@ def on_artist_page(music: Music, payload: dict) -> PageStep:
     return PageStep(f"artist/{payload['artist_id']}", {})
 
 
+def on_track(reduce: Reducer[Music], help: str) -> Action:
+    return Action(TrackId, decide_on_track, reduce, help=help, page=on_track_page)
+
+
+def on_artist(followed: bool, help: str) -> Action:
+    return Action(ArtistId, decide_on_artist, following(followed), help=help, page=on_artist_page)
+
+
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
-        "play_track": Action(
-            TrackId,
-            decide_on_track,
-            reduce_play,
-            help="Play a track (counts a play).",
-            page=on_track_page,
-        ),
-        "like_track": Action(
-            TrackId,
-            decide_on_track,
-            liking(True),
-            help="Save a track to Liked Songs.",
-            page=on_track_page,
-        ),
-        "unlike_track": Action(
-            TrackId,
-            decide_on_track,
-            liking(False),
-            help="Remove a track from Liked Songs.",
-            page=on_track_page,
-        ),
-        "follow_artist": Action(
-            ArtistId,
-            decide_on_artist,
-            following(True),
-            help="Follow an artist.",
-            page=on_artist_page,
-        ),
-        "unfollow_artist": Action(
-            ArtistId,
-            decide_on_artist,
-            following(False),
-            help="Stop following an artist.",
-            page=on_artist_page,
-        ),
+        "play_track": on_track(reduce_play, "Play a track (counts a play)."),
+        "like_track": on_track(liking(True), "Save a track to Liked Songs."),
+        "unlike_track": on_track(liking(False), "Remove a track from Liked Songs."),
+        "follow_artist": on_artist(True, "Follow an artist."),
+        "unfollow_artist": on_artist(False, "Stop following an artist."),
         "create_playlist": Action(
             CreatePlaylist,
             decide_create_playlist,

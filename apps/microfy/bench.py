@@ -6,13 +6,13 @@ Songs and a mood. Paths are relative to the environment root (`/r/<token>/microf
 
 from __future__ import annotations
 
-from apps.microfy import library
+from apps.microfy import screens
 from apps.microfy.state import LIKED, Music
 
 
 def sample_pages(music: Music) -> list[str]:
     pages = ["", "search?q=the", f"playlist/{LIKED}"]
-    trending = library.trending(music)
+    trending = screens.trending(music)
     if trending:
         track = trending[0]
         pages += [f"track/{track.id}", f"artist/{track.artist_id}"]

@@ -18,8 +18,10 @@ from collections.abc import Mapping
 from types import MappingProxyType
 from typing import Any
 
+from apps.kit.arrivals import Stamp
+from apps.kit.streaming import whole
 from apps.kit.waypoints import Waypoints
-from apps.microfy.state import ENVIRONMENT, Artist, Mood, Playlist, Track, TrackState
+from apps.microfy.state import ENVIRONMENT, Artist, Mood, Music, Playlist, Track
 
 HORIZON_S = 720.0  # the original's event_timeline_end: drifting counts stop growing there
 UNKNOWN_ARTIST = "Unknown Artist"
@@ -33,50 +35,37 @@ def ramp(start: float, per_second: float, *, since: float = 0.0) -> Waypoints:
     return Waypoints(start, ((since, start), (HORIZON_S, end)))
 
 
-def _int(value: Any, default: int = 0) -> int:
-    try:
-        return int(value)
-    except (TypeError, ValueError):
-        return default
-
-
 def _play_rate(play_count: int) -> float:
     # A few plays a second at most: a big hit visibly ticks, a niche track barely moves.
     return 0.1 + min(play_count, 5_000_000) / 10_000_000
 
 
-def catalog_track(
-    catalog: Any, track_id: str, *, arrived_at: float, preloaded: bool
-) -> Track | None:
-    """The track `track_id` as it arrives at `arrived_at`; None if the catalog lacks it."""
-    record = catalog.table(ENVIRONMENT, "tracks").get(track_id)
+def catalog_track(music: Music, track_id: str, stamp: Stamp) -> Track | None:
+    """The track `track_id` as it arrives (not liked, never played: `TrackState()`); None if the
+    catalog lacks it."""
+    record = music.catalog.table(ENVIRONMENT, "tracks").get(track_id)
     if record is None:
         return None
-    plays = _int(record.get("playCount"))
+    plays = whole(record.get("playCount"))
     return Track(
         id=track_id,
         title=str(record.get("title", "")),
         artist_id=str(record.get("artistId", "")),
         artist_name=str(record.get("artistName") or UNKNOWN_ARTIST),
         album=str(record.get("albumName", "")),
-        duration_s=_int(record.get("durationSeconds"), 180),
+        duration_s=whole(record.get("durationSeconds"), 180),
         description=str(record.get("description", "")),
         genre=str(record.get("genre", "")),
         lyrics=str(record.get("lyrics", "")),
         is_new_release=bool(record.get("isNewRelease", False)),
-        plays=ramp(plays, _play_rate(plays), since=max(0.0, arrived_at)),
-        arrived_at=arrived_at,
-        preloaded=preloaded,
+        plays=ramp(plays, _play_rate(plays), since=max(0.0, stamp.at)),
+        arrived_at=stamp.at,
+        preloaded=stamp.preloaded,
     )
 
 
-def fresh_state() -> TrackState:
-    """A track arrives not liked and never played (the original's rule)."""
-    return TrackState()
-
-
-def catalog_playlist(catalog: Any, playlist_id: str) -> Playlist | None:
-    record = catalog.table(ENVIRONMENT, "playlists").get(playlist_id)
+def catalog_playlist(music: Music, playlist_id: str, stamp: Stamp) -> Playlist | None:
+    record = music.catalog.table(ENVIRONMENT, "playlists").get(playlist_id)
     if record is None:
         return None
     return Playlist(
@@ -86,14 +75,14 @@ def catalog_playlist(catalog: Any, playlist_id: str) -> Playlist | None:
         owner_id=str(record.get("ownerId", "")),
         owner_name=str(record.get("ownerName", "")),
         track_ids=tuple(str(t) for t in record.get("trackIds") or ()),
-        follower_count=_int(record.get("followerCount")),
+        follower_count=whole(record.get("followerCount")),
         is_public=bool(record.get("isPublic", True)),
         data=json.dumps(dict(record)),
     )
 
 
-def catalog_mood(catalog: Any, mood_id: str) -> Mood | None:
-    record = catalog.table(ENVIRONMENT, "moods").get(mood_id)
+def catalog_mood(music: Music, mood_id: str, stamp: Stamp) -> Mood | None:
+    record = music.catalog.table(ENVIRONMENT, "moods").get(mood_id)
     if record is None:
         return None
     return Mood(
@@ -114,8 +103,8 @@ def artists(catalog: Any) -> Mapping[str, Artist]:
             str(record.get("name") or UNKNOWN_ARTIST),
             str(record.get("genre", "")),
             str(record.get("bio", "")),
-            _int(record.get("monthlyListeners")),
-            _int(record.get("followerCount")),
+            whole(record.get("monthlyListeners")),
+            whole(record.get("followerCount")),
         )
     for record in catalog.table(ENVIRONMENT, "tracks").values():
         artist_id = str(record.get("artistId", ""))

@@ -14,169 +14,93 @@ its state; here it is left as it is (no duplicate, nothing the user did is lost)
 from __future__ import annotations
 
 import json
-import sqlite3
 from collections.abc import Mapping
-from dataclasses import replace
-from types import MappingProxyType
 from typing import Any
 
 from pydantic import Field
 
-from apps.kit.legacy_tables import Table
-from apps.microfy import library
+from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.frozen import with_changed
+from apps.kit.streaming import read_at
+from apps.kit.tables import KEY, Table, tables
+from apps.microfy import screens
 from apps.microfy import state as lib
 from apps.microfy.actions import ACTIONS
 from apps.microfy.bench import sample_pages
-from apps.microfy.catalog import artists, catalog_mood, catalog_playlist, catalog_track, fresh_state
-from apps.microfy.state import ENVIRONMENT, Music, with_playlists, with_tracks
-from events.registry import Environment, EventType, LoggedEvent, Measure, timeless
+from apps.microfy.catalog import artists, catalog_mood, catalog_playlist, catalog_track
+from apps.microfy.state import ENVIRONMENT, Music, TrackState, empty_music, with_followed
+from events.registry import Environment, counted
 from events.schemas import Payload
 
-FALLBACK_SELF: Mapping[str, Any] = MappingProxyType({"id": "me", "name": "Me"})
-
 # The original's names: eval_sql reads session_meta `baseline_<name>`.
-BASELINES: Mapping[str, Measure] = MappingProxyType(
+BASELINES = counted(
     {
-        name: timeless(count)
-        for name, count in {
-            "liked_count": lib.liked_count,
-            "play_count": lib.play_count,
-            "new_release_count": lib.new_release_count,
-            "playlist_count": lib.playlist_count,
-            "public_playlist_count": lib.public_playlist_count,
-            "followed_artist_count": lib.followed_artist_count,
-            "track_count": lib.track_count,
-        }.items()
+        "liked_count": lib.liked_count,
+        "play_count": lib.play_count,
+        "new_release_count": lib.new_release_count,
+        "playlist_count": lib.playlist_count,
+        "public_playlist_count": lib.public_playlist_count,
+        "followed_artist_count": lib.followed_artist_count,
+        "track_count": lib.track_count,
     }
 )
 
-
-def empty_music(catalog: Any) -> Music:
-    me = catalog.self_user or FALLBACK_SELF
-    return Music(catalog=catalog, self_id=str(me.get("id", "")), self_name=str(me.get("name", "")))
+deliver_tracks = Delivery("tracks", catalog_track, states="states", fresh=TrackState)
+deliver_playlists = Delivery("playlists", catalog_playlist)
 
 
-def deliver_tracks(music: Music, track_ids: list[str], *, at: float, preloaded: bool) -> Music:
-    arrivals = []
-    for track_id in dict.fromkeys(track_ids):  # de-duplicate, keep order
-        if music.has(track_id):
-            continue
-        track = catalog_track(music.catalog, track_id, arrived_at=at, preloaded=preloaded)
-        if track is not None:
-            arrivals.append((track, fresh_state()))
-    return with_tracks(music, arrivals) if arrivals else music
+class LikedAndFollowed(Payload):
+    """What the user already liked and followed when the task starts."""
 
-
-def reduce_preload_tracks(music: Music, event: LoggedEvent) -> Music:
-    payload, catalog = event.payload, music.catalog
-    music = deliver_tracks(
-        music,
-        catalog.expand(ENVIRONMENT, "tracks", payload.get("track_ids")),
-        at=event.at,
-        preloaded=True,
-    )
-    playlists = [
-        catalog_playlist(catalog, p)
-        for p in catalog.expand(ENVIRONMENT, "playlists", payload.get("playlist_ids"))
-        if p not in music.playlists
-    ]
-    music = with_playlists(music, [p for p in playlists if p is not None])
-    moods = {**music.moods}
-    for mood_id in catalog.expand(ENVIRONMENT, "moods", payload.get("mood_ids")):
-        mood = catalog_mood(catalog, mood_id)
-        if mood is not None:
-            moods[mood_id] = mood
-    music = replace(music, moods=MappingProxyType(moods))
-    for track_id in catalog.expand(ENVIRONMENT, "tracks", payload.get("liked_track_ids")):
-        music = lib.with_track_state(music, track_id, is_liked=True)
-    known = catalog.index(artists)
-    for artist_id in catalog.expand(ENVIRONMENT, "artists", payload.get("followed_artist_ids")):
-        if artist_id in known and not music.is_followed(artist_id):
-            music = lib.with_followed(music, artist_id, True)
-    return music
-
-
-def reduce_new_track(music: Music, event: LoggedEvent) -> Music:
-    return deliver_tracks(music, [event.payload["track_id"]], at=event.at, preloaded=False)
-
-
-def reduce_new_playlist(music: Music, event: LoggedEvent) -> Music:
-    playlist_id = event.payload["playlist_id"]
-    if playlist_id in music.playlists:
-        return music
-    playlist = catalog_playlist(music.catalog, playlist_id)
-    return with_playlists(music, [playlist]) if playlist is not None else music
-
-
-class PreloadTracks(Payload):
-    track_ids: list[str] = Field(description='catalog track ids; ["*"] = every track')
-    playlist_ids: list[str] = Field([], description='catalog playlist ids; ["*"] = every one')
-    mood_ids: list[str] = Field([], description='catalog mood ids; ["*"] = every mood')
     liked_track_ids: list[str] = Field([], description="tracks already liked (if loaded)")
     followed_artist_ids: list[str] = Field([], description="artists already followed")
 
 
-class NewTrack(Payload):
-    track_id: str = Field(description="catalog track id")
+def like_and_follow(music: Music, payload: Mapping[str, Any], at: float) -> Music:
+    """Likes count only for tracks the preload loaded; follows only for known artists."""
+    catalog = music.catalog
+    for track_id in catalog.expand(ENVIRONMENT, "tracks", payload.get("liked_track_ids")):
+        music = with_changed(music, "states", track_id, is_liked=True)
+    known = catalog.index(artists)
+    for artist_id in catalog.expand(ENVIRONMENT, "artists", payload.get("followed_artist_ids")):
+        if artist_id in known and not music.is_followed(artist_id):
+            music = with_followed(music, artist_id, True)
+    return music
 
 
-class NewPlaylist(Payload):
-    playlist_id: str = Field(description="catalog playlist id")
-
-
-EVENT_TYPES = MappingProxyType(
-    {
-        "preload_tracks": EventType(
-            schema=PreloadTracks,
-            reduce=reduce_preload_tracks,
-            help="The library at the start; baselines are measured after it.",
-            catalog_refs={
-                "track_ids": "tracks",
-                "playlist_ids": "playlists",
-                "mood_ids": "moods",
-                "liked_track_ids": "tracks",
-            },
-            preload=True,
-        ),
-        "new_track": EventType(
-            schema=NewTrack,
-            reduce=reduce_new_track,
-            help="A track drops into the trending feed.",
-            catalog_refs={"track_id": "tracks"},
-        ),
-        "new_playlist": EventType(
-            schema=NewPlaylist,
-            reduce=reduce_new_playlist,
-            help="A catalog playlist appears in the library.",
-            catalog_refs={"playlist_id": "playlists"},
-        ),
-    }
+EVENT_TYPES = event_types(
+    preload(
+        "preload_tracks",
+        {
+            "track_ids": ("tracks", deliver_tracks),
+            "playlist_ids": ("playlists", deliver_playlists),
+            "mood_ids": ("moods", Delivery("moods", catalog_mood)),
+        },
+        required=("track_ids",),
+        base=LikedAndFollowed,
+        then=like_and_follow,
+        refs={"liked_track_ids": "tracks"},
+        environment=ENVIRONMENT,
+        help="The library at the start; baselines are measured after it.",
+    ),
+    arrival(
+        "new_track",
+        "track_id",
+        "tracks",
+        deliver_tracks,
+        help="A track drops into the trending feed.",
+    ),
+    arrival(
+        "new_playlist",
+        "playlist_id",
+        "playlists",
+        deliver_playlists,
+        help="A catalog playlist appears in the library.",
+    ),
 )
 
 
 # --- evaluation tables (the original's names and columns; playCount and artists are ours) -------
-
-TRACKS = Table(
-    "tracks",
-    (
-        "id TEXT",
-        "title TEXT",
-        "artistId TEXT",
-        "artistName TEXT",
-        "genre TEXT",
-        "isNewRelease INTEGER",
-        "lyrics TEXT",
-        "playCount INTEGER",
-    ),
-)
-TRACK_STATES = Table("track_states", ("track_id TEXT", "isLiked INTEGER", "userPlayCount INTEGER"))
-PLAYLISTS = Table("playlists", ("id TEXT", "name TEXT", "data TEXT"))
-USER_PLAYLISTS = Table("user_created_playlists", ("id TEXT", "name TEXT", "data TEXT"))
-FOLLOWED = Table("followed_artists", ("artist_id TEXT",))
-MOODS = Table("moods", ("id TEXT", "name TEXT"))
-ARTISTS = Table(
-    "artists", ("id TEXT", "name TEXT", "monthlyListeners INTEGER", "followers INTEGER")
-)
 
 
 def user_playlist_data(playlist: lib.Playlist) -> str:
@@ -192,46 +116,56 @@ def user_playlist_data(playlist: lib.Playlist) -> str:
     )
 
 
-def materialize(music: Music, now: float, conn: sqlite3.Connection) -> None:
-    """The original's six tables as of `now`, plus the drifting counts the pages show."""
-    TRACKS.write(
-        conn,
-        (
-            (
-                t.id,
-                t.title,
-                t.artist_id,
-                t.artist_name,
-                t.genre,
-                t.is_new_release,
-                t.lyrics,
-                library.count_at(t.plays, now) + music.states[t.id].user_play_count,
-            )
-            for t in music.tracks.values()
-        ),
-    )
-    TRACK_STATES.write(
-        conn,
-        ((i, s.is_liked, s.user_play_count) for i, s in music.states.items()),
-    )
-    PLAYLISTS.write(conn, ((p.id, p.name, p.data) for p in music.playlists.values()))
-    USER_PLAYLISTS.write(
-        conn, ((p.id, p.name, user_playlist_data(p)) for p in music.user_playlists.values())
-    )
-    FOLLOWED.write(conn, ((a,) for a in music.followed))
-    MOODS.write(conn, ((m.id, m.name) for m in music.moods.values()))
-    ARTISTS.write(
-        conn,
-        (
-            (
-                a.id,
-                a.name,
-                library.count_at(a.listeners, now),
-                library.follower_count(music, a, now),
-            )
-            for a in library.top_artists(music)
-        ),
-    )
+ID_AND_NAME = {"id TEXT": "id", "name TEXT": "name"}
+
+materialize = tables(
+    Table(
+        "tracks",
+        read_at(lambda music: music.tracks.values()),
+        {
+            "id TEXT": "id",
+            "title TEXT": "title",
+            "artistId TEXT": "artist_id",
+            "artistName TEXT": "artist_name",
+            "genre TEXT": "genre",
+            "isNewRelease INTEGER": "is_new_release",
+            "lyrics TEXT": "lyrics",
+            # Everyone's plays at `now` (as the track page shows them), the user's included.
+            "playCount INTEGER": lambda t: screens.plays_at(t.state, t.item, t.now),
+        },
+    ),
+    Table.keyed(
+        "track_states",
+        "states",
+        {
+            "track_id TEXT": KEY,
+            "isLiked INTEGER": "is_liked",
+            "userPlayCount INTEGER": "user_play_count",
+        },
+    ),
+    Table(
+        "playlists",
+        lambda music, now: music.playlists.values(),
+        {**ID_AND_NAME, "data TEXT": "data"},
+    ),
+    Table(
+        "user_created_playlists",
+        lambda music, now: music.user_playlists.values(),
+        {**ID_AND_NAME, "data TEXT": user_playlist_data},
+    ),
+    Table("followed_artists", lambda music, now: music.followed, {"artist_id TEXT": lambda a: a}),
+    Table("moods", lambda music, now: music.moods.values(), ID_AND_NAME),
+    Table(
+        "artists",
+        read_at(screens.top_artists),
+        {
+            "id TEXT": "id",
+            "name TEXT": "name",
+            "monthlyListeners INTEGER": lambda a: screens.count_at(a.listeners, a.now),
+            "followers INTEGER": lambda a: screens.follower_count(a.state, a.item, a.now),
+        },
+    ),
+)
 
 
 MICROFY = Environment(

@@ -8,18 +8,18 @@ clock as `Waypoints` series, read at the operation's one `now`.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
 from types import MappingProxyType
-from typing import Any
+from typing import ClassVar
 
+from apps.kit.self_user import SelfUserState
+from apps.kit.streaming import counting, no_items
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microfy"
 LIKED = "liked"  # the Liked Songs collection's id in URLs
-USER_PLAYLIST_PREFIX = "user-playlist-"  # the original's ids for playlists the user creates
-
-EMPTY: Mapping = MappingProxyType({})
+USER_PLAYLIST_PREFIX = "user-playlist"  # the original's ids for playlists the user creates
 
 
 @dataclass(frozen=True)
@@ -98,19 +98,19 @@ class NowPlaying:
 
 
 @dataclass(frozen=True)
-class Music:
-    catalog: Any
-    self_id: str
-    self_name: str
-    tracks: Mapping[str, Track] = field(default_factory=lambda: EMPTY)  # arrival order
-    states: Mapping[str, TrackState] = field(default_factory=lambda: EMPTY)
-    playlists: Mapping[str, Playlist] = field(
-        default_factory=lambda: EMPTY
-    )  # catalog playlists loaded, arrival order
-    user_playlists: Mapping[str, Playlist] = field(default_factory=lambda: EMPTY)  # creation order
+class Music(SelfUserState):
+    FALLBACK: ClassVar[Mapping[str, str]] = MappingProxyType({"id": "me", "name": "Me"})
+    tracks: Mapping[str, Track] = no_items()  # arrival order
+    states: Mapping[str, TrackState] = no_items()
+    playlists: Mapping[str, Playlist] = no_items()  # catalog playlists loaded, arrival order
+    user_playlists: Mapping[str, Playlist] = no_items()  # creation order
     followed: tuple[str, ...] = ()  # artist ids, in the order they were followed
-    moods: Mapping[str, Mood] = field(default_factory=lambda: EMPTY)
+    moods: Mapping[str, Mood] = no_items()
     now_playing: NowPlaying | None = None
+
+    @property
+    def self_id(self) -> str:
+        return self.me("id")
 
     def has(self, track_id: str) -> bool:
         return track_id in self.tracks
@@ -126,42 +126,13 @@ class Music:
         return self.playlists.get(playlist_id) or self.user_playlists.get(playlist_id)
 
 
+empty_music = Music.of  # catalog → the empty library, its self user in place
+
+
 def clock_text(seconds: float) -> str:
     """`203` → `"3:23"` (a player's time)."""
     whole = max(0, int(seconds))
     return f"{whole // 60}:{whole % 60:02d}"
-
-
-def _frozen(mapping: Mapping) -> Mapping:
-    return MappingProxyType(dict(mapping))
-
-
-def with_tracks(music: Music, arrivals: Iterable[tuple[Track, TrackState]]) -> Music:
-    tracks, states = dict(music.tracks), dict(music.states)
-    for track, state in arrivals:
-        tracks[track.id] = track
-        states[track.id] = state
-    return replace(music, tracks=_frozen(tracks), states=_frozen(states))
-
-
-def with_track_state(music: Music, track_id: str, **changes: Any) -> Music:
-    """`music` with the track's state changed; an unknown id changes nothing (replay-safe)."""
-    if track_id not in music.states:
-        return music
-    states = dict(music.states)
-    states[track_id] = replace(states[track_id], **changes)
-    return replace(music, states=_frozen(states))
-
-
-def with_playlists(music: Music, playlists: Iterable[Playlist]) -> Music:
-    loaded = dict(music.playlists)
-    for playlist in playlists:
-        loaded[playlist.id] = playlist
-    return replace(music, playlists=_frozen(loaded))
-
-
-def with_user_playlist(music: Music, playlist: Playlist) -> Music:
-    return replace(music, user_playlists=_frozen({**music.user_playlists, playlist.id: playlist}))
 
 
 def with_followed(music: Music, artist_id: str, followed: bool) -> Music:
@@ -169,39 +140,15 @@ def with_followed(music: Music, artist_id: str, followed: bool) -> Music:
     return replace(music, followed=(*rest, artist_id) if followed else rest)
 
 
-def next_user_playlist_id(music: Music) -> str:
-    """The original's numbering: `user-playlist-<count + 1>`."""
-    return f"{USER_PLAYLIST_PREFIX}{len(music.user_playlists) + 1}"
-
-
 # --- counts (baselines and badges) ----------------------------------------------------------------
 
-
-def liked_count(music: Music) -> int:
-    return sum(1 for s in music.states.values() if s.is_liked)
+liked_count = counting("states", "is_liked")
+new_release_count = counting("tracks", "is_new_release")
+playlist_count = counting("user_playlists")  # the user created (the original's `playlist_count`)
+public_playlist_count = counting("playlists")  # catalog playlists loaded in the session
+followed_artist_count = counting("followed")
+track_count = counting("tracks")
 
 
 def play_count(music: Music) -> int:
     return sum(s.user_play_count for s in music.states.values())
-
-
-def new_release_count(music: Music) -> int:
-    return sum(1 for t in music.tracks.values() if t.is_new_release)
-
-
-def playlist_count(music: Music) -> int:
-    """Playlists the user created (the original's `playlist_count`)."""
-    return len(music.user_playlists)
-
-
-def public_playlist_count(music: Music) -> int:
-    """Catalog playlists loaded in the session."""
-    return len(music.playlists)
-
-
-def followed_artist_count(music: Music) -> int:
-    return len(music.followed)
-
-
-def track_count(music: Music) -> int:
-    return len(music.tracks)

@@ -16,8 +16,8 @@ from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.rendering import redirect_to, render_screen
-from apps.kit.waypoints import Waypoints
-from apps.microfy import library
+from apps.kit.streaming import present, showing, shown_count
+from apps.microfy import screens
 from apps.microfy.query import HomeQuery, SearchQuery
 from apps.microfy.state import LIKED, Music, Track
 
@@ -32,22 +32,22 @@ ARTIST_ACTIONS = {"follow_artist": "Following", "unfollow_artist": "Unfollowed"}
 BACK = re.compile(r"[A-Za-z0-9_\-./?=&%+]*")
 
 
-def shows(page: Page, series: Waypoints) -> int:
-    """A drifting count as shown now; the page is re-rendered when the shown number changes."""
-    page.changes_at(series.next_change(page.now, step=1))
-    return library.count_at(series, page.now)
+def plays(page: Page, track: Track) -> int:
+    """A track's plays as shown now; the page is re-rendered when the number moves."""
+    showing(page, track.plays)
+    return screens.plays_at(page.state, track, page.now)
 
 
 def base_context(page: Page, section: str, here: str, q: str = "") -> dict:
     music: Music = page.state
-    player, changes = library.player(music, page.now)
+    player, changes = screens.player(music, page.now)
     page.changes_at(changes)
     return {
         "section": section,
         "here": here,
         "search_q": q,
         "self_name": music.self_name,
-        "library": library.library_entries(music),
+        "library": screens.library_entries(music),
         "player": player,
         "player_liked": bool(player and music.is_liked(player.track.id)),
         "followed_count": len(music.followed),
@@ -67,9 +67,9 @@ def home(request: HttpRequest, page: Page) -> HttpResponse:
         raise Http404("no such mood")
     context = {
         **base_context(page, "home", query.querystring()),
-        "trending": library.trending(music),
-        "new_releases": library.new_releases(music),
-        "artists": library.top_artists(music)[: library.HOME_ARTISTS],
+        "trending": screens.trending(music),
+        "new_releases": screens.new_releases(music),
+        "artists": screens.top_artists(music)[: screens.HOME_ARTISTS],
         "moods": tuple(music.moods.values()),
         "mood": query.mood,
         "playlists": tuple(music.playlists.values()),
@@ -81,13 +81,13 @@ def home(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def search(request: HttpRequest, page: Page) -> HttpResponse:
     query = SearchQuery.from_params(request.GET)
-    results = library.search(page.state, query.q)
+    results = screens.search(page.state, query.q)
     context = {
         **base_context(page, "search", "search" + query.querystring(), query.q),
         "results": results,
         "song_rows": cards(page.state, results.tracks),
         "q": query.q,
-        "genres": tuple(dict.fromkeys(t.genre for t in library.trending(page.state)))[:12],
+        "genres": tuple(dict.fromkeys(t.genre for t in screens.trending(page.state)))[:12],
     }
     return render_screen(request, page, "microfy/search.html", context)
 
@@ -96,19 +96,16 @@ def search(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def track(request: HttpRequest, page: Page, track_id: str) -> HttpResponse:
     music: Music = page.state
-    song = music.tracks.get(track_id)
-    if song is None:
-        raise Http404("no such track")
-    state = music.states[track_id]
-    artist = library.visible_artist(music, song.artist_id)
+    song = present(music.tracks.get(track_id), "track")
+    artist = screens.visible_artist(music, song.artist_id)
     context = {
         **base_context(page, "track", f"track/{track_id}"),
         "track": song,
-        "liked": state.is_liked,
-        "plays": shows(page, song.plays) + state.user_play_count,
+        "liked": music.is_liked(track_id),
+        "plays": plays(page, song),
         "artist": artist,
         "more_by_artist": [
-            t for t in library.artist_tracks(music, song.artist_id) if t.id != track_id
+            t for t in screens.artist_tracks(music, song.artist_id) if t.id != track_id
         ],
         "user_playlists": tuple(music.user_playlists.values()),
         "lyrics": [block.split("\n") for block in song.lyrics.split("\n\n") if block.strip()],
@@ -120,25 +117,20 @@ def track(request: HttpRequest, page: Page, track_id: str) -> HttpResponse:
 @run_page
 def artist(request: HttpRequest, page: Page, artist_id: str) -> HttpResponse:
     music: Music = page.state
-    found = library.visible_artist(music, artist_id)
-    if found is None:
-        raise Http404("no such artist")
-    tracks = library.artist_tracks(music, artist_id)
-    page.changes_at(found.followers.next_change(page.now, step=1))
-    popular = sorted(tracks, key=lambda t: t.plays.value_at(0), reverse=True)[: library.POPULAR]
+    found = present(screens.visible_artist(music, artist_id), "artist")
+    tracks = screens.artist_tracks(music, artist_id)
+    showing(page, found.followers)  # its followers move too: render again when they do
+    popular = sorted(tracks, key=lambda t: t.plays.value_at(0), reverse=True)[: screens.POPULAR]
     context = {
         **base_context(page, "artist", f"artist/{artist_id}"),
         "artist": found,
         "following": music.is_followed(artist_id),
-        "listeners": shows(page, found.listeners),
-        "followers": library.follower_count(music, found, page.now),
-        "popular": [
-            (t, music.is_liked(t.id), shows(page, t.plays) + music.states[t.id].user_play_count)
-            for t in popular
-        ],
+        "listeners": shown_count(showing(page, found.listeners)),
+        "followers": screens.follower_count(music, found, page.now),
+        "popular": [(t, music.is_liked(t.id), plays(page, t)) for t in popular],
         "discography": tuple(dict.fromkeys(t.album for t in tracks)),
         "fans_also_like": [
-            a for a in library.top_artists(music) if a.genre == found.genre and a.id != artist_id
+            a for a in screens.top_artists(music) if a.genre == found.genre and a.id != artist_id
         ][:6],
     }
     return render_screen(request, page, "microfy/artist.html", context)
@@ -148,13 +140,8 @@ def artist(request: HttpRequest, page: Page, artist_id: str) -> HttpResponse:
 @run_page
 def playlist(request: HttpRequest, page: Page, playlist_id: str) -> HttpResponse:
     music: Music = page.state
-    tracks = library.playlist_tracks(music, playlist_id)
-    if playlist_id == LIKED:
-        found = None
-    else:
-        found = music.playlist(playlist_id)
-        if found is None:
-            raise Http404("no such playlist")
+    tracks = screens.playlist_tracks(music, playlist_id)
+    found = None if playlist_id == LIKED else present(music.playlist(playlist_id), "playlist")
     context = {
         **base_context(page, "playlist", f"playlist/{playlist_id}"),
         "playlist": found,

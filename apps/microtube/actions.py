@@ -16,37 +16,22 @@ from urllib.parse import quote
 
 from pydantic import Field
 
-from apps.kit.deciding import found
+from apps.kit.changing import setting
+from apps.kit.deciding import checking
+from apps.kit.frozen import with_changed, with_items
+from apps.kit.streaming import bounded_text, id_payload, numbered_id
 from apps.microtube.query import WatchQuery
-from apps.microtube.state import (
-    Comment,
-    Playlist,
-    Tube,
-    next_user_id,
-    with_notification_state,
-    with_playlist,
-    with_subscription,
-    with_user_comment,
-    with_video_state,
-    with_watched,
-)
+from apps.microtube.state import Comment, Playlist, Tube, with_subscription, with_watched
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
 MAX_COMMENT = 10_000
 MAX_PLAYLIST_NAME = 150
+ON_SITE = "on this site"
 
-
-class VideoId(Payload):
-    video_id: str = Field(description="id of a video on the site")
-
-
-class ChannelId(Payload):
-    channel_id: str = Field(description="id of a channel on the site")
-
-
-class NotificationId(Payload):
-    notification_id: str = Field(description="id of a notification in the bell")
+VideoId = id_payload("VideoId", "video_id", "id of a video on the site")
+ChannelId = id_payload("ChannelId", "channel_id", "id of a channel on the site")
+NotificationId = id_payload("NotificationId", "notification_id", "id of a notification in the bell")
 
 
 class PostComment(VideoId):
@@ -62,25 +47,10 @@ class AddToPlaylist(VideoId):
     playlist_id: str = Field(description="id of one of the user's playlists")
 
 
-def existing(tube: Tube, kind: str, item_id: str | None) -> None:
-    """A 404 for an id the site does not show: unknown and not yet arrived look the same."""
-    label = {"videos": "video", "channels": "channel", "notifications": "notification"}
-    found(getattr(tube, kind), item_id, label.get(kind, kind), "on this site")
-
-
-def checking(kind: str, field: str) -> Callable[[Tube, dict], dict]:
-    def decide(tube: Tube, payload: dict) -> dict:
-        existing(tube, kind, payload[field])
-        return payload
-
-    return decide
-
-
-def setting_video(**changes: Any) -> Callable[[Tube, LoggedEvent], Tube]:
-    def reduce(tube: Tube, event: LoggedEvent) -> Tube:
-        return with_video_state(tube, event.payload["video_id"], **changes)
-
-    return reduce
+# A 404 for an id the site does not show: unknown and not yet arrived look the same.
+video_exists = checking("videos", "video_id", "video", ON_SITE)
+channel_exists = checking("channels", "channel_id", "channel", ON_SITE)
+notification_exists = checking("notifications", "notification_id", "notification", ON_SITE)
 
 
 def subscribing(subscribed: bool) -> Callable[[Tube, LoggedEvent], Tube]:
@@ -90,33 +60,30 @@ def subscribing(subscribed: bool) -> Callable[[Tube, LoggedEvent], Tube]:
     return reduce
 
 
-def setting_notification(**changes: Any) -> Callable[[Tube, LoggedEvent], Tube]:
-    def reduce(tube: Tube, event: LoggedEvent) -> Tube:
-        return with_notification_state(tube, event.payload["notification_id"], **changes)
-
-    return reduce
-
-
 def reduce_watch(tube: Tube, event: LoggedEvent) -> Tube:
     return with_watched(tube, [event.payload["video_id"]])
 
 
 def decide_comment(tube: Tube, payload: dict) -> dict:
-    existing(tube, "videos", payload["video_id"])
-    content = payload["content"].strip()
-    if not content:
-        raise ActionRejected("content: a comment cannot be empty")
-    if len(content) > MAX_COMMENT:
-        raise ActionRejected(f"content: a comment is at most {MAX_COMMENT} characters")
+    video_exists(tube, payload)
+    content = bounded_text(
+        payload,
+        "content",
+        MAX_COMMENT,
+        empty="a comment cannot be empty",
+        too_long=f"a comment is at most {MAX_COMMENT} characters",
+    )
     return {
         **payload,
         "content": content,
-        "comment_id": next_user_id(tube.user_comments, "user-cmt"),
+        "comment_id": numbered_id(tube.user_comments, "user-cmt"),
     }
 
 
 def reduce_comment(tube: Tube, event: LoggedEvent) -> Tube:
     payload = event.payload
+    if payload["comment_id"] in tube.user_comments:
+        return tube
     comment = Comment(
         id=payload["comment_id"],
         video_id=payload["video_id"],
@@ -126,23 +93,20 @@ def reduce_comment(tube: Tube, event: LoggedEvent) -> Tube:
         posted_at=event.at,
         by_self=True,
     )
-    return with_user_comment(tube, comment)
-
-
-def playlist_name(payload: dict) -> str:
-    name = payload["name"].strip()
-    if not name:
-        raise ActionRejected("name: a playlist needs a title")
-    if len(name) > MAX_PLAYLIST_NAME:
-        raise ActionRejected(f"name: a playlist title is at most {MAX_PLAYLIST_NAME} characters")
-    return name
+    return with_items(tube, "user_comments", [(comment.id, comment)])
 
 
 def decide_create_playlist(tube: Tube, payload: dict) -> dict:
-    name = playlist_name(payload)
+    name = bounded_text(
+        payload,
+        "name",
+        MAX_PLAYLIST_NAME,
+        empty="a playlist needs a title",
+        too_long=f"a playlist title is at most {MAX_PLAYLIST_NAME} characters",
+    )
     if payload.get("video_id") is not None:
-        existing(tube, "videos", payload["video_id"])
-    return {**payload, "name": name, "playlist_id": next_user_id(tube.playlists, "pl-user")}
+        video_exists(tube, payload)
+    return {**payload, "name": name, "playlist_id": numbered_id(tube.playlists, "pl-user")}
 
 
 def reduce_create_playlist(tube: Tube, event: LoggedEvent) -> Tube:
@@ -150,13 +114,12 @@ def reduce_create_playlist(tube: Tube, event: LoggedEvent) -> Tube:
     if payload["playlist_id"] in tube.playlists:
         return tube
     videos = (payload["video_id"],) if payload.get("video_id") else ()
-    return with_playlist(
-        tube, Playlist(payload["playlist_id"], payload["name"], videos, created_at=event.at)
-    )
+    playlist = Playlist(payload["playlist_id"], payload["name"], videos, created_at=event.at)
+    return with_items(tube, "playlists", [(playlist.id, playlist)])
 
 
 def decide_add_to_playlist(tube: Tube, payload: dict) -> dict:
-    existing(tube, "videos", payload["video_id"])
+    video_exists(tube, payload)
     if payload["playlist_id"] not in tube.playlists:
         raise ActionRejected(f"no playlist {payload['playlist_id']!r} of yours", status=404)
     return payload
@@ -168,17 +131,14 @@ def reduce_add_to_playlist(tube: Tube, event: LoggedEvent) -> Tube:
     video_id = event.payload["video_id"]
     if playlist is None or video_id in playlist.video_ids:
         return tube
-    return with_playlist(
-        tube,
-        Playlist(playlist.id, playlist.name, (*playlist.video_ids, video_id), playlist.created_at),
-    )
+    return with_changed(tube, "playlists", playlist.id, video_ids=(*playlist.video_ids, video_id))
 
 
 # --- where a person does each action ---------------------------------------------------------
 
 
 def watch_page(tube: Tube, payload: dict, form: Mapping[str, str] | None) -> PageStep:
-    existing(tube, "videos", payload["video_id"])
+    video_exists(tube, payload)
     return PageStep("watch" + WatchQuery(v=payload["video_id"]).querystring(), form)
 
 
@@ -196,12 +156,12 @@ def opening_watch_page(tube: Tube, payload: dict) -> PageStep:
 
 
 def channel_page(tube: Tube, payload: dict) -> PageStep:
-    existing(tube, "channels", payload["channel_id"])
+    channel_exists(tube, payload)
     return PageStep(f"channel/{quote(payload['channel_id'])}", {})
 
 
 def notifications_page(tube: Tube, payload: dict) -> PageStep:
-    existing(tube, "notifications", payload["notification_id"])
+    notification_exists(tube, payload)
     return PageStep("notifications", {"notification_id": payload["notification_id"]})
 
 
@@ -213,42 +173,36 @@ def create_playlist_page(tube: Tube, payload: dict) -> PageStep:
     return PageStep("feed/playlists", {"name": payload["name"]})
 
 
-def _video(decide, reduce, help: str, page=None) -> Action:
-    return Action(VideoId, decide, reduce, help=help, page=page or on_watch_page())
+def rating(help: str, **changes: Any) -> Action:
+    """An action setting the user's rating or save of a video, on its watch page."""
+    reduce = setting("video_states", "video_id", **changes)
+    return Action(VideoId, video_exists, reduce, help=help, page=on_watch_page())
+
+
+def on_notification(help: str, **changes: Any) -> Action:
+    reduce = setting("notification_states", "notification_id", **changes)
+    return Action(NotificationId, notification_exists, reduce, help=help, page=notifications_page)
+
+
+def on_channel(help: str, subscribed: bool) -> Action:
+    return Action(ChannelId, channel_exists, subscribing(subscribed), help=help, page=channel_page)
 
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
-        "watch_video": _video(
-            checking("videos", "video_id"),
+        "watch_video": Action(
+            VideoId,
+            video_exists,
             reduce_watch,
-            "Watch a video (opening its watch page does it); adds it to the history.",
+            help="Watch a video (opening its watch page does it); adds it to the history.",
             page=opening_watch_page,
         ),
-        "like_video": _video(
-            checking("videos", "video_id"),
-            setting_video(liked=True, disliked=False),
-            "Like a video (clears a dislike).",
-        ),
-        "unlike_video": _video(
-            checking("videos", "video_id"), setting_video(liked=False), "Remove your like."
-        ),
-        "dislike_video": _video(
-            checking("videos", "video_id"),
-            setting_video(disliked=True, liked=False),
-            "Dislike a video (clears a like).",
-        ),
-        "undislike_video": _video(
-            checking("videos", "video_id"), setting_video(disliked=False), "Remove your dislike."
-        ),
-        "save_video": _video(
-            checking("videos", "video_id"), setting_video(saved=True), "Save to Watch later."
-        ),
-        "unsave_video": _video(
-            checking("videos", "video_id"),
-            setting_video(saved=False),
-            "Remove from Watch later.",
-        ),
+        "like_video": rating("Like a video (clears a dislike).", liked=True, disliked=False),
+        "unlike_video": rating("Remove your like.", liked=False),
+        "dislike_video": rating("Dislike a video (clears a like).", disliked=True, liked=False),
+        "undislike_video": rating("Remove your dislike.", disliked=False),
+        "save_video": rating("Save to Watch later.", saved=True),
+        "unsave_video": rating("Remove from Watch later.", saved=False),
         "post_comment": Action(
             PostComment,
             decide_comment,
@@ -256,33 +210,11 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Comment on a video (a reply is posted as a comment, as in the original).",
             page=on_watch_page("content"),
         ),
-        "subscribe": Action(
-            ChannelId,
-            checking("channels", "channel_id"),
-            subscribing(True),
-            help="Subscribe to a channel (+1 on its shown subscriber count).",
-            page=channel_page,
-        ),
-        "unsubscribe": Action(
-            ChannelId,
-            checking("channels", "channel_id"),
-            subscribing(False),
-            help="Unsubscribe from a channel.",
-            page=channel_page,
-        ),
-        "read_notification": Action(
-            NotificationId,
-            checking("notifications", "notification_id"),
-            setting_notification(read=True),
-            help="Open a notification: it is marked read.",
-            page=notifications_page,
-        ),
-        "dismiss_notification": Action(
-            NotificationId,
-            checking("notifications", "notification_id"),
-            setting_notification(dismissed=True),
-            help="Remove a notification from the bell.",
-            page=notifications_page,
+        "subscribe": on_channel("Subscribe to a channel (+1 on its shown subscriber count).", True),
+        "unsubscribe": on_channel("Unsubscribe from a channel.", False),
+        "read_notification": on_notification("Open a notification: it is marked read.", read=True),
+        "dismiss_notification": on_notification(
+            "Remove a notification from the bell.", dismissed=True
         ),
         "create_playlist": Action(
             CreatePlaylist,

@@ -13,6 +13,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from apps.kit.arrivals import Stamp
+from apps.kit.streaming import whole
 from apps.kit.waypoints import Waypoints
 from apps.microtube.state import (
     ENVIRONMENT,
@@ -20,10 +22,12 @@ from apps.microtube.state import (
     Channel,
     Comment,
     Notification,
+    NotificationState,
+    Tube,
     Video,
 )
 
-DAY = 86400.0
+HOUR, DAY = 3600.0, 86400.0
 # The original's categories (and ours) → the apps.media picture subject of the thumbnail.
 SUBJECT_BY_CATEGORY: Mapping[str, str] = {
     "tech": "screenshot",
@@ -52,13 +56,6 @@ SUBJECT_BY_CATEGORY: Mapping[str, str] = {
 }
 
 
-def _int(value: Any, default: int = 0) -> int:
-    try:
-        return int(value)
-    except (TypeError, ValueError):
-        return default
-
-
 def growth_series(start: float, growth: Any, arrived_at: float) -> Waypoints:
     """`start` until the item arrives, then along its growth points (seconds after arrival)."""
     if not growth:
@@ -67,9 +64,10 @@ def growth_series(start: float, growth: Any, arrived_at: float) -> Waypoints:
     return Waypoints(start).with_points(points)
 
 
-def catalog_channel(catalog: Any, channel_id: str, *, arrived_at: float) -> Channel | None:
-    """The channel as loaded at `arrived_at`. The channel marked isSelf shows the self user's
-    name and handle, as the original substitutes them."""
+def catalog_channel(tube: Tube, channel_id: str, stamp: Stamp) -> Channel | None:
+    """The channel as loaded now. The channel marked isSelf shows the self user's name and
+    handle, as the original substitutes them."""
+    catalog = tube.catalog
     record = catalog.table(ENVIRONMENT, "channels").get(channel_id)
     if record is None:
         return None
@@ -79,36 +77,34 @@ def catalog_channel(catalog: Any, channel_id: str, *, arrived_at: float) -> Chan
     if is_self and me:
         name = str(me.get("name") or name)
         handle = f"@{me['username']}" if me.get("username") else handle
-    start = float(_int(record.get("subscribers")))
+    start = float(whole(record.get("subscribers")))
     return Channel(
         id=channel_id,
         name=name,
         handle=handle,
         description=str(record.get("description", "")),
-        subscribers=growth_series(start, record.get("subscriberGrowth"), arrived_at),
-        video_total=_int(record.get("videos")),
+        subscribers=growth_series(start, record.get("subscriberGrowth"), stamp.at),
+        video_total=whole(record.get("videos")),
         verified=bool(record.get("isVerified", False)),
         is_self=is_self,
         owner_id=str(record.get("ownerId") or (me.get("id", "") if is_self else "")),
     )
 
 
-def _published_at(record: Mapping[str, Any], arrived_at: float, preloaded: bool) -> float:
+def _published_at(record: Mapping[str, Any], stamp: Stamp) -> float:
     """A new upload is published when it arrives; a preloaded one `publishedAgo` before the
     run (or, for a record without it, an age cycling with its catalog order, as the original's
     labels do)."""
-    if not preloaded:
-        return arrived_at
+    if not stamp.preloaded:
+        return stamp.at
     ago = record.get("publishedAgo")
     if ago is None:
-        ago = (1 + (_int(record.get("order"), 1) * 5) % 27) * DAY
-    return arrived_at - float(ago)
+        ago = (1 + (whole(record.get("order"), 1) * 5) % 27) * DAY
+    return stamp.at - float(ago)
 
 
-def catalog_video(
-    catalog: Any, video_id: str, *, arrived_at: float, preloaded: bool
-) -> Video | None:
-    record = catalog.table(ENVIRONMENT, "videos").get(video_id)
+def catalog_video(tube: Tube, video_id: str, stamp: Stamp) -> Video | None:
+    record = tube.catalog.table(ENVIRONMENT, "videos").get(video_id)
     if record is None:
         return None
     category = str(record.get("category") or "")
@@ -120,19 +116,21 @@ def catalog_video(
         description=str(record.get("description", "")),
         duration=str(record.get("duration") or "0:00"),
         thumbnail_subject=subject,
-        views=growth_series(float(_int(record.get("views"))), record.get("viewGrowth"), arrived_at),
-        likes=growth_series(float(_int(record.get("likes"))), record.get("likeGrowth"), arrived_at),
-        dislikes=_int(record.get("dislikes")),
+        views=growth_series(float(whole(record.get("views"))), record.get("viewGrowth"), stamp.at),
+        likes=growth_series(float(whole(record.get("likes"))), record.get("likeGrowth"), stamp.at),
+        dislikes=whole(record.get("dislikes")),
         is_live=bool(record.get("isLive", False)),
         is_short=bool(record.get("isShort", False)),
         category=category,
-        published_at=_published_at(record, arrived_at, preloaded),
-        arrived_at=float(arrived_at),
-        uploaded=not preloaded,
+        published_at=_published_at(record, stamp),
+        arrived_at=float(stamp.at),
+        uploaded=not stamp.preloaded,
     )
 
 
-def catalog_comment(catalog: Any, comment_id: str, *, arrived_at: float) -> Comment | None:
+def catalog_comment(tube: Tube, comment_id: str, stamp: Stamp) -> Comment | None:
+    """A scenario comment; preloaded ones were written a few hours before the run."""
+    catalog = tube.catalog
     record = catalog.table(ENVIRONMENT, "comments").get(comment_id)
     if record is None:
         return None
@@ -145,20 +143,22 @@ def catalog_comment(catalog: Any, comment_id: str, *, arrived_at: float) -> Comm
         user_id=user_id,
         author=str(person.get("name") or user_id or "Unknown viewer"),
         content=str(record.get("content", "")),
-        likes=_int(record.get("likes")),
-        replies=_int(record.get("replies")),
-        posted_at=float(arrived_at),
+        likes=whole(record.get("likes")),
+        replies=whole(record.get("replies")),
+        posted_at=stamp.at - (1 + stamp.order % 9) * HOUR if stamp.preloaded else stamp.at,
         by_self=bool(me) and user_id == me.get("id"),
     )
 
 
 def catalog_notification(
-    catalog: Any, notification_id: str, *, arrived_at: float
-) -> tuple[Notification, bool] | None:
-    """The notification and its catalogued read flag."""
-    record = catalog.table(ENVIRONMENT, "notifications").get(notification_id)
+    tube: Tube, notification_id: str, stamp: Stamp
+) -> tuple[Notification, NotificationState] | None:
+    """A notification and its state: a new one arrives unread; preloaded ones came in hours
+    before the run, read as the catalog says."""
+    record = tube.catalog.table(ENVIRONMENT, "notifications").get(notification_id)
     if record is None:
         return None
+    arrived_at = stamp.at - (1 + stamp.order) * HOUR if stamp.preloaded else stamp.at
     notification = Notification(
         id=notification_id,
         type=str(record.get("type") or "upload"),
@@ -167,4 +167,4 @@ def catalog_notification(
         message=str(record.get("message", "")),
         arrived_at=float(arrived_at),
     )
-    return notification, bool(record.get("isRead", False))
+    return notification, NotificationState(read=stamp.preloaded and bool(record.get("isRead")))

@@ -9,7 +9,9 @@ exactly when the text changes. Ages: "Just now", "1 minute ago", "3 days ago", "
 from __future__ import annotations
 
 import math
+from typing import Any
 
+from apps.kit.streaming import showing, shown_count
 from apps.kit.waypoints import Waypoints
 
 UNITS = ((1_000_000_000, "B"), (1_000_000, "M"), (1_000, "K"))
@@ -36,15 +38,10 @@ def count_step(value: float, *, digits: int | None = None) -> int:
     return unit // 10 if value < unit * 10 else unit
 
 
-def rounded(value: float, step: int) -> int:
-    """`value` to the nearest multiple of `step` (half up, as Waypoints.next_change assumes)."""
-    return math.floor(value / step + 0.5) * step
-
-
 def compact(value: float, *, digits: int | None = None) -> str:
     """`1_420_000` → "1.4M" (views) or "1.42M" (digits=3); below a thousand, the number."""
     step = count_step(value, digits=digits)
-    shown = rounded(value, step)
+    shown = shown_count(value, step)
     if shown < 1000:
         return str(shown)
     size, suffix = next((s, x) for s, x in UNITS if shown >= s)
@@ -61,16 +58,17 @@ def plural(n: int, word: str) -> str:
 
 def views_text(value: float) -> str:
     """From the raw (unrounded) value, so the text changes where `moving_change` says."""
-    return "1 view" if rounded(value, 1) == 1 else f"{compact(value)} views"
+    return "1 view" if shown_count(value) == 1 else f"{compact(value)} views"
 
 
 def subscribers_text(value: float) -> str:
-    return "1 subscriber" if rounded(value, 1) == 1 else f"{compact(value, digits=3)} subscribers"
+    return "1 subscriber" if shown_count(value) == 1 else f"{compact(value, digits=3)} subscribers"
 
 
-def moving_change(series: Waypoints, now: float, *, digits: int | None = None) -> float | None:
-    """When the compact text of `series` next changes."""
-    return series.next_change(now, step=count_step(series.value_at(now), digits=digits))
+def moving(page: Any, series: Waypoints, *, digits: int | None = None) -> float:
+    """The value of `series` at the page's `now`; the page is rendered again when its compact
+    text next changes."""
+    return showing(page, series, step=count_step(series.value_at(page.now), digits=digits))
 
 
 def ago(at: float, now: float) -> str:

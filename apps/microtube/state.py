@@ -9,25 +9,21 @@ live push and the evaluation tables show the same number at the same simulated i
 
 from __future__ import annotations
 
-import math
+import json
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from types import MappingProxyType
-from typing import Any
+from typing import ClassVar
 
+from apps.kit.frozen import with_changed
+from apps.kit.self_user import SelfUserState
+from apps.kit.streaming import counting, no_items, shown_count
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microtube"
-EMPTY: Mapping = MappingProxyType({})
 SELF_CHANNEL = "ch-self"  # the original's fixed id of the self user's channel
 WATCH_LATER = "WL"  # YouTube's ids of the two built-in lists
 LIKED_VIDEOS = "LL"
-FALLBACK_SELF: Mapping[str, Any] = MappingProxyType({"name": "You", "username": "you"})
-
-
-def shown_count(value: float) -> int:
-    """A moving count as a whole number (half rounds up, as `Waypoints.next_change` assumes)."""
-    return math.floor(value + 0.5)
 
 
 @dataclass(frozen=True)
@@ -122,32 +118,31 @@ class Playlist:
     video_ids: tuple[str, ...] = ()
     created_at: float = 0.0
 
+    @property
+    def data(self) -> str:
+        """The original's JSON of a playlist the user created (its table's `data` column)."""
+        return json.dumps({"id": self.id, "name": self.name, "video_ids": list(self.video_ids)})
+
 
 @dataclass(frozen=True)
-class Tube:
-    # The catalog and self user are inputs, not state: excluded from equality.
-    catalog: Any = field(compare=False, repr=False)
-    self_user: Mapping[str, Any] = field(
-        compare=False, repr=False, default_factory=lambda: FALLBACK_SELF
+class Tube(SelfUserState):
+    FALLBACK: ClassVar[Mapping[str, str]] = MappingProxyType(
+        {"name": "You", "username": "you", "id": "user000"}
     )
-    videos: Mapping[str, Video] = field(default_factory=lambda: EMPTY)
-    video_states: Mapping[str, VideoState] = field(default_factory=lambda: EMPTY)
-    channels: Mapping[str, Channel] = field(default_factory=lambda: EMPTY)
-    channel_states: Mapping[str, ChannelState] = field(default_factory=lambda: EMPTY)
-    comments: Mapping[str, Comment] = field(default_factory=lambda: EMPTY)  # scenario comments
-    user_comments: Mapping[str, Comment] = field(default_factory=lambda: EMPTY)
-    notifications: Mapping[str, Notification] = field(default_factory=lambda: EMPTY)
-    notification_states: Mapping[str, NotificationState] = field(default_factory=lambda: EMPTY)
-    playlists: Mapping[str, Playlist] = field(default_factory=lambda: EMPTY)
+    videos: Mapping[str, Video] = no_items()
+    video_states: Mapping[str, VideoState] = no_items()
+    channels: Mapping[str, Channel] = no_items()
+    channel_states: Mapping[str, ChannelState] = no_items()
+    comments: Mapping[str, Comment] = no_items()  # scenario comments
+    user_comments: Mapping[str, Comment] = no_items()
+    notifications: Mapping[str, Notification] = no_items()
+    notification_states: Mapping[str, NotificationState] = no_items()
+    playlists: Mapping[str, Playlist] = no_items()
     watched: tuple[str, ...] = ()  # video ids in the order first watched
 
     @property
-    def self_name(self) -> str:
-        return str(self.self_user.get("name") or FALLBACK_SELF["name"])
-
-    @property
     def self_id(self) -> str:
-        return str(self.self_user.get("id") or "user000")
+        return self.me("id")
 
     def is_subscribed(self, channel_id: str) -> bool:
         state = self.channel_states.get(channel_id)
@@ -159,84 +154,10 @@ class Tube:
         return max(0, channel.subscriber_count(now) + state.adjustment)
 
 
-def empty_tube(catalog: Any) -> Tube:
-    return Tube(catalog=catalog, self_user=getattr(catalog, "self_user", None) or FALLBACK_SELF)
+empty_tube = Tube.of  # catalog → the empty site, its self user in place
 
 
 # --- building new states (reducers only) ---------------------------------------------------------
-
-
-def _with(mapping: Mapping, key: str, value: Any) -> Mapping:
-    changed = dict(mapping)
-    changed[key] = value
-    return MappingProxyType(changed)
-
-
-def with_channels(tube: Tube, channels: Iterable[Channel]) -> Tube:
-    """Add channels not yet loaded (a channel already there keeps its state)."""
-    added = {c.id: c for c in channels if c.id not in tube.channels}
-    if not added:
-        return tube
-    states = {cid: ChannelState() for cid in added}
-    return replace(
-        tube,
-        channels=MappingProxyType({**tube.channels, **added}),
-        channel_states=MappingProxyType({**tube.channel_states, **states}),
-    )
-
-
-def with_videos(tube: Tube, videos: Iterable[Video]) -> Tube:
-    added = {v.id: v for v in videos if v.id not in tube.videos}
-    if not added:
-        return tube
-    return replace(
-        tube,
-        videos=MappingProxyType({**tube.videos, **added}),
-        video_states=MappingProxyType(
-            {**tube.video_states, **{vid: VideoState() for vid in added}}
-        ),
-    )
-
-
-def with_comments(tube: Tube, comments: Iterable[Comment]) -> Tube:
-    added = {c.id: c for c in comments if c.id not in tube.comments}
-    if not added:
-        return tube
-    return replace(tube, comments=MappingProxyType({**tube.comments, **added}))
-
-
-def with_user_comment(tube: Tube, comment: Comment) -> Tube:
-    if comment.id in tube.user_comments:
-        return tube
-    return replace(tube, user_comments=_with(tube.user_comments, comment.id, comment))
-
-
-def with_notifications(tube: Tube, arrivals: Iterable[tuple[Notification, bool]]) -> Tube:
-    """Add notifications (each with its initial read flag), never twice."""
-    items = {n.id: (n, read) for n, read in arrivals if n.id not in tube.notifications}
-    if not items:
-        return tube
-    return replace(
-        tube,
-        notifications=MappingProxyType(
-            {**tube.notifications, **{nid: n for nid, (n, _) in items.items()}}
-        ),
-        notification_states=MappingProxyType(
-            {
-                **tube.notification_states,
-                **{nid: NotificationState(read=read) for nid, (_, read) in items.items()},
-            }
-        ),
-    )
-
-
-def with_video_state(tube: Tube, video_id: str, **changes: Any) -> Tube:
-    current = tube.video_states.get(video_id)
-    if current is None:
-        return tube
-    return replace(
-        tube, video_states=_with(tube.video_states, video_id, replace(current, **changes))
-    )
 
 
 def with_subscription(tube: Tube, channel_id: str, subscribed: bool, *, by_user: bool) -> Tube:
@@ -246,17 +167,9 @@ def with_subscription(tube: Tube, channel_id: str, subscribed: bool, *, by_user:
     if current is None or current.subscribed == subscribed:
         return tube
     step = (1 if subscribed else -1) if by_user else 0
-    changed = ChannelState(subscribed=subscribed, adjustment=current.adjustment + step)
-    return replace(tube, channel_states=_with(tube.channel_states, channel_id, changed))
-
-
-def with_notification_state(tube: Tube, notification_id: str, **changes: Any) -> Tube:
-    current = tube.notification_states.get(notification_id)
-    if current is None:
-        return tube
-    changed = replace(current, **changes)
-    return replace(
-        tube, notification_states=_with(tube.notification_states, notification_id, changed)
+    adjustment = current.adjustment + step
+    return with_changed(
+        tube, "channel_states", channel_id, subscribed=subscribed, adjustment=adjustment
     )
 
 
@@ -265,23 +178,13 @@ def with_watched(tube: Tube, video_ids: Iterable[str]) -> Tube:
     return replace(tube, watched=tube.watched + tuple(new)) if new else tube
 
 
-def with_playlist(tube: Tube, playlist: Playlist) -> Tube:
-    return replace(tube, playlists=_with(tube.playlists, playlist.id, playlist))
-
-
 # --- counts (baselines and badges) -------------------------------------------------------------
 
-
-def subscribed_count(tube: Tube) -> int:
-    return sum(1 for s in tube.channel_states.values() if s.subscribed)
-
-
-def liked_count(tube: Tube) -> int:
-    return sum(1 for s in tube.video_states.values() if s.liked)
-
-
-def watched_count(tube: Tube) -> int:
-    return len(tube.watched)
+subscribed_count = counting("channel_states", "subscribed")
+liked_count = counting("video_states", "liked")
+watched_count = counting("watched")
+playlist_count = counting("playlists")
+video_count = counting("videos")
 
 
 def comment_count(tube: Tube) -> int:
@@ -297,20 +200,3 @@ def notification_count(tube: Tube) -> int:
 def unread_notification_count(tube: Tube) -> int:
     """The bell's badge: unread and not dismissed."""
     return sum(1 for s in tube.notification_states.values() if not s.dismissed and not s.read)
-
-
-def playlist_count(tube: Tube) -> int:
-    return len(tube.playlists)
-
-
-def video_count(tube: Tube) -> int:
-    return len(tube.videos)
-
-
-def next_user_id(existing: Mapping[str, Any], prefix: str) -> str:
-    """`<prefix>-<n>` for the next user-created item (the original's id shape); decided once
-    and logged, so replay reuses it."""
-    n = len(existing) + 1
-    while f"{prefix}-{n}" in existing:
-        n += 1
-    return f"{prefix}-{n}"

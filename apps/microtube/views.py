@@ -8,24 +8,20 @@ environment (`implicit_actions`), not done here.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
 from urllib.parse import quote
 
 from django.contrib import messages
-from django.http import Http404, HttpRequest, HttpResponse
+from django.http import HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.streaming import present
 from apps.microtube import screens
-from apps.microtube.query import (
-    ChannelQuery,
-    InvalidQuery,
-    PlaylistQuery,
-    ResultsQuery,
-    WatchQuery,
-)
-from apps.microtube.state import SELF_CHANNEL, Tube
-from events.registry import ActionRejected
+from apps.microtube.query import ChannelQuery, PlaylistQuery, ResultsQuery, WatchQuery
+from apps.microtube.state import SELF_CHANNEL, Tube, Video
 
 VIDEO_ACTIONS = {
     "like_video": "",
@@ -39,13 +35,6 @@ VIDEO_ACTIONS = {
 }
 CHANNEL_ACTIONS = {"subscribe": "Subscription added", "unsubscribe": "Subscription removed"}
 NOTIFICATION_ACTIONS = ("read_notification", "dismiss_notification")
-
-
-def query_of(cls, request: HttpRequest):
-    try:
-        return cls.from_params(request.GET)
-    except InvalidQuery as exc:
-        raise ActionRejected(str(exc), exc.status) from None
 
 
 def show(request: HttpRequest, page: Page, template: str, guide: str, **context) -> HttpResponse:
@@ -64,6 +53,17 @@ def show(request: HttpRequest, page: Page, template: str, guide: str, **context)
     return render_screen(request, page, f"microtube/{template}", {**base, **context})
 
 
+def playing(tube: Tube, video: Video) -> dict[str, Any]:
+    """What a player (the watch page, a short) shows around the video."""
+    return {
+        "video": video,
+        "channel": tube.channels.get(video.channel_id),
+        "rating": tube.video_states[video.id],
+        "subscribed": tube.is_subscribed(video.channel_id),
+        "comments": screens.comments(tube, video.id),
+    }
+
+
 def watch_path(video_id: str) -> str:
     return "watch" + WatchQuery(v=video_id).querystring()
 
@@ -71,67 +71,45 @@ def watch_path(video_id: str) -> str:
 # --- feeds ----------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
-def home(request: HttpRequest, page: Page) -> HttpResponse:
-    tube = page.state
-    return show(
-        request, page, "home.html", "home", cards=screens.home(tube), chips=screens.topics(tube)
-    )
+def feed(template: str, guide: str, **lists: Callable[[Tube], Any]):
+    """A screen that only lists: each of `lists` (a screens function of the state) in its
+    context, under the guide entry `guide`."""
+
+    @require_GET
+    @run_page
+    def view(request: HttpRequest, page: Page) -> HttpResponse:
+        shown = {name: screen(page.state) for name, screen in lists.items()}
+        return show(request, page, template, guide, **shown)
+
+    return view
 
 
-@require_GET
-@run_page
-def subscriptions(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(
-        request,
-        page,
-        "subscriptions.html",
-        "subscriptions",
-        cards=screens.subscriptions(page.state),
-    )
-
-
-@require_GET
-@run_page
-def history(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(request, page, "history.html", "history", cards=screens.history(page.state))
-
-
-@require_GET
-@run_page
-def you(request: HttpRequest, page: Page) -> HttpResponse:
-    tube = page.state
-    return show(
-        request,
-        page,
-        "you.html",
-        "you",
-        history_cards=screens.history(tube)[:8],
-        lists=screens.playlists(tube),
-    )
-
-
-@require_GET
-@run_page
-def playlists(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(request, page, "playlists.html", "playlists", lists=screens.playlists(page.state))
+home = feed("home.html", "home", cards=screens.home, chips=screens.topics)
+subscriptions = feed("subscriptions.html", "subscriptions", cards=screens.subscriptions)
+history = feed("history.html", "history", cards=screens.history)
+you = feed(
+    "you.html",
+    "you",
+    history_cards=lambda tube: screens.history(tube)[:8],
+    lists=screens.playlists,
+)
+playlists = feed("playlists.html", "playlists", lists=screens.playlists)
+shorts = feed("shorts.html", "shorts", cards=screens.shorts)
+notifications = feed("notifications.html", "notifications")
 
 
 @require_GET
 @run_page
 def playlist(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(PlaylistQuery, request)
-    shown = screens.playlist(page.state, query.list or "")
-    if shown is None:
-        raise Http404("no such playlist")
+    query = PlaylistQuery.from_params(request.GET)
+    shown = present(screens.playlist(page.state, query.list or ""), "playlist")
     return show(request, page, "playlist.html", "playlists", playlist=shown)
 
 
 @require_GET
 @run_page
 def results(request: HttpRequest, page: Page) -> HttpResponse:
-    query = query_of(ResultsQuery, request)
+    query = ResultsQuery.from_params(request.GET)
     return show(
         request,
         page,
@@ -144,30 +122,18 @@ def results(request: HttpRequest, page: Page) -> HttpResponse:
 
 @require_GET
 @run_page
-def shorts(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(request, page, "shorts.html", "shorts", cards=screens.shorts(page.state))
-
-
-@require_GET
-@run_page
 def short(request: HttpRequest, page: Page, video_id: str) -> HttpResponse:
     """The Shorts player (opening a short is not watching it, as in the original: the history
     keeps what was opened on the watch page)."""
     tube: Tube = page.state
-    video = tube.videos.get(video_id)
-    if video is None:
-        raise Http404("no such video")
+    video = present(tube.videos.get(video_id), "video")
     previous_short, next_short = screens.short_neighbours(tube, video_id)
     return show(
         request,
         page,
         "short.html",
         "shorts",
-        video=video,
-        channel=tube.channels.get(video.channel_id),
-        rating=tube.video_states[video.id],
-        subscribed=tube.is_subscribed(video.channel_id),
-        comments=screens.comments(tube, video.id),
+        **playing(tube, video),
         previous_short=previous_short,
         next_short=next_short,
     )
@@ -180,20 +146,14 @@ def short(request: HttpRequest, page: Page, video_id: str) -> HttpResponse:
 @run_page
 def watch(request: HttpRequest, page: Page) -> HttpResponse:
     tube: Tube = page.state
-    video_id = query_of(WatchQuery, request).v
-    video = tube.videos.get(video_id or "")
-    if video is None:
-        raise Http404("no such video")  # unknown or not uploaded yet: alike
+    video_id = WatchQuery.from_params(request.GET).v
+    video = present(tube.videos.get(video_id or ""), "video")
     return show(
         request,
         page,
         "watch.html",
         "",
-        video=video,
-        channel=tube.channels.get(video.channel_id),
-        rating=tube.video_states[video.id],
-        subscribed=tube.is_subscribed(video.channel_id),
-        comments=screens.comments(tube, video.id),
+        **playing(tube, video),
         related=screens.related(tube, video.id),
         lists=[p for p in screens.playlists(tube) if not p.built_in],
         watched=video.id in tube.watched,
@@ -240,10 +200,8 @@ def new_playlist(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def channel(request: HttpRequest, page: Page, channel_id: str) -> HttpResponse:
     tube: Tube = page.state
-    shown = tube.channels.get(channel_id)
-    if shown is None:
-        raise Http404("no such channel")
-    query = query_of(ChannelQuery, request)
+    shown = present(tube.channels.get(channel_id), "channel")
+    query = ChannelQuery.from_params(request.GET)
     return show(
         request,
         page,
@@ -272,12 +230,6 @@ def channel_action(request: HttpRequest, page: Page, channel_id: str, action: st
 
 
 # --- notifications --------------------------------------------------------------------------
-
-
-@require_GET
-@run_page
-def notifications(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(request, page, "notifications.html", "notifications")
 
 
 @require_POST

@@ -1,6 +1,6 @@
-"""MicroFy in a real browser: a live clock drops a new song into the trending feed while
-Chromium watches the home page, which updates without a reload; the user opens the song, reads
-its lyrics, likes it and plays it, and reports back. The grade must see exactly those actions.
+"""MicroFy in a real browser: the clock drops a new song into the trending feed while Chromium
+watches the home page, which updates without a reload; the user opens the song, reads its
+lyrics, likes it and plays it, and reports back. The grade must see exactly those actions.
 
 Elements are found by role, label and text, so the test survives layout changes.
 """
@@ -12,16 +12,15 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
-from tests import control_api
-
 # The Chromium `browser` fixture of tests/conftest.py (imported so the name is this module's).
 from tests.conftest import browser  # noqa: F401
+from tests.inline_story import inline_story
+from tests.microfy.cast import FIRST_TEN, SLOW_HARBOR
 
 pytestmark = pytest.mark.browser
 
-ARRIVES_AT = 20.0  # simulated seconds; 5 wall seconds at speed factor 4
-SPEED_FACTOR = 4.0
-SONG = "track-057"  # "Slow Harbor" by Neon Pilgrims; its lyrics mention a lighthouse
+ARRIVES_AT = 20.0  # simulated seconds
+SONG = SLOW_HARBOR
 
 EVAL_SQL = f"""
 SELECT (SELECT isLiked FROM track_states WHERE track_id = '{SONG}') = 1
@@ -44,7 +43,7 @@ def scenario() -> dict:
                 "time": 0.0,
                 "type": "preload_tracks",
                 "payload": {
-                    "track_ids": [f"track-{n:03d}" for n in range(1, 11)],
+                    "track_ids": FIRST_TEN,
                     "playlist_ids": ["playlist-001", "playlist-002"],
                     "mood_ids": ["*"],
                 },
@@ -55,32 +54,22 @@ def scenario() -> dict:
     }
 
 
-api = control_api.call
-
-
 def trending(page: Page):
     return page.get_by_role("list", name="Trending songs, newest first")
 
 
 def test_a_user_sees_a_song_drop_live_and_likes_and_plays_it(live_site, browser):  # noqa: F811
-    run = api(
-        live_site,
-        "POST",
-        "/api/runs/",
-        {"scenario_json": scenario(), "clock_mode": "live", "speed_factor": SPEED_FACTOR},
-    )
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(5000)
-
-    page.goto(run["task_url"])
+    story = inline_story(live_site, browser, scenario())
+    page = story.page
     expect(page.get_by_role("heading", name=re.compile("^Trending Songs"))).to_be_visible()
     expect(trending(page).get_by_role("link", name="Slow Harbor by Neon Pilgrims")).to_have_count(0)
 
     # The song drops: it appears first in the trending row in place, without a reload.
-    page.evaluate("window.__not_reloaded = true")
+    story.watch_for_reload()
+    story.advance(ARRIVES_AT)
     new_song = trending(page).get_by_role("link").first
-    expect(new_song).to_have_accessible_name("Slow Harbor by Neon Pilgrims", timeout=15000)
-    assert page.evaluate("window.__not_reloaded") is True
+    expect(new_song).to_have_accessible_name("Slow Harbor by Neon Pilgrims")
+    story.assert_not_reloaded()
 
     # Its page shows the lyrics; like it, then play it from the big green button.
     new_song.click()
@@ -94,9 +83,7 @@ def test_a_user_sees_a_song_drop_live_and_likes_and_plays_it(live_site, browser)
     expect(page.get_by_role("link", name=re.compile("^Liked Songs"))).to_be_visible()
 
     # Report back, then grade: the two actions, and only them.
-    page.goto(run["contact_url"])
-    verdict = api(live_site, "POST", f"/api/runs/{run['id']}/evaluate/")
-    assert verdict["success"] is True, verdict["detail"]
-    assert verdict["actions"] == 2
-    logged = api(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    assert [e["type"] for e in logged if e["kind"] == "action"] == ["like_track", "play_track"]
+    assert story.report() == [
+        ("like_track", {"track_id": SONG}),
+        ("play_track", {"track_id": SONG}),
+    ]

@@ -6,11 +6,12 @@ import sqlite3
 
 import pytest
 
-from apps.microfy import library
+from apps.microfy import screens
 from apps.microfy.environment import MICROFY, materialize
-from tests.microfy.library import ActionRejected, act, arrive, fresh, preloaded, scenario_event
+from events.registry import ActionRejected
+from tests.microfy.cast import CAST, FIRST_TEN, arrive
 
-FIRST_TEN = [f"track-{n:03d}" for n in range(1, 11)]
+act, preloaded = CAST.act, CAST.preloaded
 
 
 def tables(music, now: float = 0.0) -> sqlite3.Connection:
@@ -21,7 +22,7 @@ def tables(music, now: float = 0.0) -> sqlite3.Connection:
 
 def test_preload_loads_tracks_playlists_moods_likes_and_follows():
     music = preloaded(
-        [*FIRST_TEN, "track-999"],
+        track_ids=[*FIRST_TEN, "track-999"],
         playlist_ids=["playlist-001", "playlist-404"],
         mood_ids=["*"],
         liked_track_ids=["track-002", "track-050"],  # 050 is not loaded: not liked
@@ -34,43 +35,41 @@ def test_preload_loads_tracks_playlists_moods_likes_and_follows():
 
 
 def test_every_wildcard_list_means_the_whole_table():
-    music = preloaded(["*"], playlist_ids=["*"], mood_ids=["*"])
+    music = preloaded(track_ids=["*"], playlist_ids=["*"], mood_ids=["*"])
     assert (len(music.tracks), len(music.playlists)) == (100, 20)
 
 
 def test_a_new_track_arrives_fresh_first_in_trending_and_a_repeat_changes_nothing():
-    music = act(
-        arrive(preloaded(FIRST_TEN), "track-057", at=30.0), "like_track", {"track_id": "track-057"}
-    )
-    assert library.trending(music)[0].id == "track-057"
-    assert library.new_releases(music)[0].id == "track-057"
+    music = act(arrive(preloaded(), "track-057", at=30.0), "like_track", {"track_id": "track-057"})
+    assert screens.trending(music)[0].id == "track-057"
+    assert screens.new_releases(music)[0].id == "track-057"
     again = arrive(music, "track-057", at=60.0)
     assert again is music  # no duplicate row, the like is kept
 
 
 def test_new_playlist_appears_in_the_sidebar_and_unknown_ids_are_ignored():
-    music = preloaded(FIRST_TEN, playlist_ids=["playlist-001"])
-    music = MICROFY.apply(music, scenario_event("new_playlist", {"playlist_id": "playlist-015"}))
-    music = MICROFY.apply(music, scenario_event("new_playlist", {"playlist_id": "playlist-999"}))
-    assert [e.id for e in library.library_entries(music)] == ["playlist-001", "playlist-015"]
+    music = preloaded(playlist_ids=["playlist-001"])
+    music = CAST.arrive(music, "new_playlist", {"playlist_id": "playlist-015"})
+    music = CAST.arrive(music, "new_playlist", {"playlist_id": "playlist-999"})
+    assert [e.id for e in screens.library_entries(music)] == ["playlist-001", "playlist-015"]
 
 
 def test_play_counts_every_press_and_starts_the_player():
     music = act(
-        act(preloaded(FIRST_TEN), "play_track", {"track_id": "track-003"}, at=40.0),
+        act(preloaded(), "play_track", {"track_id": "track-003"}, at=40.0),
         "play_track",
         {"track_id": "track-003"},
         at=50.0,
     )
     assert music.states["track-003"].user_play_count == 2
-    player, changes = library.player(music, 57.0)
+    player, changes = screens.player(music, 57.0)
     assert (player.track.id, player.position_s, changes) == ("track-003", 5.0, 60.0)
-    ended, never = library.player(music, 50.0 + music.tracks["track-003"].duration_s)
+    ended, never = screens.player(music, 50.0 + music.tracks["track-003"].duration_s)
     assert ended.playing is False and never is None
 
 
 def test_like_and_unlike_are_explicit_and_follow_needs_an_artist_in_the_session():
-    music = preloaded(FIRST_TEN)
+    music = preloaded()
     music = act(
         act(music, "like_track", {"track_id": "track-001"}), "like_track", {"track_id": "track-001"}
     )
@@ -85,7 +84,7 @@ def test_like_and_unlike_are_explicit_and_follow_needs_an_artist_in_the_session(
 
 def test_playlists_of_your_own_take_numbered_ids_and_only_they_can_be_added_to():
     music = act(
-        preloaded(FIRST_TEN, playlist_ids=["playlist-001"]),
+        preloaded(playlist_ids=["playlist-001"]),
         "create_playlist",
         {"name": "  Night Drive ", "description": None},
     )
@@ -102,7 +101,6 @@ def test_playlists_of_your_own_take_numbered_ids_and_only_they_can_be_added_to()
 
 def test_baselines_are_the_originals_counts():
     music = preloaded(
-        FIRST_TEN,
         playlist_ids=["playlist-001", "playlist-002"],
         liked_track_ids=["track-001"],
         followed_artist_ids=["artist-003"],
@@ -120,7 +118,7 @@ def test_baselines_are_the_originals_counts():
 
 def test_the_evaluation_tables_have_the_originals_names_and_columns():
     music = act(
-        preloaded(FIRST_TEN, playlist_ids=["playlist-001"], mood_ids=["mood-001"]),
+        preloaded(playlist_ids=["playlist-001"], mood_ids=["mood-001"]),
         "like_track",
         {"track_id": "track-009"},
     )
@@ -137,23 +135,23 @@ def test_the_evaluation_tables_have_the_originals_names_and_columns():
 
 
 def test_drifting_counts_grow_and_page_and_tables_agree_at_the_same_instant():
-    music = act(preloaded(FIRST_TEN), "play_track", {"track_id": "track-001"}, at=5.0)
-    track, artist = music.tracks["track-001"], library.top_artists(music)[-1]
-    at_start, later = library.count_at(track.plays, 0.0), library.count_at(track.plays, 600.0)
+    music = act(preloaded(), "play_track", {"track_id": "track-001"}, at=5.0)
+    track, artist = music.tracks["track-001"], screens.top_artists(music)[-1]
+    at_start, later = screens.count_at(track.plays, 0.0), screens.count_at(track.plays, 600.0)
     assert later > at_start
-    assert library.count_at(track.plays, 720.0) == library.count_at(track.plays, 9999.0)
+    assert screens.count_at(track.plays, 720.0) == screens.count_at(track.plays, 9999.0)
     row = (
         tables(music, 600.0)
         .execute("SELECT playCount FROM tracks WHERE id = 'track-001'")
         .fetchone()
     )
     assert row == (later + 1,)  # everyone's plays plus the user's
-    shown = library.count_at(artist.listeners, 300.0)
+    shown = screens.count_at(artist.listeners, 300.0)
     change = artist.listeners.next_change(300.0, step=1)
-    assert library.count_at(artist.listeners, change) != shown
-    assert library.count_at(artist.listeners, (300.0 + change) / 2) == shown
+    assert screens.count_at(artist.listeners, change) != shown
+    assert screens.count_at(artist.listeners, (300.0 + change) / 2) == shown
 
 
 def test_an_empty_catalog_state_is_safe():
-    music = fresh()
-    assert library.trending(music) == () and library.player(music, 0.0) == (None, None)
+    music = CAST.fresh()
+    assert screens.trending(music) == () and screens.player(music, 0.0) == (None, None)

@@ -16,10 +16,7 @@ from pathlib import Path
 from django.conf import settings
 
 from apps.microtube.environment import MICROTUBE
-from apps.microtube.state import Tube
-from apps.scenarios.format import parse_scenario
-from events.catalog import load_catalog
-from events.registry import ActionRejected, LoggedEvent, PayloadError, validate_payload
+from tests.kit import Cast
 
 ME = "user000"
 WALKTHROUGH = "vid-pixel-01"
@@ -34,39 +31,12 @@ PRELOAD = {
     "watched_video_ids": ["vid-self-01"],
 }
 
-
-def catalog():
-    return load_catalog(Path(settings.SENTINEL_CATALOG_DIR))
-
-
-def scenario_event(type: str, payload: dict, *, at: float = 0.0, seq: int = 1) -> LoggedEvent:
-    return LoggedEvent(seq, at, "scenario", type, payload)
-
-
-def preloaded(**changes) -> Tube:
-    """The site right after the cast's preload at t=0."""
-    tube = MICROTUBE.initial_state(catalog())
-    return MICROTUBE.apply(tube, scenario_event("preload_videos", {**PRELOAD, **changes}))
-
-
-def arrive(tube: Tube, type: str, payload: dict, at: float = UPLOAD_AT) -> Tube:
-    return MICROTUBE.apply(tube, scenario_event(type, payload, at=at, seq=2))
-
-
-def act(tube: Tube, name: str, payload: dict, *, at: float = 200.0) -> Tube:
-    """Validate, decide and apply one agent action, as the core does (without a database)."""
-    action = MICROTUBE.actions[name]
-    try:
-        validate_payload(action.schema, payload, what=f"action {name}")
-    except PayloadError as exc:
-        raise ActionRejected(str(exc)) from None
-    recorded = action.decide(tube, dict(payload))
-    return MICROTUBE.apply(tube, LoggedEvent(100, at, "action", name, recorded))
-
-
-def cast_scenario(**overrides) -> dict:
-    """A run over the cast: preload at 0, Pixel Forge's upload and live notice at 120 s."""
-    data = {
+CAST = Cast(
+    MICROTUBE,
+    Path(settings.SENTINEL_CATALOG_DIR),
+    preload=("preload_videos", PRELOAD),
+    # A run over the cast: preload at 0, Pixel Forge's upload and live notice at 120 s.
+    scenario={
         "id": "microtube-cast-desk-setup",
         "environment": "microtube",
         "start_page": "HOST_ADDRESS/microtube",
@@ -85,6 +55,7 @@ def cast_scenario(**overrides) -> dict:
         ],
         "eval_sql": f"SELECT EXISTS(SELECT 1 FROM video_states WHERE video_id='{DESK_SETUP}' AND isLiked=1)",
         "taxonomy": {"milestone_type": "absolute", "monitoring_approach": "active"},
-    }
-    data.update(overrides)
-    return parse_scenario(data, source="tests/microtube").to_run_spec()
+    },
+    acts_at=200.0,
+    arrives_at=UPLOAD_AT,
+)

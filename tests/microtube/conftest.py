@@ -4,15 +4,13 @@ from __future__ import annotations
 
 import pytest
 
-from events import lifecycle
-from events.models import ClockMode
-from tests.microtube.cast import cast_scenario
+from tests.microtube.cast import CAST
 
 
 @pytest.fixture
 def tube_run(db):
     """A run of the cast scenario, preloaded, its virtual clock at 0."""
-    return lifecycle.create_run(cast_scenario(), clock_mode=ClockMode.VIRTUAL)
+    return CAST.start()
 
 
 @pytest.fixture

@@ -18,7 +18,7 @@ import re
 import pytest
 from playwright.sync_api import expect
 
-from tests import control_api
+from tests.browser_story import BrowserStory
 
 pytestmark = pytest.mark.browser
 
@@ -27,28 +27,22 @@ UPLOADED_AT = 336.8
 TITLE = "Sunrise on Mount Pilchuck: A Winter Day Hike"
 VIDEO = "vid-trail-03"
 
-api = control_api.call
-
 
 def test_a_pushed_upload_is_opened_and_liked(live_site, browser):
-    run = api(live_site, "POST", "/api/runs/", {"scenario": SCENARIO, "clock_mode": "virtual"})
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(30_000)  # a shared, busy machine: no timing is asserted
-
-    page.goto(run["task_url"])
+    story = BrowserStory.start(live_site, browser, SCENARIO)
+    page = story.page
     guide = page.get_by_role("navigation", name="Guide")
     guide.get_by_role("link", name="Subscriptions", exact=True).click()
     feed = page.get_by_label("Latest videos from your subscriptions")
     expect(feed.get_by_role("link", name="Three Days on the Olympic Coast Trail")).to_be_visible()
     expect(feed.get_by_role("link", name=TITLE)).to_have_count(0)
     expect(page.get_by_label("Notifications (5 unread)")).to_be_visible()
-    page.wait_for_function("() => document.getElementById('sentinel-live')")
-    page.evaluate("window.loadedOnce = true")  # gone if the page reloads
+    story.watch_for_reload()
 
-    api(live_site, "POST", f"/api/runs/{run['id']}/advance/", {"time": UPLOADED_AT})
+    story.advance(UPLOADED_AT)
     expect(feed.get_by_role("article").first).to_have_attribute("aria-label", TITLE)
     expect(page.get_by_label("Notifications (7 unread)")).to_be_visible()
-    assert page.evaluate("window.loadedOnce") is True, "the page reloaded"
+    story.assert_not_reloaded()
 
     feed.get_by_role("link", name=TITLE).click()
     expect(page.get_by_role("heading", level=1, name=TITLE)).to_be_visible()
@@ -56,11 +50,7 @@ def test_a_pushed_upload_is_opened_and_liked(live_site, browser):
     page.get_by_role("button", name=re.compile(r"^Like this video")).click()
     expect(page.get_by_role("button", name=re.compile(r"^Remove like"))).to_be_visible()
 
-    page.goto(run["contact_url"])
-    verdict = api(live_site, "POST", f"/api/runs/{run['id']}/evaluate/")
-    assert verdict["success"] is True, verdict["detail"]
-    logged = api(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    assert [(e["type"], e["payload"]) for e in logged if e["kind"] == "action"] == [
+    assert story.report() == [
         ("watch_video", {"video_id": VIDEO}),
         ("like_video", {"video_id": VIDEO}),
     ]

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import sqlite3
+from types import SimpleNamespace
 
 import pytest
 
@@ -12,7 +13,9 @@ from apps.microtube import display, screens
 from apps.microtube.environment import MICROTUBE
 from apps.microtube.state import comment_count, notification_count, unread_notification_count
 from events.registry import ActionRejected
-from tests.microtube.cast import DESK_SETUP, UPLOAD_AT, WALKTHROUGH, act, arrive, preloaded
+from tests.microtube.cast import CAST, DESK_SETUP, UPLOAD_AT, WALKTHROUGH
+
+act, arrive, preloaded = CAST.act, CAST.arrive, CAST.preloaded
 
 
 def tables(tube, now: float = 0.0) -> sqlite3.Connection:
@@ -149,9 +152,10 @@ def test_a_new_upload_climbs_from_zero_and_page_and_table_agree_at_each_instant(
 
 def test_the_shown_view_count_changes_exactly_when_next_change_says():
     video = preloaded().videos[WALKTHROUGH]
-    now = 100.0
-    shown = display.views_text(video.views.value_at(now))
-    change = display.moving_change(video.views, now)
+    now, changes = 100.0, []
+    page = SimpleNamespace(now=now, changes_at=changes.append)  # what the tag tells its page
+    shown = display.views_text(display.moving(page, video.views))
+    (change,) = changes
     assert change is not None and change > now
     assert display.views_text(video.views.value_at(change - 0.01)) == shown
     assert display.views_text(video.views.value_at(change + 0.01)) != shown

@@ -17,6 +17,7 @@ from django import template
 from django.utils.safestring import SafeString, mark_safe
 
 from apps.kit.fragments import render_fragment
+from apps.kit.streaming import shown_count
 from apps.media.templatetags import media
 from apps.microtube import display
 from apps.microtube.state import Channel, Tube, Video
@@ -25,8 +26,7 @@ register = template.Library()
 
 
 def _views(video: Video, page) -> str:
-    page.changes_at(display.moving_change(video.views, page.now))
-    return display.views_text(video.views.value_at(page.now))
+    return display.views_text(display.moving(page, video.views))
 
 
 def _ago(at: float, page) -> str:
@@ -41,8 +41,7 @@ def views(video: Video, page) -> str:
 
 @register.filter
 def likes(video: Video, page) -> str:
-    page.changes_at(display.moving_change(video.likes, page.now))
-    return display.compact(video.likes.value_at(page.now))
+    return display.compact(display.moving(page, video.likes))
 
 
 @register.filter
@@ -56,9 +55,8 @@ def subscribers(context: template.Context, channel: Channel) -> str:
     subscription (+1), as the original's channel page showed it."""
     page = context["page"]
     tube: Tube = page.state
-    page.changes_at(display.moving_change(channel.subscribers, page.now, digits=3))
-    step = display.count_step(channel.subscribers.value_at(page.now), digits=3)
-    drifted = display.rounded(channel.subscribers.value_at(page.now), step)
+    value = display.moving(page, channel.subscribers, digits=3)
+    drifted = shown_count(value, display.count_step(value, digits=3))
     state = tube.channel_states.get(channel.id)
     adjustment = state.adjustment if state is not None else 0
     return display.subscribers_text(max(0, drifted + adjustment))

@@ -11,6 +11,7 @@ import math
 from dataclasses import dataclass
 
 from apps.kit.derived import per_state
+from apps.kit.streaming import shown_count
 from apps.kit.waypoints import Waypoints
 from apps.microfy.catalog import artists, tracks_by_artist
 from apps.microfy.state import LIKED, Artist, Music, Playlist, Track
@@ -22,7 +23,12 @@ PLAYER_STEP_S = 5.0  # the player's position is shown, and re-rendered, every 5 
 
 def count_at(series: Waypoints, now: float) -> int:
     """A drifting count as shown (a whole number) at `now`."""
-    return round(series.value_at(now))
+    return shown_count(series.value_at(now))
+
+
+def plays_at(music: Music, track: Track, now: float) -> int:
+    """Everyone's plays at `now`, the user's own included (the track page's number)."""
+    return count_at(track.plays, now) + music.states[track.id].user_play_count
 
 
 def follower_count(music: Music, artist: Artist, now: float) -> int:
