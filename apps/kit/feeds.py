@@ -119,6 +119,20 @@ def thread_with(state: Any, user_id: str) -> str | None:
     return next((c.id for c in state.conversations.values() if c.other.id == user_id), None)
 
 
+def counting(field: str, **values: Any) -> Callable[[Any], int]:
+    """A count of the state (a baseline, a badge): how many records `state.<field>` holds, or,
+    given `values`, how many of them have those attributes (`is_read=False`: the unread)."""
+
+    def count(state: Any) -> int:
+        records = getattr(state, field)
+        if not values:
+            return len(records)
+        wanted = values.items()
+        return sum(1 for r in records.values() if all(getattr(r, k) == v for k, v in wanted))
+
+    return count
+
+
 # --- evaluation tables ---------------------------------------------------------------------------
 
 

@@ -27,6 +27,7 @@ from apps.microdin.state import (
     Conversation,
     Job,
     Message,
+    MessageState,
     Network,
     Notification,
     NotificationState,
@@ -184,28 +185,47 @@ def catalog_job(network: Network, job_id: str, record: Mapping, stamp: Stamp) ->
 # --- threads: one record per conversation, its messages inside -----------------------------------
 
 
-def conversation_of_message(catalog: Any) -> Mapping[str, str]:
-    """message id → the id of the conversation record holding it (built once per catalog)."""
+@from_catalog(ENVIRONMENT, "messages")
+def catalog_conversation(
+    network: Network, conversation_id: str, record: Mapping, stamp: Stamp
+) -> Conversation:
+    """A thread, listed after those there are unless its record says where."""
+    order = _order(record, len(network.conversations) + stamp.order)
+    return Conversation(conversation_id, MEMBERS.other_in(network.catalog, record), order)
+
+
+def message_index(catalog: Any) -> Mapping[str, tuple[str, Mapping[str, Any]]]:
+    """message id → (the id of the conversation record holding it, the message's record)."""
     return {
-        str(m["id"]): conversation_id
+        str(m["id"]): (conversation_id, m)
         for conversation_id, record in table(catalog, "messages").items()
         for m in thread_messages(record)
     }
 
 
-def catalog_conversation(catalog: Any, conversation_id: str, order: int) -> Conversation | None:
-    record = table(catalog, "messages").get(conversation_id)
-    if record is None:
-        return None
-    return Conversation(
-        id=conversation_id,
-        other=MEMBERS.other_in(catalog, record),
-        order=_order(record, order),
-    )
-
-
 def message_records(catalog: Any, conversation_id: str) -> list[Mapping[str, Any]]:
     return thread_messages(table(catalog, "messages").get(conversation_id))
+
+
+def catalog_message(
+    network: Network, message_id: str, stamp: Stamp
+) -> tuple[Message, MessageState] | None:
+    """A message in its thread: preloaded, with the catalog's read flag; arriving later, unread."""
+    found = network.catalog.index(message_index).get(message_id)
+    if found is None:
+        return None
+    conversation_id, record = found
+    sent_at, order = arrival(record, stamp)
+    message = Message(
+        id=message_id,
+        conversation_id=conversation_id,
+        sender=person(network.catalog, record.get("senderId")),
+        content=str(record.get("text", record.get("content", ""))),
+        sent_at=sent_at,
+        order=order,
+    )
+    read = stamp.preloaded and preloaded_read(network.catalog, conversation_id, record)
+    return message, MessageState(is_read=read)
 
 
 def preloaded_read(catalog: Any, conversation_id: str, message: Mapping[str, Any]) -> bool:
@@ -223,17 +243,3 @@ def preloaded_read(catalog: Any, conversation_id: str, message: Mapping[str, Any
     ]
     unread = int(record.get("unreadCount") or 0)
     return message["id"] not in (incoming[-unread:] if unread else [])
-
-
-def catalog_message(
-    catalog: Any, conversation_id: str, record: Mapping[str, Any], stamp: Stamp
-) -> Message:
-    sent_at, order = arrival(record, stamp)
-    return Message(
-        id=str(record["id"]),
-        conversation_id=conversation_id,
-        sender=person(catalog, record.get("senderId")),
-        content=str(record.get("text", record.get("content", ""))),
-        sent_at=sent_at,
-        order=order,
-    )

@@ -17,9 +17,8 @@ from dataclasses import replace
 
 from pydantic import Field
 
-from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
+from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.feeds import opening, post_rows
-from apps.kit.frozen import with_items
 from apps.kit.tables import KEY, Table, tables
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
@@ -28,7 +27,6 @@ from apps.microdin.bench import sample_pages
 from apps.microdin.state import (
     ENVIRONMENT,
     JobState,
-    MessageState,
     Network,
     PostState,
     ProfileStats,
@@ -62,65 +60,32 @@ deliver_notifications = Delivery(
 deliver_jobs = Delivery("jobs", records.catalog_job, states="job_states", fresh=JobState)
 
 
-def add_conversation(network: Network, conversation_id: str) -> Network:
-    if conversation_id in network.conversations:
-        return network
-    conversation = records.catalog_conversation(
-        network.catalog, conversation_id, len(network.conversations)
-    )
-    if conversation is None:
-        return network
-    return with_items(network, "conversations", [(conversation_id, conversation)])
+deliver_threads = Delivery("conversations", records.catalog_conversation)
+deliver_message_records = Delivery("messages", records.catalog_message, states="message_states")
 
 
 def deliver_conversations(
     network: Network, ids: Iterable[str], at: float, *, preloaded: bool
 ) -> Network:
     """Conversations with every catalog message of theirs (the original's rule), except those
-    our catalog marks `arrivesLater` (sent by a `new_message` event). Only the preload brings
-    whole conversations: their messages keep the catalog's read flags."""
-    catalog = network.catalog
+    our catalog marks `arrivesLater` (sent by a `new_message` event)."""
     for conversation_id in dict.fromkeys(ids):
-        network = add_conversation(network, conversation_id)
-        if conversation_id not in network.conversations:
-            continue
-        arrivals = [
-            m
-            for m in records.message_records(catalog, conversation_id)
-            if not m.get("arrivesLater") and str(m["id"]) not in network.messages
-        ]
-        messages = [
-            records.catalog_message(catalog, conversation_id, m, Stamp(at, preloaded, n))
-            for n, m in enumerate(arrivals)
-        ]
-        network = with_items(network, "messages", ((m.id, m) for m in messages))
-        network = with_items(
-            network,
-            "message_states",
-            (
-                (str(m["id"]), MessageState(records.preloaded_read(catalog, conversation_id, m)))
-                for m in arrivals
-            ),
-        )
+        network = deliver_threads(network, [conversation_id], at, preloaded=preloaded)
+        if conversation_id in network.conversations:
+            messages = records.message_records(network.catalog, conversation_id)
+            now = [str(m["id"]) for m in messages if not m.get("arrivesLater")]
+            network = deliver_message_records(network, now, at, preloaded=preloaded)
     return network
 
 
 def deliver_messages(network: Network, ids: Iterable[str], at: float, *, preloaded: bool):
-    """A message arriving unread; its conversation is added first when it is not loaded."""
-    catalog = network.catalog
+    """Messages, each into its thread (which arrives first when it is not there yet)."""
+    ids, index = list(ids), network.catalog.index(records.message_index)
     for message_id in ids:
-        conversation_id = catalog.index(records.conversation_of_message).get(message_id)
-        if conversation_id is None or message_id in network.messages:
-            continue
-        network = add_conversation(network, conversation_id)
-        record = next(
-            m for m in records.message_records(catalog, conversation_id) if m["id"] == message_id
-        )
-        stamp = Stamp(at, preloaded, 0)
-        message = records.catalog_message(catalog, conversation_id, record, stamp)
-        network = with_items(network, "messages", [(message_id, message)])
-        network = with_items(network, "message_states", [(message_id, MessageState())])
-    return network
+        if message_id in index and message_id not in network.messages:
+            thread_id = index[message_id][0]
+            network = deliver_threads(network, [thread_id], at, preloaded=preloaded)
+    return deliver_message_records(network, ids, at, preloaded=preloaded)
 
 
 # --- scenario events ------------------------------------------------------------------------------

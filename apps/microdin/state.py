@@ -12,6 +12,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import TypeVar
 
+from apps.kit.feeds import counting
 from apps.kit.frozen import EMPTY, CatalogState
 from apps.kit.social import Comment, Picture
 
@@ -214,23 +215,18 @@ def newest_first(items: Iterable[Item], stamp: str) -> list[Item]:
 
 def connections_count(network: Network) -> int:
     """Connections shown on the profile: the starting count plus invitations accepted since."""
-    accepted = sum(1 for s in network.connection_states.values() if s.status == "accepted")
-    return network.stats.connections + accepted
+    return network.stats.connections + accepted_count(network)
 
 
 # --- counts (baselines and badges: the original's definitions) --------------------------------
 
-
-def post_count(network: Network) -> int:
-    return len(network.posts)
-
-
-def pending_connection_count(network: Network) -> int:
-    return sum(1 for s in network.connection_states.values() if s.status == "pending")
-
-
-def unread_message_count(network: Network) -> int:
-    return sum(1 for s in network.message_states.values() if not s.is_read)
+post_count = counting("posts")
+pending_connection_count = counting("connection_states", status="pending")
+unread_message_count = counting("message_states", is_read=False)
+unread_notification_count = counting("notification_states", is_read=False)
+job_count = counting("jobs")
+applied_job_count = counting("job_states", is_applied=True)
+accepted_count = counting("connection_states", status="accepted")
 
 
 def unread_conversation_count(network: Network) -> int:
@@ -240,15 +236,3 @@ def unread_conversation_count(network: Network) -> int:
         if not s.is_read
     }
     return len(unread)
-
-
-def unread_notification_count(network: Network) -> int:
-    return sum(1 for s in network.notification_states.values() if not s.is_read)
-
-
-def job_count(network: Network) -> int:
-    return len(network.jobs)
-
-
-def applied_job_count(network: Network) -> int:
-    return sum(1 for s in network.job_states.values() if s.is_applied)

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from apps.kit.derived import per_state
+from apps.kit.feeds import counting
 from apps.kit.frozen import EMPTY, CatalogState
 from apps.kit.social import Comment, Picture
 
@@ -166,37 +167,14 @@ def is_following(gram: Gram, user_id: str) -> bool:
 
 # --- counts (baselines and badges: the original's definitions) --------------------------------
 
-
-def post_count(gram: Gram) -> int:
-    return len(gram.posts)
-
-
-def story_count(gram: Gram) -> int:
-    return len(gram.stories)
-
-
-def activity_count(gram: Gram) -> int:
-    return len(gram.activity)
-
-
-def liked_count(gram: Gram) -> int:
-    return sum(1 for s in gram.post_states.values() if s.is_liked)
-
-
-def saved_count(gram: Gram) -> int:
-    return sum(1 for s in gram.post_states.values() if s.is_saved)
-
-
-def comment_count(gram: Gram) -> int:
-    return len(gram.user_comments)
-
-
-def followed_count(gram: Gram) -> int:
-    return len(gram.followed)
-
-
-def story_viewed_count(gram: Gram) -> int:
-    return len(gram.viewed_stories)
+post_count = counting("posts")
+story_count = counting("stories")
+activity_count = counting("activity")
+liked_count = counting("post_states", is_liked=True)
+saved_count = counting("post_states", is_saved=True)
+comment_count = counting("user_comments")
+followed_count = counting("followed")
+story_viewed_count = counting("viewed_stories")
 
 
 def unread_activity_count(gram: Gram) -> int:
