@@ -198,12 +198,7 @@ def section_page(network: Network, payload: dict) -> PageStep:
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
-        **post_actions(
-            WHERE,
-            feeds.liking,
-            reduce_comment,
-            feeds.post_page("feed/update/", WHERE),
-        ),
+        **post_actions(WHERE, feeds.liking, reduce_comment, feeds.post_page("feed/update/", WHERE)),
         "accept_connection": Action(
             ConnectionId,
             decide_answer,

@@ -24,13 +24,7 @@ from apps.microdin import catalog as records
 from apps.microdin import state as network_state
 from apps.microdin.actions import ACTIONS
 from apps.microdin.bench import sample_pages
-from apps.microdin.state import (
-    ENVIRONMENT,
-    JobState,
-    Network,
-    PostState,
-    ProfileStats,
-)
+from apps.microdin.state import ENVIRONMENT, JobState, Network, PostState, ProfileStats
 from events.registry import Environment, counted
 from events.schemas import Payload
 

@@ -93,19 +93,21 @@ def reduce_read_conversation(gram: Gram, event: LoggedEvent) -> Gram:
     conversation = gram.conversations.get(event.payload["conversation_id"])
     if conversation is None or not unread_in(gram, conversation.id):
         return gram
-    reads = dict(gram.read_messages)
-    reads.update((m.id, True) for m in conversation.messages)
-    return replace(gram, read_messages=MappingProxyType(reads))
+    return with_items(gram, "read_messages", ((m.id, True) for m in conversation.messages))
+
+
+def sent(gram: Gram, event: LoggedEvent, post_id: str | None = None) -> Gram:
+    """The self user's message (or shared post) joins the thread."""
+    p = event.payload
+    message = SentMessage(p["id"], p["conversation_id"], p["text"], event.at, post_id)
+    return replace(gram, sent=(*gram.sent, message))
 
 
 def reduce_send(gram: Gram, event: LoggedEvent) -> Gram:
-    """The message joins the thread; writing in a thread means having it open, so it is read."""
-    p = event.payload
-    if p["conversation_id"] not in gram.conversations:
+    """Writing in a thread means having it open, so it is read."""
+    if event.payload["conversation_id"] not in gram.conversations:
         return gram
-    gram = reduce_read_conversation(gram, event)
-    message = SentMessage(p["id"], p["conversation_id"], p["text"], event.at)
-    return replace(gram, sent=(*gram.sent, message))
+    return sent(reduce_read_conversation(gram, event), event)
 
 
 def decide_share(gram: Gram, payload: dict) -> dict:
@@ -119,8 +121,7 @@ def reduce_share(gram: Gram, event: LoggedEvent) -> Gram:
     p = event.payload
     if p["conversation_id"] not in gram.conversations or p["post_id"] not in gram.posts:
         return gram
-    message = SentMessage(p["id"], p["conversation_id"], p["text"], event.at, p["post_id"])
-    return replace(gram, sent=(*gram.sent, message))
+    return sent(gram, event, p["post_id"])
 
 
 def decide_start(gram: Gram, payload: dict) -> dict:
@@ -222,12 +223,7 @@ def marking_post(help: str, page=post_page, **changes: bool) -> Action:
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
-        **post_actions(
-            WHERE,
-            feeds.liking,
-            reduce_comment,
-            post_page,
-        ),
+        **post_actions(WHERE, feeds.liking, reduce_comment, post_page),
         "save_post": marking_post(
             "Save a post (it shows under Saved on your profile).", is_saved=True
         ),

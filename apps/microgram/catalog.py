@@ -90,12 +90,12 @@ def picture(record: Mapping[str, Any], url_key: str) -> social.Picture:
     return drawn or social.file_picture(record.get(url_key) or record["id"], guess_subject)
 
 
-def max_order(catalog: Any, name: str) -> int:
-    return max((int(r.get("order") or 0) for r in table(catalog, name).values()), default=0)
-
-
 def _max_orders(catalog: Any) -> Mapping[str, int]:
-    return {name: max_order(catalog, name) for name in ("posts", "stories", "messages", "activity")}
+    """Each table's highest `order` (built once per catalog)."""
+    return {
+        name: max((int(r.get("order") or 0) for r in table(catalog, name).values()), default=0)
+        for name in ("posts", "stories", "messages", "activity")
+    }
 
 
 def arrival(catalog: Any, name: str, record: Mapping[str, Any], stamp: Stamp) -> float:

@@ -6,7 +6,7 @@ Rows are small frozen values (a card, a bubble, a thread row) so a page can rend
 
 from __future__ import annotations
 
-import re
+from collections import Counter
 from dataclasses import dataclass
 
 from apps.kit.derived import per_state
@@ -28,7 +28,6 @@ from apps.microgram.state import (
     unread_in,
 )
 
-HASHTAG = re.compile(r"(#\w+)")
 SUGGESTIONS_SHOWN = 5
 SEARCH_RESULTS = 30
 
@@ -91,9 +90,9 @@ class ProfileView:
     following: int
 
 
-def caption_parts(caption: str) -> list[tuple[str, bool]]:
-    """The caption as (text, is_hashtag) pieces, so hashtags can be drawn as links."""
-    return [(part, part.startswith("#")) for part in HASHTAG.split(caption) if part]
+def _contains(needle: str, *texts: str) -> bool:
+    needle = needle.lower()
+    return any(needle in text.lower() for text in texts)
 
 
 def card(gram: Gram, post_id: str) -> PostCard:
@@ -139,32 +138,23 @@ def story_neighbours(gram: Gram, story_id: str) -> tuple[str | None, str | None]
 def explore(gram: Gram, q: str) -> tuple[PostCard, ...]:
     """The Explore grid: every post but the task's target posts (as the original), filtered by
     caption, location or author username."""
-    needle = q.lower()
     return tuple(
         c
         for c in feed(gram)
         if not c.post.is_target
-        and (
-            not needle
-            or needle in c.post.caption.lower()
-            or needle in c.post.location.lower()
-            or needle in c.post.author.username.lower()
-        )
+        and _contains(q, c.post.caption, c.post.location, c.post.author.username)
     )
 
 
 @per_state()
 def search_people(gram: Gram, q: str) -> tuple[Person, ...]:
     """Members whose username or name contains the search (the self user left out)."""
-    needle = q.lower()
-    if not needle:
+    if not q:
         return ()
     found = (
         p
         for p in MEMBERS.everyone(gram.catalog).values()
-        if p.id != gram.me.id
-        and p.id in known_people(gram)
-        and (needle in p.username.lower() or needle in p.name.lower())
+        if p.id != gram.me.id and p.id in known_people(gram) and _contains(q, p.username, p.name)
     )
     return tuple(found)[:SEARCH_RESULTS]
 
@@ -172,14 +162,14 @@ def search_people(gram: Gram, q: str) -> tuple[Person, ...]:
 @per_state()
 def suggestions(gram: Gram) -> tuple[Person, ...]:
     """Authors in the feed the self user does not follow yet, most posts first."""
-    counts: dict[str, int] = {}
-    authors: dict[str, Person] = {}
-    for post in gram.posts.values():
-        if post.author.id != gram.me.id and not is_following(gram, post.author.id):
-            counts[post.author.id] = counts.get(post.author.id, 0) + 1
-            authors[post.author.id] = post.author
-    ranked = sorted(counts, key=lambda i: -counts[i])
-    return tuple(authors[i] for i in ranked[:SUGGESTIONS_SHOWN])
+    authors = [
+        post.author
+        for post in gram.posts.values()
+        if post.author.id != gram.me.id and not is_following(gram, post.author.id)
+    ]
+    by_id = {author.id: author for author in authors}
+    ranked = Counter(author.id for author in authors).most_common(SUGGESTIONS_SHOWN)
+    return tuple(by_id[user_id] for user_id, _ in ranked)
 
 
 def preview(gram: Gram, conversation: Conversation) -> str:

@@ -3,17 +3,19 @@
 
 from __future__ import annotations
 
+import re
+
 from django import template
 
-from apps.microgram.screens import caption_parts
-
 register = template.Library()
+HASHTAG = re.compile(r"(#\w+)")
 
 
 @register.filter
 def hashtagged(caption: str) -> list[tuple[str, bool]]:
-    """`{% for text, is_tag in post.caption|hashtagged %}`: hashtags apart from the text."""
-    return caption_parts(caption)
+    """`{% for text, is_tag in post.caption|hashtagged %}`: the caption as (text, is_hashtag)
+    pieces, so hashtags can be drawn as links."""
+    return [(part, part.startswith("#")) for part in HASHTAG.split(caption) if part]
 
 
 @register.filter
