@@ -17,6 +17,7 @@ from typing import Literal
 
 from pydantic import Field
 
+from apps.kit.changing import setting
 from apps.kit.deciding import checking, found, new_id
 from apps.kit.frozen import with_changed
 from apps.kit.without import without
@@ -121,15 +122,6 @@ def decide_mark_unread(chat: Chat, payload: dict) -> dict:
 
 def reduce_mark_unread(chat: Chat, event: LoggedEvent) -> Chat:
     return with_read(chat, [event.payload["message_id"]], False)
-
-
-def conversation_setting(**changes: bool) -> Callable[[Chat, LoggedEvent], Chat]:
-    def reduce(chat: Chat, event: LoggedEvent) -> Chat:
-        return with_changed(
-            chat, "conversation_states", event.payload["conversation_id"], **changes
-        )
-
-    return reduce
 
 
 # --- reactions ------------------------------------------------------------------------------------
@@ -244,11 +236,7 @@ def composer(chat: Chat, payload: dict) -> PageStep:
     """The composer of the open chat (replying: opened from the message's Reply button)."""
     conversation_id = payload["conversation_id"]
     existing_conversation(chat, conversation_id)
-    path = (
-        ChatQuery(reply=payload["reply_to"]).with_item("conversation", conversation_id)
-        if payload.get("reply_to")
-        else conversation_path(conversation_id)
-    )
+    path = conversation_path(conversation_id, reply=payload.get("reply_to") or "")
     return PageStep(path, {"content": payload["content"]})
 
 
@@ -261,6 +249,14 @@ def message_form(*fields: str) -> Callable[[Chat, dict], PageStep]:
         return PageStep(conversation_path(message.conversation_id), form)
 
     return page
+
+
+def conversation_flag(
+    page: Callable[[Chat, dict], PageStep], help: str = "", **flag: bool
+) -> Action:
+    """An action that sets a flag of one chat (favourite, muted): set, not toggled."""
+    reduce = setting("conversation_states", "conversation_id", **flag)
+    return Action(ConversationId, decide_on_conversation, reduce, help=help, page=page)
 
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
@@ -279,32 +275,12 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Mark a chat unread (its newest message from someone else).",
             page=header_form,
         ),
-        "pin": Action(
-            ConversationId,
-            decide_on_conversation,
-            conversation_setting(is_pinned=True),
-            help="Add a chat to Favorites.",
-            page=chat_list_form,
+        "pin": conversation_flag(chat_list_form, "Add a chat to Favorites.", is_pinned=True),
+        "unpin": conversation_flag(
+            chat_list_form, "Remove a chat from Favorites.", is_pinned=False
         ),
-        "unpin": Action(
-            ConversationId,
-            decide_on_conversation,
-            conversation_setting(is_pinned=False),
-            help="Remove a chat from Favorites.",
-            page=chat_list_form,
-        ),
-        "mute": Action(
-            ConversationId,
-            decide_on_conversation,
-            conversation_setting(is_muted=True),
-            page=header_form,
-        ),
-        "unmute": Action(
-            ConversationId,
-            decide_on_conversation,
-            conversation_setting(is_muted=False),
-            page=header_form,
-        ),
+        "mute": conversation_flag(header_form, is_muted=True),
+        "unmute": conversation_flag(header_form, is_muted=False),
         "react": Action(
             React,
             decide_on_message,

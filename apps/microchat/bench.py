@@ -7,6 +7,8 @@ calls and activity. Paths are relative to the environment root (`/r/<token>/micr
 
 from __future__ import annotations
 
+from collections import Counter
+
 from apps.microchat.query import CHAT_FILTERS, ChatQuery, SearchQuery
 from apps.microchat.state import Chat
 
@@ -24,11 +26,7 @@ def sample_pages(chat: Chat) -> list[str]:
     if chat.teams:
         team = next(iter(chat.teams.values()))
         pages.append(f"teams/{team.id}")
-    by_conversation: dict[str, int] = {}
-    for message in chat.messages.values():
-        by_conversation[message.conversation_id] = (
-            by_conversation.get(message.conversation_id, 0) + 1
-        )
+    by_conversation = Counter(message.conversation_id for message in chat.messages.values())
     if by_conversation:
         busiest = max(by_conversation, key=by_conversation.__getitem__)
         word = next(iter(chat.messages.values())).content.split()[0] if chat.messages else "the"

@@ -21,7 +21,7 @@ from apps.microchat import state as chats
 from apps.microchat.actions import ACTIONS
 from apps.microchat.bench import sample_pages
 from apps.microchat.catalog import catalog_message, make_call, make_conversation, make_team
-from apps.microchat.state import ENVIRONMENT, Chat, Message, empty_chat, with_messages
+from apps.microchat.state import ENVIRONMENT, Chat, Message, with_messages
 from events.registry import Environment, ImplicitAction, counted
 from events.schemas import Payload
 
@@ -189,7 +189,7 @@ materialize = tables(
 MICROCHAT = Environment(
     name=ENVIRONMENT,
     title="MicroChat",
-    initial_state=empty_chat,
+    initial_state=Chat.of,
     event_types=EVENT_TYPES,
     actions=ACTIONS,
     baselines=BASELINES,

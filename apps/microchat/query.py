@@ -10,16 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.kit.query import InvalidQuery, QueryState, choice, item, text
-
-__all__ = [
-    "CHAT_FILTERS",
-    "CalendarQuery",
-    "CallsQuery",
-    "ChatQuery",
-    "InvalidQuery",
-    "SearchQuery",
-]
+from apps.kit.query import QueryState, choice, item, text
 
 CHAT_FILTERS = ("all", "unread", "chats", "meetings")
 CALENDAR_VIEWS = ("day", "week", "month")

@@ -57,13 +57,13 @@ class ChatList:
 
 @per_state()
 def conversation_messages(chat: Chat) -> dict[str, tuple[str, ...]]:
-    """Each conversation's message ids in display order: by time sent, then delivery."""
-    position = {message_id: n for n, message_id in enumerate(chat.messages)}
+    """Each conversation's message ids in display order: by time sent, then delivery (the
+    order they are grouped in, which a stable sort keeps)."""
     grouped: dict[str, list[str]] = {}
     for message_id, message in chat.messages.items():
         grouped.setdefault(message.conversation_id, []).append(message_id)
     return {
-        conversation_id: tuple(sorted(ids, key=lambda i: (chat.messages[i].sent_at, position[i])))
+        conversation_id: tuple(sorted(ids, key=lambda i: chat.messages[i].sent_at))
         for conversation_id, ids in grouped.items()
     }
 
@@ -138,13 +138,7 @@ def chat_list(chat: Chat, query: ChatQuery, root: str) -> ChatList:
                 current=current,
             )
         )
-    rows.sort(
-        key=lambda r: (
-            r.last_at is None,
-            -(r.last_at or 0.0),
-            r.conversation.order,
-        )
-    )
+    rows.sort(key=lambda r: (r.last_at is None, -(r.last_at or 0.0), r.conversation.order))
     pills = tuple(
         # A pill toggles: pressing the current one shows every chat again.
         FilterPill(
@@ -227,10 +221,7 @@ def reply_ref(chat: Chat, message_id: str | None) -> ReplyRef | None:
 def reaction_chips(chat: Chat, message_id: str) -> tuple[ReactionChip, ...]:
     return tuple(
         ReactionChip(
-            reaction,
-            len(users),
-            chat.self_id in users,
-            ", ".join("You" if u == chat.self_id else chat.user_name(u) for u in users),
+            reaction, len(users), chat.self_id in users, ", ".join(chat.called(u) for u in users)
         )
         for reaction, users in chat.reactions.get(message_id, ())
     )
@@ -272,9 +263,7 @@ def open_conversation(chat: Chat, query: ChatQuery) -> OpenConversation:
     return OpenConversation(
         conversation=conversation,
         people=people_of(chat, conversation),
-        member_names=tuple(
-            "You" if p == chat.self_id else chat.user_name(p) for p in conversation.participant_ids
-        ),
+        member_names=tuple(chat.called(p) for p in conversation.participant_ids),
         pinned=chat.pinned(conversation.id),
         muted=chat.muted(conversation.id),
         messages=tuple(views),
@@ -364,14 +353,11 @@ def team_cards(chat: Chat, root: str) -> tuple[TeamView, ...]:
 
 
 def team_detail(chat: Chat, team: Team, channel_id: str) -> TeamDetail:
-    members = [m for m in team.member_ids]
     return TeamDetail(
         team=team,
         channel_id=channel_id,
-        member_names=tuple(
-            "You" if m == chat.self_id else chat.user_name(m) for m in members[:MEMBERS_SHOWN]
-        ),
-        more_members=max(0, len(members) - MEMBERS_SHOWN),
+        member_names=tuple(chat.called(m) for m in team.member_ids[:MEMBERS_SHOWN]),
+        more_members=max(0, len(team.member_ids) - MEMBERS_SHOWN),
         owner_name=chat.user_name(team.owner_id) if team.owner_id else "",
     )
 

@@ -9,12 +9,14 @@ the content.
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any
+from typing import ClassVar
 
-from apps.kit.frozen import CatalogState, with_items
+from apps.kit.frozen import with_items
+from apps.kit.self_user import SelfUserState
 
 ENVIRONMENT = "microchat"
 CONVERSATION_TYPES: tuple[str, ...] = ("direct", "group", "meeting")
@@ -22,9 +24,6 @@ CONVERSATION_TYPES: tuple[str, ...] = ("direct", "group", "meeting")
 # Reactions by name (Teams' six quick reactions); drawn as icons, never as emoji glyphs, which
 # render as empty boxes in a browser without an emoji font.
 REACTIONS: tuple[str, ...] = ("like", "heart", "laugh", "celebrate", "sad", "angry")
-
-# Used only when a catalog has no user marked isSelf (e.g. a minimal test catalog).
-FALLBACK_SELF: Mapping[str, Any] = MappingProxyType({"id": "user000", "name": "Me"})
 EMPTY: Mapping = MappingProxyType({})
 
 
@@ -115,11 +114,9 @@ Reactions = tuple[tuple[str, tuple[str, ...]], ...]  # ((reaction, user ids), â€
 
 
 @dataclass(frozen=True)
-class Chat(CatalogState):
-    # The self user is an input, like the catalog: excluded from equality.
-    self_user: Mapping[str, Any] = field(
-        compare=False, repr=False, default_factory=lambda: FALLBACK_SELF
-    )
+class Chat(SelfUserState):
+    # Used only when a catalog has no user marked isSelf (e.g. a minimal test catalog).
+    FALLBACK: ClassVar[Mapping[str, str]] = MappingProxyType({"id": "user000", "name": "Me"})
     conversations: Mapping[str, Conversation] = field(default_factory=lambda: EMPTY)
     conversation_states: Mapping[str, ConversationState] = field(default_factory=lambda: EMPTY)
     teams: Mapping[str, Team] = field(default_factory=lambda: EMPTY)
@@ -130,11 +127,7 @@ class Chat(CatalogState):
 
     @property
     def self_id(self) -> str:
-        return str(self.self_user.get("id") or FALLBACK_SELF["id"])
-
-    @property
-    def self_name(self) -> str:
-        return str(self.self_user.get("name") or FALLBACK_SELF["name"])
+        return self.me("id")
 
     def has_message(self, message_id: str) -> bool:
         return message_id in self.messages
@@ -152,9 +145,9 @@ class Chat(CatalogState):
         user = self.catalog.users.get(user_id) if user_id else None
         return str(user.get("name")) if user and user.get("name") else "Unknown user"
 
-
-def empty_chat(catalog: Any) -> Chat:
-    return Chat(catalog=catalog, self_user=getattr(catalog, "self_user", None) or FALLBACK_SELF)
+    def called(self, user_id: str | None) -> str:
+        """How the workspace names a person to the self user: "You", or their name."""
+        return "You" if user_id == self.self_id else self.user_name(user_id)
 
 
 # --- building new states (reducers only) -----------------------------------------------------
@@ -228,8 +221,4 @@ def total_message_count(chat: Chat) -> int:
 
 
 def unread_by_conversation(chat: Chat) -> dict[str, int]:
-    counts: dict[str, int] = {}
-    for message_id in unread_ids(chat):
-        conversation_id = chat.messages[message_id].conversation_id
-        counts[conversation_id] = counts.get(conversation_id, 0) + 1
-    return counts
+    return dict(Counter(chat.messages[i].conversation_id for i in unread_ids(chat)))

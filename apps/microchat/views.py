@@ -7,13 +7,12 @@ declared with the environment (`implicit_actions`), not here.
 
 from __future__ import annotations
 
-from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit import simclock
 from apps.kit.pages import Page, one_of, run_page
-from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.rendering import redirect_after, redirect_to, render_screen
 from apps.microchat import screens
 from apps.microchat.actions import existing_conversation, existing_message
 from apps.microchat.calendar import calendar_grid
@@ -34,15 +33,20 @@ MESSAGE_ACTIONS = {
 }
 
 
-def base_context(page: Page, section: str) -> dict:
+def show(
+    request: HttpRequest, page: Page, screen: str, context: dict, section: str = ""
+) -> HttpResponse:
+    """The page `microchat/<screen>.html` with the chrome's context; the app rail marks
+    `section` (the screen's own name unless told)."""
     chat = page.state
     first = chat.self_name.split()[0] if chat.self_name.split() else chat.self_name
-    return {
-        "section": section,
+    chrome = {
+        "section": section or screen,
         "self_name": chat.self_name,
         "self_names": (chat.self_name, first),
         "rail": screens.rail(chat, page.root + "/"),
     }
+    return render_screen(request, page, f"microchat/{screen}.html", {**chrome, **context})
 
 
 @require_GET
@@ -50,42 +54,32 @@ def base_context(page: Page, section: str) -> dict:
 def chat(request: HttpRequest, page: Page) -> HttpResponse:
     """The chat list, with `conversation=<id>` open (opening has marked it read)."""
     query = ChatQuery.from_params(request.GET)
-    root = page.root + "/"
     opened = None
     if query.conversation is not None:
         if not page.state.has_conversation(query.conversation):
             raise Http404("no such conversation")
         opened = screens.open_conversation(page.state, query)
-    context = {
-        **base_context(page, "chat"),
-        "query": query,
-        "listing": screens.chat_list(page.state, query, root),
-        "opened": opened,
-        "back": query.querystring(),
-    }
-    return render_screen(request, page, "microchat/chat.html", context)
+    listing = screens.chat_list(page.state, query, page.root + "/")
+    return show(
+        request,
+        page,
+        "chat",
+        {"query": query, "listing": listing, "opened": opened, "back": query.querystring()},
+    )
 
 
 @require_GET
 @run_page
 def search(request: HttpRequest, page: Page) -> HttpResponse:
-    query = SearchQuery.from_params(request.GET)
-    context = {
-        **base_context(page, "chat"),
-        "search_q": query.q,
-        "results": screens.search(page.state, query.q, page.root + "/"),
-    }
-    return render_screen(request, page, "microchat/search.html", context)
+    q = SearchQuery.from_params(request.GET).q
+    results = screens.search(page.state, q, page.root + "/")
+    return show(request, page, "search", {"search_q": q, "results": results}, section="chat")
 
 
 @require_GET
 @run_page
 def teams(request: HttpRequest, page: Page) -> HttpResponse:
-    context = {
-        **base_context(page, "teams"),
-        "cards": screens.team_cards(page.state, page.root + "/"),
-    }
-    return render_screen(request, page, "microchat/teams.html", context)
+    return show(request, page, "teams", {"cards": screens.team_cards(page.state, page.root + "/")})
 
 
 @require_GET
@@ -98,13 +92,17 @@ def team(request: HttpRequest, page: Page, team_id: str, channel_id: str = "") -
     channel = next((c for c in found.channels if c.id == channel_id), None)
     if found.channels and channel is None:
         raise Http404("no such channel")
-    context = {
-        **base_context(page, "teams"),
-        "cards": screens.team_cards(page.state, page.root + "/"),
-        "detail": screens.team_detail(page.state, found, channel_id),
-        "channel": channel,
-    }
-    return render_screen(request, page, "microchat/team.html", context)
+    return show(
+        request,
+        page,
+        "team",
+        {
+            "cards": screens.team_cards(page.state, page.root + "/"),
+            "detail": screens.team_detail(page.state, found, channel_id),
+            "channel": channel,
+        },
+        section="teams",
+    )
 
 
 @require_GET
@@ -114,49 +112,44 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
     zero = simclock.day_zero(page.run)
     today = simclock.today(page.now, zero)
     found = screens.meetings(page.state, zero, page.root + "/")
-    context = {
-        **base_context(page, "calendar"),
-        "query": query,
-        "grid": calendar_grid(query, today, found),
-        "views": [
-            (v, v.title(), query.but(view=v, offset="0").querystring())
-            for v in ("day", "week", "month")
-        ],
-    }
-    return render_screen(request, page, "microchat/calendar.html", context)
+    views = [
+        (v, v.title(), query.but(view=v, offset="0").querystring())
+        for v in ("day", "week", "month")
+    ]
+    return show(
+        request,
+        page,
+        "calendar",
+        {"query": query, "grid": calendar_grid(query, today, found), "views": views},
+    )
 
 
 @require_GET
 @run_page
 def calls(request: HttpRequest, page: Page) -> HttpResponse:
     query = CallsQuery.from_params(request.GET)
-    context = {
-        **base_context(page, "calls"),
-        "query": query,
-        "screen": screens.calls_screen(page.state, query),
-    }
-    return render_screen(request, page, "microchat/calls.html", context)
+    calls_screen = screens.calls_screen(page.state, query)
+    return show(request, page, "calls", {"query": query, "screen": calls_screen})
 
 
 @require_GET
 @run_page
 def activity(request: HttpRequest, page: Page) -> HttpResponse:
-    context = {
-        **base_context(page, "activity"),
-        "items": screens.activity(page.state, page.root + "/"),
-    }
-    return render_screen(request, page, "microchat/activity.html", context)
+    items = screens.activity(page.state, page.root + "/")
+    return show(request, page, "activity", {"items": items})
 
 
-def back_to(page: Page, request: HttpRequest, *, close: str | None = None) -> HttpResponse:
-    """Back to the screen the form was on; `close`: leave that chat closed (after marking it
-    unread, or the redirect would open it — and read it — again)."""
+def back_to(
+    page: Page, request: HttpRequest, done: str, *, close: str | None = None
+) -> HttpResponse:
+    """Back to the screen the form was on, `done` shown once; `close`: leave that chat closed
+    (after marking it unread, or the redirect would open it — and read it — again)."""
     back = ChatQuery.from_querystring(request.POST.get("back", ""))
     if back.conversation and (
         back.conversation == close or not page.state.has_conversation(back.conversation)
     ):
         back = back.but(conversation=None, find="", reply="")
-    return redirect_to(page, back.querystring())
+    return redirect_after(request, page, back.querystring(), done)
 
 
 @require_POST
@@ -168,8 +161,8 @@ def conversation_action(request: HttpRequest, page: Page, action: str) -> HttpRe
     conversation_id = request.POST.get("conversation_id", "")
     existing_conversation(page.state, conversation_id)
     page.act(action, {"conversation_id": conversation_id})
-    messages.success(request, CONVERSATION_ACTIONS[action])
-    return back_to(page, request, close=conversation_id if action == "mark_unread" else None)
+    closed = conversation_id if action == "mark_unread" else None
+    return back_to(page, request, CONVERSATION_ACTIONS[action], close=closed)
 
 
 @require_POST
@@ -185,9 +178,7 @@ def message_action(request: HttpRequest, page: Page, action: str) -> HttpRespons
     elif action == "edit_message":
         payload["content"] = request.POST.get("content", "")
     page.act(action, payload)
-    if MESSAGE_ACTIONS[action]:
-        messages.success(request, MESSAGE_ACTIONS[action])
-    return back_to(page, request)
+    return back_to(page, request, MESSAGE_ACTIONS[action])
 
 
 @require_POST

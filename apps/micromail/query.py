@@ -8,10 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.kit.query import InvalidQuery, QueryState, choice, item, text
+from apps.kit.query import QueryState, choice, item, text
 from apps.micromail.state import FOLDERS, QUICK_FILTERS
-
-__all__ = ["SCOPES", "InvalidQuery", "MailboxQuery"]
 
 SCOPES = ("folder", "all")  # search the current folder, or every folder
 

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import pytest
 
+from apps.kit.query import InvalidQuery
 from apps.kit.simclock import ago, clock_time
 from apps.micromail import state as mailbox
 from apps.micromail.compose import prefill, split_addresses
-from apps.micromail.query import InvalidQuery, MailboxQuery
+from apps.micromail.query import MailboxQuery
 from events.registry import ActionRejected
 from tests.micromail.cast import CAST, DANA, OMAR, PRIYA, SELF_EMAIL
 
