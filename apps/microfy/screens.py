@@ -74,12 +74,6 @@ def top_artists(music: Music) -> tuple[Artist, ...]:
 
 
 @per_state()
-def followed_artists(music: Music) -> tuple[Artist, ...]:
-    known = music.catalog.index(artists)
-    return tuple(known[a] for a in music.followed if a in known)
-
-
-@per_state()
 def artist_tracks(music: Music, artist_id: str) -> tuple[Track, ...]:
     ids = music.catalog.index(tracks_by_artist).get(artist_id, ())
     return tuple(music.tracks[t] for t in ids if t in music.tracks)

@@ -1,21 +1,18 @@
 """MicroFy pages: thin views over `page.state`, actions through `page.act`.
 
 Every screen has its own URL (urls.py). Actions are POST forms carrying a `back` path (relative
-to the environment root) and returning there (post/redirect/get). What a page shows that moves
+to the environment root) and returning there (post/redirect/get, `apps.kit.rendering`). What a page shows that moves
 with the clock — the player's position, an artist's listeners, a track's plays — registers when
 it next changes (`page.changes_at`), so kept screens and live pushes never show a stale value.
 """
 
 from __future__ import annotations
 
-import re
-
-from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit.pages import Page, one_of, run_page
-from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.rendering import back_field, redirect_after, render_screen
 from apps.kit.streaming import present, showing, shown_count
 from apps.microfy import screens
 from apps.microfy.query import HomeQuery, SearchQuery
@@ -28,8 +25,6 @@ TRACK_ACTIONS = {
     "add_to_playlist": "Added to playlist",
 }
 ARTIST_ACTIONS = {"follow_artist": "Following", "unfollow_artist": "Unfollowed"}
-# A path inside the environment, as our own forms write it (no scheme, no leading slash).
-BACK = re.compile(r"[A-Za-z0-9_\-./?=&%+]*")
 
 
 def plays(page: Page, track: Track) -> int:
@@ -153,13 +148,6 @@ def playlist(request: HttpRequest, page: Page, playlist_id: str) -> HttpResponse
     return render_screen(request, page, "microfy/playlist.html", context)
 
 
-def back_to(request: HttpRequest, page: Page) -> HttpResponse:
-    back = request.POST.get("back", "")
-    if not BACK.fullmatch(back) or back.startswith("/") or "//" in back:
-        back = ""
-    return redirect_to(page, back)
-
-
 @require_POST
 @run_page
 def track_action(request: HttpRequest, page: Page, track_id: str, action: str) -> HttpResponse:
@@ -167,29 +155,22 @@ def track_action(request: HttpRequest, page: Page, track_id: str, action: str) -
     payload = {"track_id": track_id}
     if action == "add_to_playlist":
         payload["playlist_id"] = request.POST.get("playlist_id", "")
-    if page.act(action, payload) is not None and TRACK_ACTIONS[action]:
-        messages.success(request, TRACK_ACTIONS[action])
-    return back_to(request, page)
+    page.act(action, payload)
+    return redirect_after(request, page, back_field(request), TRACK_ACTIONS[action])
 
 
 @require_POST
 @run_page
 def artist_action(request: HttpRequest, page: Page, artist_id: str, action: str) -> HttpResponse:
     one_of(action, ARTIST_ACTIONS, "artist action")
-    if page.act(action, {"artist_id": artist_id}) is not None:
-        messages.success(request, ARTIST_ACTIONS[action])
-    return back_to(request, page)
+    page.act(action, {"artist_id": artist_id})
+    return redirect_after(request, page, back_field(request), ARTIST_ACTIONS[action])
 
 
 @require_POST
 @run_page
 def create_playlist(request: HttpRequest, page: Page) -> HttpResponse:
-    payload = {
-        "name": request.POST.get("name", ""),
-        "description": request.POST.get("description", ""),
-    }
-    event = page.act("create_playlist", payload)
-    if event is None:
-        return back_to(request, page)
-    messages.success(request, f"Created {event.payload['name']}")
-    return redirect_to(page, f"playlist/{event.payload['playlist_id']}")
+    form = {field: request.POST.get(field, "") for field in ("name", "description")}
+    created = page.act("create_playlist", form).payload
+    path = f"playlist/{created['playlist_id']}"
+    return redirect_after(request, page, path, f"Created {created['name']}")

@@ -18,7 +18,6 @@ from apps.microtube.state import (
     Notification,
     Tube,
     Video,
-    unread_notification_count,
 )
 
 RELATED_SHOWN = 10
@@ -171,10 +170,6 @@ def notifications(tube: Tube) -> tuple[NotificationRow, ...]:
     return tuple(sorted(rows, key=lambda r: -r.notification.arrived_at))
 
 
-def bell_count(tube: Tube) -> int:
-    return unread_notification_count(tube)
-
-
 def notification_target(tube: Tube, notification_id: str) -> str:
     """Where opening a notification goes (a path under the environment root): its video when
     the site has it, else its channel, else the feed. (The original guessed a video from the
@@ -187,22 +182,17 @@ def notification_target(tube: Tube, notification_id: str) -> str:
     return ""
 
 
-@per_state()
-def liked(tube: Tube) -> tuple[Card, ...]:
-    return _cards(tube, [tube.videos[v] for v, s in tube.video_states.items() if s.liked])
-
-
-@per_state()
-def watch_later(tube: Tube) -> tuple[Card, ...]:
-    return _cards(tube, [tube.videos[v] for v, s in tube.video_states.items() if s.saved])
+def marked(tube: Tube, flag: str) -> tuple[Card, ...]:
+    """The videos whose state has `flag` set (liked, saved for later), in arrival order."""
+    return _cards(tube, [tube.videos[v] for v, s in tube.video_states.items() if getattr(s, flag)])
 
 
 @per_state()
 def playlists(tube: Tube) -> tuple[PlaylistView, ...]:
     """Watch later and Liked videos, then the user's playlists, oldest first."""
     built_in = (
-        PlaylistView(WATCH_LATER, "Watch later", watch_later(tube), built_in=True),
-        PlaylistView(LIKED_VIDEOS, "Liked videos", liked(tube), built_in=True),
+        PlaylistView(WATCH_LATER, "Watch later", marked(tube, "saved"), built_in=True),
+        PlaylistView(LIKED_VIDEOS, "Liked videos", marked(tube, "liked"), built_in=True),
     )
     own = tuple(
         PlaylistView(

@@ -12,16 +12,15 @@ from collections.abc import Callable
 from typing import Any
 from urllib.parse import quote
 
-from django.contrib import messages
 from django.http import HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit.pages import Page, one_of, run_page
-from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.rendering import redirect_after, redirect_to, render_screen
 from apps.kit.streaming import present
 from apps.microtube import screens
 from apps.microtube.query import ChannelQuery, PlaylistQuery, ResultsQuery, WatchQuery
-from apps.microtube.state import SELF_CHANNEL, Tube, Video
+from apps.microtube.state import SELF_CHANNEL, Tube, Video, unread_notification_count
 
 VIDEO_ACTIONS = {
     "like_video": "",
@@ -39,7 +38,7 @@ NOTIFICATION_ACTIONS = ("read_notification", "dismiss_notification")
 
 def show(request: HttpRequest, page: Page, template: str, guide: str, **context) -> HttpResponse:
     tube: Tube = page.state
-    bell = screens.bell_count(tube)
+    bell = unread_notification_count(tube)
     base = {
         "me": tube.self_name,
         "self_channel": tube.channels.get(SELF_CHANNEL),
@@ -173,24 +172,21 @@ def video_action(request: HttpRequest, page: Page, video_id: str, action: str) -
     done = VIDEO_ACTIONS[action]
     if action == "add_to_playlist":
         done = f"Saved to {page.state.playlists[payload['playlist_id']].name}"
-    if done:
-        messages.success(request, done)
     if request.POST.get("back") == "shorts":  # the form was in the Shorts player
-        return redirect_to(page, f"shorts/{quote(video_id)}")
+        return redirect_after(request, page, f"shorts/{quote(video_id)}", done)
     anchor = "#comments" if action == "post_comment" else ""
-    return redirect_to(page, watch_path(video_id) + anchor)
+    return redirect_after(request, page, watch_path(video_id) + anchor, done)
 
 
 @require_POST
 @run_page
 def new_playlist(request: HttpRequest, page: Page) -> HttpResponse:
     video_id = request.POST.get("video_id") or None
-    event = page.act(
-        "create_playlist", {"name": request.POST.get("name", ""), "video_id": video_id}
+    form = {"name": request.POST.get("name", ""), "video_id": video_id}
+    done = f"Created playlist {page.act('create_playlist', form).payload['name']}"
+    return redirect_after(
+        request, page, watch_path(video_id) if video_id else "feed/playlists", done
     )
-    if event is not None:
-        messages.success(request, f"Created playlist {event.payload['name']}")
-    return redirect_to(page, watch_path(video_id) if video_id else "feed/playlists")
 
 
 # --- channels -------------------------------------------------------------------------------
@@ -219,14 +215,13 @@ def channel(request: HttpRequest, page: Page, channel_id: str) -> HttpResponse:
 def channel_action(request: HttpRequest, page: Page, channel_id: str, action: str) -> HttpResponse:
     one_of(action, CHANNEL_ACTIONS, "channel action")
     page.act(action, {"channel_id": channel_id})
-    messages.success(request, CHANNEL_ACTIONS[action])
     # Back to the video the button was under, or to the channel page.
     video_id = request.POST.get("video_id", "")
-    if video_id in page.state.videos and request.POST.get("back") == "shorts":
-        return redirect_to(page, f"shorts/{quote(video_id)}")
+    back = f"channel/{quote(channel_id)}"
     if video_id in page.state.videos:
-        return redirect_to(page, watch_path(video_id))
-    return redirect_to(page, f"channel/{quote(channel_id)}")
+        on_shorts = request.POST.get("back") == "shorts"
+        back = f"shorts/{quote(video_id)}" if on_shorts else watch_path(video_id)
+    return redirect_after(request, page, back, CHANNEL_ACTIONS[action])
 
 
 # --- notifications --------------------------------------------------------------------------

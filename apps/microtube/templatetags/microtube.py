@@ -25,18 +25,9 @@ from apps.microtube.state import Channel, Tube, Video
 register = template.Library()
 
 
-def _views(video: Video, page) -> str:
-    return display.views_text(display.moving(page, video.views))
-
-
-def _ago(at: float, page) -> str:
-    page.changes_at(display.ago_changes_at(at, page.now))
-    return display.ago(at, page.now)
-
-
 @register.filter
 def views(video: Video, page) -> str:
-    return _views(video, page)
+    return display.views_text(display.moving(page, video.views))
 
 
 @register.filter
@@ -46,7 +37,8 @@ def likes(video: Video, page) -> str:
 
 @register.filter
 def yt_ago(at: float, page) -> str:
-    return _ago(at, page)
+    page.changes_at(display.ago_changes_at(at, page.now))
+    return display.ago(at, page.now)
 
 
 @register.simple_tag(takes_context=True)
@@ -70,8 +62,8 @@ def video_cards(context: template.Context, cards, layout: str = "grid") -> SafeS
         render_fragment(
             "microtube/_card.html",
             card=card,
-            views=_views(card.video, page),
-            ago=_ago(card.video.published_at, page),
+            views=views(card.video, page),
+            ago=yt_ago(card.video.published_at, page),
             live=card.video.is_live,
             layout=layout,
             root=root,
@@ -85,7 +77,7 @@ def video_cards(context: template.Context, cards, layout: str = "grid") -> SafeS
 def comment_rows(context: template.Context, comments) -> SafeString:
     page = context["page"]
     html = [
-        render_fragment("microtube/_comment.html", comment=c, ago=_ago(c.posted_at, page))
+        render_fragment("microtube/_comment.html", comment=c, ago=yt_ago(c.posted_at, page))
         for c in comments
     ]
     return mark_safe("".join(html))
