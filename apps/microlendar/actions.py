@@ -9,6 +9,7 @@ values: it trusts the log and never raises, and replay is deterministic.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from datetime import date
 from types import MappingProxyType
 from typing import Literal
 from urllib.parse import urlencode
@@ -17,6 +18,7 @@ from pydantic import Field
 
 from apps.kit.changing import setting
 from apps.kit.frozen import with_changed
+from apps.kit.streaming import id_payload
 from apps.microlendar import times
 from apps.microlendar.query import CalendarQuery
 from apps.microlendar.state import (
@@ -35,11 +37,20 @@ from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
 DEFAULT_START = "09:00"  # upstream's defaults for a new event
-EVENT_FIELDS = ("title", "date", "time", "endTime", "calendar", "description", "location")
+# An event's fields as logged and as its form names them (upstream's) → the attribute each sets,
+# how its text is read, and how the attribute is written back.
+EVENT_FIELDS = {
+    "title": ("title", str, str),
+    "date": ("day", times.parse_date, date.isoformat),
+    "time": ("start", times.parse_clock, times.hhmm),
+    "endTime": ("end", times.parse_clock, times.hhmm),
+    "calendar": ("calendar", str, str),
+    "description": ("description", str, str),
+    "location": ("location", str, str),
+}
 
 
-class EventId(Payload):
-    event_id: str = Field(description="id of an event on the calendar")
+EventId = id_payload("EventId", "event_id", "id of an event on the calendar")
 
 
 class EventDetails(Payload):
@@ -81,8 +92,7 @@ class NewTask(Payload):
     dueDate: str | None = Field(None, description="YYYY-MM-DD")
 
 
-class TaskId(Payload):
-    task_id: str = Field(description="id of a task in the list")
+TaskId = id_payload("TaskId", "task_id", "id of a task in the list")
 
 
 def existing_event(agenda: Agenda, event_id: str) -> CalendarEvent:
@@ -140,6 +150,13 @@ def _times(start_text: str, end_text: str | None) -> tuple[str, str]:
 # --- events ----------------------------------------------------------------------------------------
 
 
+def event_fields(logged: Mapping) -> dict:
+    """The event's attributes a logged create or edit sets (an edit logs only what changed)."""
+    return {
+        attr: read(logged[name]) for name, (attr, read, _) in EVENT_FIELDS.items() if name in logged
+    }
+
+
 def decide_view(agenda: Agenda, payload: dict) -> dict:
     if existing_event(agenda, payload["event_id"]).user_created:
         raise ActionRejected(
@@ -164,17 +181,8 @@ def decide_create(agenda: Agenda, payload: dict) -> dict:
 
 
 def reduce_create(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    p = event.payload
     created = CalendarEvent(
-        id=p["id"],
-        title=p["title"],
-        day=times.parse_date(p["date"]),
-        start=times.parse_clock(p["time"]),
-        end=times.parse_clock(p["endTime"]),
-        calendar=p["calendar"],
-        description=p["description"],
-        location=p["location"],
-        user_created=True,
+        id=event.payload["id"], **event_fields(event.payload), user_created=True
     )
     return with_created(agenda, "event", created, EventState())
 
@@ -200,22 +208,8 @@ def decide_update(agenda: Agenda, payload: dict) -> dict:
     return {"event_id": payload["event_id"], **changes}
 
 
-# A logged field → the event's attribute it sets, read from its logged form.
-EVENT_ATTRIBUTES = {
-    "title": ("title", str),
-    "date": ("day", times.parse_date),
-    "time": ("start", times.parse_clock),
-    "endTime": ("end", times.parse_clock),
-    "calendar": ("calendar", str),
-    "description": ("description", str),
-    "location": ("location", str),
-}
-
-
 def reduce_update(agenda: Agenda, event: LoggedEvent) -> Agenda:
-    p = event.payload
-    changes = {attr: read(p[name]) for name, (attr, read) in EVENT_ATTRIBUTES.items() if name in p}
-    return with_changed(agenda, "events", p["event_id"], **changes)
+    return with_changed(agenda, "events", event.payload["event_id"], **event_fields(event.payload))
 
 
 def decide_reschedule(agenda: Agenda, payload: dict) -> dict:
@@ -293,8 +287,8 @@ def details_form(*fields: str):
 
 
 def create_page(agenda: Agenda, payload: dict) -> PageStep:
-    date = urlencode({"date": payload["date"]})
-    return PageStep(f"events/new?{date}", typed(payload, EVENT_FIELDS))
+    on_day = urlencode({"date": payload["date"]})
+    return PageStep(f"events/new?{on_day}", typed(payload, EVENT_FIELDS))
 
 
 def edit_page(agenda: Agenda, payload: dict) -> PageStep:

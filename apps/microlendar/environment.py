@@ -21,6 +21,7 @@ from typing import Any, NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.columns import named
 from apps.kit.tables import Rows, Table, tables
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times
@@ -108,10 +109,13 @@ EVENT_TYPES = event_types(
 
 
 class Entry(NamedTuple):
-    """A row: an event (or task) with what the user did to it."""
+    """A row: an event (or task), whose attributes it reads as its own, and its state."""
 
     item: Any
     state: Any
+
+    def __getattr__(self, name: str) -> Any:  # only called for what the row itself lacks
+        return getattr(self.item, name)
 
 
 def entries(kind: str, *, user_created: bool) -> Rows[Agenda]:
@@ -125,8 +129,8 @@ def entries(kind: str, *, user_created: bool) -> Rows[Agenda]:
     return rows
 
 
-def due(row: Entry) -> str | None:
-    return row.item.due.isoformat() if row.item.due else None
+def due(task: Entry) -> str | None:
+    return task.due.isoformat() if task.due else None
 
 
 CATALOG_EVENTS, USER_EVENTS = (entries("event", user_created=mine) for mine in (False, True))
@@ -137,20 +141,19 @@ materialize = tables(
         "events",
         CATALOG_EVENTS,
         {
-            "id TEXT PRIMARY KEY": "item.id",
-            "title TEXT": "item.title",
-            "start_time TEXT": lambda row: times.iso(row.item.day, row.item.start),
-            "end_time TEXT": lambda row: times.iso(row.item.day, row.item.end),
-            "category TEXT": "item.calendar",
-            "is_task INTEGER": lambda row: False,
-            "description TEXT": "item.description",
+            **named("id TEXT PRIMARY KEY", "title TEXT"),
+            "start_time TEXT": lambda event: times.iso(event.day, event.start),
+            "end_time TEXT": lambda event: times.iso(event.day, event.end),
+            "category TEXT": "calendar",
+            "is_task INTEGER": lambda event: False,
+            **named("description TEXT"),
         },
     ),
     Table(
         "event_states",
         CATALOG_EVENTS,
         {
-            "event_id TEXT PRIMARY KEY": "item.id",
+            "event_id TEXT PRIMARY KEY": "id",
             "deleted INTEGER": "state.deleted",
             "isViewed INTEGER": "state.viewed",
         },
@@ -159,25 +162,22 @@ materialize = tables(
         "user_created_events",
         USER_EVENTS,
         {
-            "id TEXT PRIMARY KEY": "item.id",
-            "title TEXT": "item.title",
-            "date TEXT": lambda row: row.item.day.isoformat(),
-            "time TEXT": lambda row: times.hhmm(row.item.start),
-            "endTime TEXT": lambda row: times.hhmm(row.item.end),
-            "calendar TEXT": "item.calendar",
+            **named("id TEXT PRIMARY KEY", "title TEXT"),
+            "date TEXT": lambda event: event.day.isoformat(),
+            "time TEXT": lambda event: times.hhmm(event.start),
+            "endTime TEXT": lambda event: times.hhmm(event.end),
+            **named("calendar TEXT"),
             "deleted INTEGER": "state.deleted",
         },
     ),
     Table(
-        "tasks",
-        CATALOG_TASKS,
-        {"id TEXT PRIMARY KEY": "item.id", "title TEXT": "item.title", "dueDate TEXT": due},
+        "tasks", CATALOG_TASKS, {**named("id TEXT PRIMARY KEY", "title TEXT"), "dueDate TEXT": due}
     ),
     Table(
         "task_states",
         CATALOG_TASKS,
         {
-            "task_id TEXT PRIMARY KEY": "item.id",
+            "task_id TEXT PRIMARY KEY": "id",
             "completed INTEGER": "state.completed",
             "deleted INTEGER": "state.deleted",
         },
@@ -186,8 +186,7 @@ materialize = tables(
         "user_created_tasks",
         USER_TASKS,
         {
-            "id TEXT PRIMARY KEY": "item.id",
-            "title TEXT": "item.title",
+            **named("id TEXT PRIMARY KEY", "title TEXT"),
             "dueDate TEXT": due,
             "completed INTEGER": "state.completed",
             "deleted INTEGER": "state.deleted",

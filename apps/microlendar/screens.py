@@ -211,13 +211,13 @@ def shown_events(agenda: Agenda, query: CalendarQuery, first: date, last: date):
 
 
 def month_weeks(
-    agenda: Agenda, query: CalendarQuery, shown: date, today: date, *, chips: bool
+    agenda: Agenda, query: CalendarQuery, shown: date, today: date, *, mini: bool
 ) -> tuple[tuple[Cell, ...], ...]:
-    """Six weeks from the Sunday before the 1st; each cell its first events and "+N more"."""
-    start = week_start(shown.replace(day=1))
-    grid = days(start, 42)
+    """Six weeks from the Sunday before the 1st. In the month view each cell links to its day
+    view and shows its first events and "+N more"; in a mini month it moves the screen there."""
+    grid = days(week_start(shown.replace(day=1)), 42)
     by_day: dict[date, list[CalendarEvent]] = {}
-    if chips:
+    if not mini:
         for event in shown_events(agenda, query, grid[0], grid[-1]):
             by_day.setdefault(event.day, []).append(event)
     cells = []
@@ -226,7 +226,7 @@ def month_weeks(
         cells.append(
             Cell(
                 day=day,
-                url=query.on(day, today, view="day").querystring(),
+                url=query.on(day, today, view=None if mini else "day").querystring(),
                 in_month=day.month == shown.month,
                 is_today=day == today,
                 chips=tuple(chip(agenda, query, e, span=False) for e in on_day[:MONTH_CHIPS]),
@@ -238,20 +238,12 @@ def month_weeks(
 
 @per_state()
 def mini_month(agenda: Agenda, query: CalendarQuery, shown: date, today: date) -> MiniMonth:
-    """The small month of the sidebar (and of the year view): days link to that date."""
-    weeks = month_weeks(agenda, query, shown, today, chips=False)
+    """The small month of the sidebar (and of the year view)."""
     first, last = month_bounds(shown)
-    linked = tuple(
-        tuple(
-            Cell(c.day, query.on(c.day, today).querystring(), c.in_month, c.is_today, (), 0)
-            for c in week
-        )
-        for week in weeks
-    )
     return MiniMonth(
         title=f"{shown:%B %Y}",
         url=query.on(first, today, view="month").querystring(),
-        weeks=linked,
+        weeks=month_weeks(agenda, query, shown, today, mini=True),
         count=len(shown_events(agenda, query, first, last)),
     )
 
@@ -276,20 +268,20 @@ def calendar_screen(agenda: Agenda, query: CalendarQuery, today: date) -> Screen
     )
     if query.q:
         found = [e for e in chronological(live_events(agenda)) if matches_search(e, query.q)]
-        return _with(screen, agenda=grouped(agenda, query, found))
+        return replace(screen, agenda=grouped(agenda, query, found))
     if view == "month":
-        return _with(screen, weeks=month_weeks(agenda, query, shown, today, chips=True))
+        return replace(screen, weeks=month_weeks(agenda, query, shown, today, mini=False))
     if view in GRID_DAYS:
         columns = []
         for day in days(first, GRID_DAYS[view]):
             chips = [chip(agenda, query, e, span=True) for e in events if e.day == day]
             url = query.on(day, today, view="day").querystring()
             columns.append(Column(day, url, day == today, place(chips)))
-        return _with(screen, columns=tuple(columns))
+        return replace(screen, columns=tuple(columns))
     if view == "schedule":
-        return _with(screen, agenda=grouped(agenda, query, events))
+        return replace(screen, agenda=grouped(agenda, query, events))
     months = tuple(mini_month(agenda, query, date(shown.year, m, 1), today) for m in range(1, 13))
-    return _with(screen, months=months)
+    return replace(screen, months=months)
 
 
 def grouped(agenda: Agenda, query: CalendarQuery, events: list[CalendarEvent]):
@@ -297,10 +289,6 @@ def grouped(agenda: Agenda, query: CalendarQuery, events: list[CalendarEvent]):
     for event in events:
         by_day.setdefault(event.day, []).append(chip(agenda, query, event, span=True))
     return tuple((day, tuple(chips)) for day, chips in by_day.items())
-
-
-def _with(screen: Screen, **parts) -> Screen:
-    return replace(screen, **parts)
 
 
 # --- the open event and the sidebar -----------------------------------------------------------

@@ -11,14 +11,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
 from apps.kit.pages import Page, one_of, run_page
-from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.rendering import redirect_after, render_screen
 from apps.microlendar import screens, times
-from apps.microlendar.actions import DEFAULT_START, existing_event
+from apps.microlendar.actions import DEFAULT_START, EVENT_FIELDS, existing_event
 from apps.microlendar.clock import calendar_moment, now_line_top
 from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
 from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda, CalendarEvent
@@ -93,28 +92,19 @@ class EventForm:
 
     @classmethod
     def typed(cls, request: HttpRequest, **extra) -> EventForm:
-        fields = {name: request.POST.get(name, "").strip() for name in FORM_FIELDS}
+        fields = {name: request.POST.get(name, "").strip() for name in EVENT_FIELDS}
         return cls(**fields, **extra)
 
     @classmethod
     def of(cls, event: CalendarEvent) -> EventForm:
         """The form of an event as it stands (what the edit form starts from)."""
-        return cls(
-            title=event.title,
-            date=event.day.isoformat(),
-            time=times.hhmm(event.start),
-            endTime=times.hhmm(event.end),
-            calendar=event.calendar,
-            description=event.description,
-            location=event.location,
-            event_id=event.id,
-        )
+        fields = {
+            name: write(getattr(event, attr)) for name, (attr, _, write) in EVENT_FIELDS.items()
+        }
+        return cls(**fields, event_id=event.id)
 
     def payload(self) -> dict:
-        return {name: getattr(self, name) for name in FORM_FIELDS if getattr(self, name) != ""}
-
-
-FORM_FIELDS = ("title", "date", "time", "endTime", "calendar", "description", "location")
+        return {name: getattr(self, name) for name in EVENT_FIELDS if getattr(self, name) != ""}
 
 
 def new_event_form(request: HttpRequest, today) -> EventForm:
@@ -147,10 +137,11 @@ def render_form(
     return render_screen(request, page, "microlendar/event_form.html", context, status=status)
 
 
-def after_save(request: HttpRequest, page: Page, day: str) -> HttpResponse:
+def after_save(request: HttpRequest, page: Page, day: str, done: str) -> HttpResponse:
     """Back to the screen the form came from, moved to the event's day."""
-    back = CalendarQuery.from_querystring(request.POST.get("back", ""))
-    return redirect_to(page, back.but(date=day, event=None).querystring())
+    return redirect_after(
+        request, page, _back(request).but(date=day, event=None).querystring(), done
+    )
 
 
 @require_http_methods(["GET", "POST"])
@@ -164,8 +155,7 @@ def new_event(request: HttpRequest, page: Page) -> HttpResponse:
         event = page.act("create_event", form.payload())
     except ActionRejected as exc:
         return render_form(request, page, form, error=str(exc), status=exc.status)
-    messages.success(request, f"“{event.payload['title']}” saved")
-    return after_save(request, page, event.payload["date"])
+    return after_save(request, page, event.payload["date"], f"“{event.payload['title']}” saved")
 
 
 @require_http_methods(["GET", "POST"])
@@ -179,15 +169,15 @@ def edit_event(request: HttpRequest, page: Page, event_id: str) -> HttpResponse:
     # Only what was changed is sent (an emptied description is a change; an unchanged time is not).
     changes = {
         name: getattr(form, name)
-        for name in FORM_FIELDS
+        for name in EVENT_FIELDS
         if getattr(form, name) != getattr(original, name)
     }
     try:
         event = page.act("update_event", {"event_id": event_id, **changes})
     except ActionRejected as exc:
         return render_form(request, page, form, error=str(exc), status=exc.status)
-    messages.success(request, "Event updated")
-    return after_save(request, page, event.payload.get("date", current.day.isoformat()))
+    day = event.payload.get("date", current.day.isoformat())
+    return after_save(request, page, day, "Event updated")
 
 
 # --- acting on an event, on tasks ----------------------------------------------------------------
@@ -205,11 +195,8 @@ def event_action(request: HttpRequest, page: Page, event_id: str, action: str) -
         if request.POST.get("time"):
             payload["time"] = request.POST["time"]
     page.act(EVENT_ACTIONS[action], payload)
-    messages.success(request, DONE[action])
-    back = CalendarQuery.from_querystring(request.POST.get("back", ""))
-    if action == "delete":
-        back = back.but(event=None)
-    return redirect_to(page, back.querystring())
+    back = _back(request).but(event=None) if action == "delete" else _back(request)
+    return redirect_after(request, page, back.querystring(), DONE[action])
 
 
 @require_POST
@@ -219,8 +206,7 @@ def new_task(request: HttpRequest, page: Page) -> HttpResponse:
     if request.POST.get("dueDate"):
         payload["dueDate"] = request.POST["dueDate"]
     page.act("create_task", payload)
-    messages.success(request, "Task created")
-    return redirect_to(page, _back(request))
+    return redirect_after(request, page, _back(request).querystring(), "Task created")
 
 
 @require_POST
@@ -229,13 +215,12 @@ def task_action(request: HttpRequest, page: Page, task_id: str, action: str) -> 
     one_of(action, TASK_ACTIONS, "task action")
     event = page.act(TASK_ACTIONS[action], {"task_id": task_id})
     if action == "delete":
-        messages.success(request, "Task deleted")
+        done = "Task deleted"
     else:
-        messages.success(
-            request, "Task completed" if event.payload["completed"] else "Task marked not done"
-        )
-    return redirect_to(page, _back(request))
+        done = "Task completed" if event.payload["completed"] else "Task marked not done"
+    return redirect_after(request, page, _back(request).querystring(), done)
 
 
-def _back(request: HttpRequest) -> str:
-    return CalendarQuery.from_querystring(request.POST.get("back", "")).querystring()
+def _back(request: HttpRequest) -> CalendarQuery:
+    """The screen a form came from (its `back` field)."""
+    return CalendarQuery.from_querystring(request.POST.get("back", ""))

@@ -11,14 +11,14 @@ reducers trust the log and never raise.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Any
 
 from pydantic import Field
 
-from apps.kit.deciding import found
-from apps.microscholar.state import Paper, Scholar, with_alert_read, with_paper_state
+from apps.kit.changing import setting
+from apps.kit.deciding import checking, found
+from apps.microscholar.state import Paper, Scholar, with_alert_read
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
 
@@ -35,22 +35,13 @@ def existing_paper(scholar: Scholar, paper_id: str) -> Paper:
     return found(scholar.papers, paper_id, "paper", "in the index")
 
 
-def decide_on_paper(scholar: Scholar, payload: dict) -> dict:
-    existing_paper(scholar, payload["paper_id"])
-    return payload
+decide_on_paper = checking("papers", "paper_id", "paper", "in the index")
 
 
 def decide_on_alert(scholar: Scholar, payload: dict) -> dict:
     if payload["alert_id"] not in scholar.alerts:
         raise ActionRejected(f"no alert {payload['alert_id']!r}", status=404)
     return payload
-
-
-def setting(**changes: Any) -> Callable[[Scholar, LoggedEvent], Scholar]:
-    def reduce(scholar: Scholar, event: LoggedEvent) -> Scholar:
-        return with_paper_state(scholar, event.payload["paper_id"], **changes)
-
-    return reduce
 
 
 def reduce_mark_alert_read(scholar: Scholar, event: LoggedEvent) -> Scholar:
@@ -82,21 +73,21 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         "save": Action(
             PaperId,
             decide_on_paper,
-            setting(saved=True),
+            setting("paper_states", "paper_id", saved=True),
             help="Add a paper to My library.",
             page=paper_page,
         ),
         "unsave": Action(
             PaperId,
             decide_on_paper,
-            setting(saved=False),
+            setting("paper_states", "paper_id", saved=False),
             help="Remove a paper from My library.",
             page=paper_page,
         ),
         "cite": Action(
             PaperId,
             decide_on_paper,
-            setting(cited=True),
+            setting("paper_states", "paper_id", cited=True),
             help="Open a paper's Cite dialog (formatted citations and export links).",
             page=cite_page,
         ),

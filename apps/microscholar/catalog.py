@@ -10,24 +10,19 @@ count stays as catalogued, which is the original's behaviour.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
+from apps.kit.streaming import whole
 from apps.kit.waypoints import Waypoints
 from apps.microscholar.state import ENVIRONMENT, Alert, Paper
 
 
-def _int(value: Any, default: int = 0) -> int:
-    try:
-        return int(value)
-    except (TypeError, ValueError):
-        return default
-
-
 def citation_series(record: Mapping[str, Any], indexed_at: float) -> Waypoints:
     """The catalogued count, flat until the paper is indexed, then along its growth points."""
-    start = float(_int(record.get("citedBy")))
+    start = float(whole(record.get("citedBy")))
     growth = record.get("citationGrowth") or ()
     if not growth:
         return Waypoints(start)
@@ -46,23 +41,26 @@ def catalog_paper(catalog: Any, paper_id: str, *, indexed_at: float) -> Paper | 
         author_ids=tuple(str(a) for a in record.get("authorIds") or ()),
         authors=str(record.get("authors", "")),
         source=str(record.get("source", "")),
-        year=_int(record.get("year")),
+        year=whole(record.get("year")),
         snippet=str(record.get("snippet", "")),
         citations=citation_series(record, indexed_at),
         pdf_source=str(record.get("pdfSource") or ""),
         is_book=bool(record.get("isBook", False)),
         is_target=bool(record.get("isTargetPaper", False)),
         task_type=str(record.get("taskType") or "noise"),
-        versions=_int(record.get("versions"), 1),
+        versions=whole(record.get("versions"), 1),
         indexed_at=float(indexed_at),
     )
 
 
-def catalog_alert(catalog: Any, alert_id: str, *, arrived_at: float) -> Alert | None:
+def catalog_alert(
+    catalog: Any, alert_id: str, *, arrived_at: float, keep_read: bool
+) -> tuple[Alert, bool] | None:
+    """The alert and whether it is read: as catalogued when `keep_read`, else unread."""
     record = catalog.table(ENVIRONMENT, "alerts").get(alert_id)
     if record is None:
         return None
-    return Alert(
+    alert = Alert(
         id=alert_id,
         type=str(record.get("type") or "keyword"),
         title=str(record.get("title", "")),
@@ -70,10 +68,7 @@ def catalog_alert(catalog: Any, alert_id: str, *, arrived_at: float) -> Alert | 
         related_paper_id=str(record.get("relatedPaperId") or ""),
         arrived_at=float(arrived_at),
     )
-
-
-def catalog_alert_read(catalog: Any, alert_id: str) -> bool:
-    return bool((catalog.table(ENVIRONMENT, "alerts").get(alert_id) or {}).get("isRead", False))
+    return alert, keep_read and bool(record.get("isRead", False))
 
 
 @dataclass(frozen=True)
@@ -141,10 +136,22 @@ def coauthors(catalog: Any) -> Mapping[str, tuple[str, ...]]:
     return {k: tuple(dict.fromkeys(v)) for k, v in found.items()}
 
 
-def coauthor_pairs(catalog: Any) -> tuple[tuple[str, str, tuple[str, ...]], ...]:
-    """(authorId1, authorId2, sharedPapers) of every relation, for the evaluation table."""
+class Coauthorship(NamedTuple):
+    """A relation of `coauthors.jsonl` (authorId1, authorId2, sharedPapers), for the evaluation
+    table."""
+
+    one: str
+    two: str
+    shared: tuple[str, ...]
+
+    @property
+    def shared_json(self) -> str:
+        return json.dumps(list(self.shared))
+
+
+def coauthor_pairs(catalog: Any) -> tuple[Coauthorship, ...]:
     return tuple(
-        (
+        Coauthorship(
             str(r.get("authorId1", "")),
             str(r.get("authorId2", "")),
             tuple(str(p) for p in r.get("sharedPapers") or ()),

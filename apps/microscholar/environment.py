@@ -8,205 +8,123 @@ Scenario events (SentinelBench format):
 - `new_alert {alert_id}` — an alert arrives, unread.
 
 Unlike the original (a KeyError that aborted the event), an id missing from the catalog is
-skipped, as in every other environment; scenario validation names it to the author.
+skipped, as in every other environment; scenario validation names it to the author. A paper
+already indexed is left as the user has it (no duplicate, no reset of saved/cited).
 """
 
 from __future__ import annotations
 
-import json
-import sqlite3
-from collections.abc import Mapping
-from types import MappingProxyType
+from collections.abc import Iterable
 
-from pydantic import Field
-
-from apps.kit.legacy_tables import Table
+from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.columns import named
+from apps.kit.frozen import with_changed
+from apps.kit.streaming import read_at
+from apps.kit.tables import KEY, Table, tables
 from apps.microscholar import state as index
 from apps.microscholar.actions import ACTIONS
 from apps.microscholar.bench import sample_pages
-from apps.microscholar.catalog import (
-    catalog_alert,
-    catalog_alert_read,
-    catalog_paper,
-    coauthor_pairs,
-)
-from apps.microscholar.state import (
-    ENVIRONMENT,
-    PaperState,
-    Scholar,
-    empty_scholar,
-    with_alerts,
-    with_papers,
-)
-from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, Measure, timeless
-from events.schemas import Payload
+from apps.microscholar.catalog import catalog_alert, catalog_paper, coauthor_pairs
+from apps.microscholar.state import ENVIRONMENT, PaperState, Scholar, empty_scholar
+from events.registry import Environment, ImplicitAction, counted
 
 # The original's metric names (eval_sql reads baseline_<name> from session_meta).
-BASELINES: Mapping[str, Measure] = MappingProxyType(
+BASELINES = counted(
     {
-        "target_paper_available": timeless(index.target_paper_available),
-        "paper_count": timeless(index.paper_count),
-        "saved_paper_count": timeless(index.saved_paper_count),
-        "unread_alert_count": timeless(index.unread_alert_count),
+        "target_paper_available": index.target_paper_available,
+        "paper_count": index.paper_count,
+        "saved_paper_count": index.saved_paper_count,
+        "unread_alert_count": index.unread_alert_count,
     }
 )
 
-
-def index_papers(
-    scholar: Scholar, paper_ids: list[str], *, at: float, saved: frozenset[str] = frozenset()
-) -> Scholar:
-    """Index catalog papers at `at`. A paper already indexed is left as the user has it (no
-    duplicate, no reset of saved/cited); unknown ids are skipped."""
-    arrivals = []
-    for paper_id in dict.fromkeys(paper_ids):
-        if scholar.has_paper(paper_id):
-            continue
-        paper = catalog_paper(scholar.catalog, paper_id, indexed_at=at)
-        if paper is not None:
-            arrivals.append((paper, PaperState(saved=paper_id in saved)))
-    return with_papers(scholar, arrivals) if arrivals else scholar
-
-
-def deliver_alerts(
-    scholar: Scholar, alert_ids: list[str], *, at: float, preloaded: bool
-) -> Scholar:
-    """Alerts arrive; preloaded ones keep their catalogued read state, new ones are unread."""
-    arrivals = []
-    for alert_id in dict.fromkeys(alert_ids):
-        if alert_id in scholar.alerts:
-            continue
-        alert = catalog_alert(scholar.catalog, alert_id, arrived_at=at)
-        if alert is not None:
-            is_read = preloaded and catalog_alert_read(scholar.catalog, alert_id)
-            arrivals.append((alert, is_read))
-    return with_alerts(scholar, arrivals) if arrivals else scholar
+deliver_papers = Delivery(
+    "papers",
+    lambda scholar, paper_id, stamp: catalog_paper(scholar.catalog, paper_id, indexed_at=stamp.at),
+    states="paper_states",
+    fresh=PaperState,
+)
+# Preloaded alerts keep their catalogued read state; new ones arrive unread.
+deliver_alerts = Delivery(
+    "alerts",
+    lambda scholar, alert_id, stamp: catalog_alert(
+        scholar.catalog, alert_id, arrived_at=stamp.at, keep_read=stamp.preloaded
+    ),
+    states="alert_read",
+)
 
 
-def reduce_preload(scholar: Scholar, event: LoggedEvent) -> Scholar:
-    payload, catalog = event.payload, scholar.catalog
-    saved = frozenset(payload.get("saved_paper_ids") or ())
-    paper_ids = catalog.expand(ENVIRONMENT, "papers", payload.get("paper_ids"))
-    scholar = index_papers(scholar, paper_ids, at=event.at, saved=saved)
-    alert_ids = catalog.expand(ENVIRONMENT, "alerts", payload.get("alert_ids"))
-    return deliver_alerts(scholar, alert_ids, at=event.at, preloaded=True)
+def shelve(scholar: Scholar, paper_ids: Iterable[str], at: float, *, preloaded: bool) -> Scholar:
+    """The library at the start: the listed papers indexed so far are saved."""
+    for paper_id in paper_ids:
+        scholar = with_changed(scholar, "paper_states", paper_id, saved=True)
+    return scholar
 
 
-def reduce_new_paper(scholar: Scholar, event: LoggedEvent) -> Scholar:
-    return index_papers(scholar, [event.payload["paper_id"]], at=event.at)
-
-
-def reduce_new_alert(scholar: Scholar, event: LoggedEvent) -> Scholar:
-    return deliver_alerts(scholar, [event.payload["alert_id"]], at=event.at, preloaded=False)
-
-
-class PreloadPapers(Payload):
-    paper_ids: list[str] = Field([], description='catalog paper ids; ["*"] = every paper')
-    alert_ids: list[str] = Field([], description='catalog alert ids; ["*"] = every alert')
-    saved_paper_ids: list[str] = Field([], description="papers already in the library")
-
-
-class NewPaper(Payload):
-    paper_id: str = Field(description="catalog paper id")
-
-
-class NewAlert(Payload):
-    alert_id: str = Field(description="catalog alert id")
-
-
-NEW_PAPER = EventType(
-    schema=NewPaper,
-    reduce=reduce_new_paper,
+NEW_PAPER = arrival(
+    "new_paper",
+    "paper_id",
+    "papers",
+    deliver_papers,
     help="A paper is indexed: it shows in results, recommendations and profiles.",
-    catalog_refs={"paper_id": "papers"},
 )
 
-EVENT_TYPES: Mapping[str, EventType] = MappingProxyType(
-    {
-        "preload_papers": EventType(
-            schema=PreloadPapers,
-            reduce=reduce_preload,
-            help="Papers, alerts and the saved library at the start; baselines are measured after it.",
-            catalog_refs={
-                "paper_ids": "papers",
-                "alert_ids": "alerts",
-                "saved_paper_ids": "papers",
-            },
-            preload=True,
-        ),
-        "new_paper": NEW_PAPER,
-        "inject_target_paper": NEW_PAPER,  # the original's duplicate of new_paper
-        "new_alert": EventType(
-            schema=NewAlert,
-            reduce=reduce_new_alert,
-            help="An alert arrives, unread.",
-            catalog_refs={"alert_id": "alerts"},
-        ),
-    }
+EVENT_TYPES = event_types(
+    preload(
+        "preload_papers",
+        {
+            "paper_ids": ("papers", deliver_papers),
+            "alert_ids": ("alerts", deliver_alerts),
+            "saved_paper_ids": ("papers", shelve),
+        },
+        environment=ENVIRONMENT,
+        help="Papers, alerts and the saved library at the start; baselines are measured after it.",
+    ),
+    NEW_PAPER,
+    ("inject_target_paper", NEW_PAPER[1]),  # the original's duplicate of new_paper
+    arrival("new_alert", "alert_id", "alerts", deliver_alerts, help="An alert arrives, unread."),
 )
 
 
 # --- evaluation tables (the original's names and columns; citedBy is ours, as of `now`) ---------
 
-PAPERS = Table(
-    "papers",
-    (
-        "id TEXT PRIMARY KEY",
-        "title TEXT",
-        "authors TEXT",
-        "year INTEGER",
-        "isTargetPaper INTEGER",
-        "taskType TEXT",
-        "snippet TEXT",
-        "source TEXT",
-        "citedBy INTEGER",
+
+materialize = tables(
+    Table(
+        "papers",
+        read_at(lambda scholar: scholar.papers.values()),
+        {
+            **named("id TEXT PRIMARY KEY", "title TEXT", "authors TEXT", "year INTEGER"),
+            "isTargetPaper INTEGER": "is_target",
+            "taskType TEXT": "task_type",
+            **named("snippet TEXT", "source TEXT"),
+            "citedBy INTEGER": lambda paper: paper.cited_by(paper.now),  # as of `now`
+        },
+    ),
+    Table.keyed(
+        "paper_states",
+        "paper_states",
+        {"paper_id TEXT PRIMARY KEY": KEY, "isSaved INTEGER": "saved", "isCited INTEGER": "cited"},
+    ),
+    Table(
+        "alerts",
+        lambda scholar, now: scholar.alerts.values(),
+        {
+            **named("id TEXT PRIMARY KEY", "type TEXT", "title TEXT", "description TEXT"),
+            "relatedPaperId TEXT": "related_paper_id",
+        },
+    ),
+    Table.keyed(
+        "alert_states",
+        "alert_read",
+        {"alert_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": lambda row: row.value},
+    ),
+    Table(
+        "coauthors",
+        lambda scholar, now: coauthor_pairs(scholar.catalog),
+        {"authorId1 TEXT": "one", "authorId2 TEXT": "two", "sharedPapers TEXT": "shared_json"},
     ),
 )
-PAPER_STATES = Table(
-    "paper_states", ("paper_id TEXT PRIMARY KEY", "isSaved INTEGER", "isCited INTEGER")
-)
-ALERTS = Table(
-    "alerts",
-    ("id TEXT PRIMARY KEY", "type TEXT", "title TEXT", "description TEXT", "relatedPaperId TEXT"),
-)
-ALERT_STATES = Table("alert_states", ("alert_id TEXT PRIMARY KEY", "isRead INTEGER"))
-COAUTHORS = Table("coauthors", ("authorId1 TEXT", "authorId2 TEXT", "sharedPapers TEXT"))
-
-
-def materialize(scholar: Scholar, now: float, conn: sqlite3.Connection) -> None:
-    """The evaluation tables at `now`: citation counts are read at that instant."""
-    PAPERS.write(
-        conn,
-        (
-            (
-                p.id,
-                p.title,
-                p.authors,
-                p.year,
-                p.is_target,
-                p.task_type,
-                p.snippet,
-                p.source,
-                p.cited_by(now),
-            )
-            for p in scholar.papers.values()
-        ),
-    )
-    PAPER_STATES.write(conn, ((i, s.saved, s.cited) for i, s in scholar.paper_states.items()))
-    ALERTS.write(
-        conn,
-        (
-            (a.id, a.type, a.title, a.description, a.related_paper_id)
-            for a in scholar.alerts.values()
-        ),
-    )
-    ALERT_STATES.write(conn, scholar.alert_read.items())
-    COAUTHORS.write(
-        conn,
-        (
-            (one, two, json.dumps(list(shared)))
-            for one, two, shared in coauthor_pairs(scholar.catalog)
-        ),
-    )
 
 
 MICROSCHOLAR = Environment(

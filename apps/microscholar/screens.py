@@ -7,8 +7,9 @@ Templates only lay these values out; tests check screens without HTML.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from typing import Any
 from urllib.parse import quote, urlencode
 
 from apps.kit.derived import per_state
@@ -51,16 +52,20 @@ class Row:
 
 @dataclass(frozen=True)
 class Option:
+    """A link choosing one value of the URL (a sort, a filter, a page of results)."""
+
     label: str
     url: str
     current: bool
 
 
-@dataclass(frozen=True)
-class PageLink:
-    number: int
-    url: str
-    current: bool
+def choices(query, param: str, labels, url: Callable[[Any], str]) -> tuple[Option, ...]:
+    """One link per (value, label) of `param`, at `url(query with that value)`; the value the
+    query has now is the current one."""
+    return tuple(
+        Option(label, url(query.but(**{param: value})), getattr(query, param) == value)
+        for value, label in labels
+    )
 
 
 def short_snippet(text: str) -> str:
@@ -152,24 +157,26 @@ class SearchScreen:
     ids: tuple[str, ...]  # the ids of this page of results
     years: tuple[Option, ...]
     sorts: tuple[Option, ...]
-    pages: tuple[PageLink, ...]
+    pages: tuple[Option, ...]
     custom_range: bool
     previous_url: str | None
     next_url: str | None
 
 
+def since_years(this_year: int) -> tuple[str, ...]:
+    """Google Scholar's "Since <year>" choices: this year, last year, 4 years back."""
+    return tuple(str(y) for y in (this_year, this_year - 1, this_year - 4))
+
+
 def year_options(query: SearchQuery, this_year: int, root: str) -> tuple[Option, ...]:
-    """ "Any time" and Google Scholar's "Since <year>" choices (this year, last year, 4 years back)."""
-    choices = [("Any time", "")] + [
-        (f"Since {y}", str(y)) for y in (this_year, this_year - 1, this_year - 4)
-    ]
+    """ "Any time" and the "Since <year>" choices."""
     return tuple(
         Option(
-            label,
+            f"Since {value}" if value else "Any time",
             root + query.but(as_ylo=value, as_yhi="", start="").querystring(),
             query.as_ylo == value and not query.as_yhi,
         )
-        for label, value in choices
+        for value in ("", *since_years(this_year))
     )
 
 
@@ -180,35 +187,31 @@ def search_screen(scholar: Scholar, query: SearchQuery, this_year: int, root: st
     else:
         found = recommended(scholar)
     offset = min(query.offset, max(0, (len(found) - 1) // PER_PAGE * PER_PAGE))
-    count = (len(found) + PER_PAGE - 1) // PER_PAGE
-    pages = (
-        tuple(
-            PageLink(
-                n + 1,
-                root + query.but(start=str(n * PER_PAGE) if n else "").querystring(),
-                n * PER_PAGE == offset,
-            )
-            for n in range(count)
+    starts = range(0, len(found), PER_PAGE)  # the first result of each page
+    pages = tuple(
+        Option(
+            str(n),
+            root + query.but(start=str(start) if start else "").querystring(),
+            start == offset,
         )
-        if count > 1
-        else ()
+        for n, start in enumerate(starts, 1)
     )
+    pages = pages if len(pages) > 1 else ()
     current = offset // PER_PAGE
     return SearchScreen(
         query=query,
         total=len(found),
         ids=tuple(found[offset : offset + PER_PAGE]),
         years=year_options(query, this_year, root),
-        sorts=tuple(
-            Option(label, root + query.but(sort=name, start="").querystring(), query.sort == name)
-            for name, label in (("relevance", "Sort by relevance"), ("date", "Sort by date"))
+        sorts=choices(
+            query.but(start=""),
+            "sort",
+            (("relevance", "Sort by relevance"), ("date", "Sort by date")),
+            lambda chosen: root + chosen.querystring(),
         ),
         pages=pages,
         custom_range=bool(query.as_yhi)
-        or (
-            bool(query.as_ylo)
-            and query.as_ylo not in {str(y) for y in (this_year, this_year - 1, this_year - 4)}
-        ),
+        or (bool(query.as_ylo) and query.as_ylo not in since_years(this_year)),
         previous_url=pages[current - 1].url if pages and current > 0 else None,
         next_url=pages[current + 1].url if pages and current + 1 < len(pages) else None,
     )
@@ -341,13 +344,11 @@ def profile_screen(
         since=since,
         bars=citation_history([(r.cited_by, r.year) for r in articles], this_year),
         coauthors=people,
-        sorts=tuple(
-            Option(
-                label,
-                root + "citations" + query.but(sortby=name).querystring(),
-                query.sortby == name,
-            )
-            for name, label in (("cited", "Cited by"), ("pubdate", "Year"))
+        sorts=choices(
+            query,
+            "sortby",
+            (("cited", "Cited by"), ("pubdate", "Year")),
+            lambda chosen: root + "citations" + chosen.querystring(),
         ),
     )
 
@@ -402,10 +403,10 @@ def alerts_screen(scholar: Scholar, query: AlertsQuery, root: str) -> AlertsScre
         query=query,
         rows=shown,
         unread=index.unread_alert_count(scholar),
-        filters=tuple(
-            Option(
-                label, root + "alerts" + query.but(filter=name).querystring(), query.filter == name
-            )
-            for name, label in (("all", "All alerts"), ("unread", "Unread"))
+        filters=choices(
+            query,
+            "filter",
+            (("all", "All alerts"), ("unread", "Unread")),
+            lambda chosen: root + "alerts" + chosen.querystring(),
         ),
     )

@@ -8,24 +8,18 @@ evaluation tables show the same number at the same simulated instant.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
-from apps.kit.frozen import with_changed, with_items
+from apps.kit.frozen import CatalogState, with_items
+from apps.kit.streaming import shown_count
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microscholar"
 EMPTY: Mapping = MappingProxyType({})
 ALERT_TYPES = ("citation", "new_paper", "keyword")
-
-
-def shown_count(value: float) -> int:
-    """A moving count as the page shows it: to the nearest whole citation (half rounds up, the
-    rounding `Waypoints.next_change(step=1)` assumes)."""
-    return math.floor(value + 0.5)
 
 
 @dataclass(frozen=True)
@@ -48,6 +42,7 @@ class Paper:
     indexed_at: float = 0.0  # simulated seconds
 
     def cited_by(self, now: float) -> int:
+        """ "Cited by N" at `now`, to the nearest whole citation (as `citations_change_at` counts)."""
         return shown_count(self.citations.value_at(now))
 
     def citations_change_at(self, now: float) -> float | None:
@@ -71,9 +66,7 @@ class Alert:
 
 
 @dataclass(frozen=True)
-class Scholar:
-    # The catalog is an input, not state: excluded from equality so folds compare cheaply.
-    catalog: Any = field(compare=False, repr=False)
+class Scholar(CatalogState):
     papers: Mapping[str, Paper] = field(default_factory=lambda: EMPTY)  # arrival order
     paper_states: Mapping[str, PaperState] = field(default_factory=lambda: EMPTY)
     alerts: Mapping[str, Alert] = field(default_factory=lambda: EMPTY)  # arrival order
@@ -94,23 +87,6 @@ def empty_scholar(catalog: Any) -> Scholar:
 
 
 # --- building new states (reducers only) ---------------------------------------------------------
-
-
-def with_papers(scholar: Scholar, arrivals: Iterable[tuple[Paper, PaperState]]) -> Scholar:
-    arrivals = list(arrivals)
-    scholar = with_items(scholar, "papers", [(paper.id, paper) for paper, _ in arrivals])
-    return with_items(scholar, "paper_states", [(paper.id, state) for paper, state in arrivals])
-
-
-def with_paper_state(scholar: Scholar, paper_id: str, **changes: Any) -> Scholar:
-    """Change what the user did to a paper; a paper not indexed leaves the state as it is."""
-    return with_changed(scholar, "paper_states", paper_id, **changes)
-
-
-def with_alerts(scholar: Scholar, arrivals: Iterable[tuple[Alert, bool]]) -> Scholar:
-    arrivals = list(arrivals)
-    scholar = with_items(scholar, "alerts", [(alert.id, alert) for alert, _ in arrivals])
-    return with_items(scholar, "alert_read", [(alert.id, read) for alert, read in arrivals])
 
 
 def with_alert_read(scholar: Scholar, alert_id: str) -> Scholar:

@@ -8,19 +8,22 @@ environment (`implicit_actions`), so this module never does it itself.
 
 from __future__ import annotations
 
-from django.contrib import messages
+from collections.abc import Callable
+
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit import simclock
 from apps.kit.pages import Page, run_page
-from apps.kit.rendering import redirect_to, render_screen
+from apps.kit.rendering import back_field, redirect_after, render_screen
+from apps.kit.streaming import present
 from apps.microscholar import cite as citing
 from apps.microscholar import screens
 from apps.microscholar import state as index
 from apps.microscholar.actions import existing_paper
 from apps.microscholar.catalog import profiles
 from apps.microscholar.query import AlertsQuery, ProfileQuery, SearchQuery
+from apps.microscholar.state import Scholar
 
 
 def root_url(page: Page) -> str:
@@ -36,7 +39,6 @@ def base_context(page: Page, current: str) -> dict:
     scholar = page.state
     me = screens.my_profile_id(scholar)
     return {
-        "token": page.run.token,
         "current": current,
         "library_count": index.saved_paper_count(scholar),
         "unread_alerts": index.unread_alert_count(scholar),
@@ -50,9 +52,7 @@ def watch(page: Page, ids) -> None:
 
 
 def shown_paper(page: Page, paper_id: str):
-    if not page.state.has_paper(paper_id):
-        raise Http404("no such paper")  # unknown, or not indexed yet: alike
-    return page.state.papers[paper_id]
+    return present(page.state.papers.get(paper_id), "paper")  # unknown, not indexed yet: alike
 
 
 @require_GET
@@ -167,37 +167,24 @@ def alerts(request: HttpRequest, page: Page) -> HttpResponse:
     return render_screen(request, page, "microscholar/alerts.html", context)
 
 
-def go_back(page: Page, request: HttpRequest) -> HttpResponse:
-    """Back to the screen the form was on (`back`, relative to the root; never off-site)."""
-    back = request.POST.get("back", "")
-    if back.startswith(("/", "\\")) or "://" in back:
-        back = ""
-    return redirect_to(page, back)
+def posting(action: str, field: str, done: Callable[[Scholar, str], str]):
+    """A form's POST view: perform `action` on the item named by the form's `field`, then back to
+    the screen the form was on (`back`, relative to the root; never off-site) with `done`."""
+
+    @require_POST
+    @run_page
+    def view(request: HttpRequest, page: Page) -> HttpResponse:
+        item_id = request.POST.get(field, "")
+        page.act(action, {field: item_id})
+        return redirect_after(request, page, back_field(request), done(page.state, item_id))
+
+    return view
 
 
-@require_POST
-@run_page
-def save(request: HttpRequest, page: Page) -> HttpResponse:
-    paper_id = request.POST.get("paper_id", "")
-    page.act("save", {"paper_id": paper_id})
-    messages.success(request, f"Saved to My library: {existing_paper(page.state, paper_id).title}")
-    return go_back(page, request)
+def _library(verb: str) -> Callable[[Scholar, str], str]:
+    return lambda scholar, paper_id: f"{verb} My library: {existing_paper(scholar, paper_id).title}"
 
 
-@require_POST
-@run_page
-def remove(request: HttpRequest, page: Page) -> HttpResponse:
-    paper_id = request.POST.get("paper_id", "")
-    page.act("unsave", {"paper_id": paper_id})
-    messages.success(
-        request, f"Removed from My library: {existing_paper(page.state, paper_id).title}"
-    )
-    return go_back(page, request)
-
-
-@require_POST
-@run_page
-def mark_alert_read(request: HttpRequest, page: Page) -> HttpResponse:
-    page.act("mark_alert_read", {"alert_id": request.POST.get("alert_id", "")})
-    messages.success(request, "Alert marked as read")
-    return go_back(page, request)
+save = posting("save", "paper_id", _library("Saved to"))
+remove = posting("unsave", "paper_id", _library("Removed from"))
+mark_alert_read = posting("mark_alert_read", "alert_id", lambda scholar, _: "Alert marked as read")

@@ -18,8 +18,8 @@ from playwright.sync_api import Page, expect
 
 # tests/microlendar/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
-from tests.browser_inline import start_inline
 from tests.conftest import browser  # noqa: F401
+from tests.inline_story import inline_story
 from tests.microlendar.cast import CAST, TODAY
 
 pytestmark = pytest.mark.browser
@@ -49,7 +49,7 @@ def block(page: Page, title: str):
 
 
 def test_a_user_sees_an_event_arrive_opens_it_and_drags_another(live_site, browser):  # noqa: F811
-    story = start_inline(live_site, browser, scenario())
+    story = inline_story(live_site, browser, scenario())
     page = story.page
 
     # The task URL lands on the week view (the hash became ?view=week), today highlighted.

@@ -11,7 +11,7 @@ from apps.microscholar import cite, screens, search
 from apps.microscholar import state as index
 from apps.microscholar.environment import MICROSCHOLAR
 from events.registry import ActionRejected
-from tests.microscholar.index import BATCHING, FORESTS, TARGET, act, arrive, preloaded
+from tests.microscholar.cast import BATCHING, CAST, FORESTS, TARGET, act, preloaded
 
 
 def tables(scholar, now: float) -> sqlite3.Connection:
@@ -33,9 +33,9 @@ def test_preload_indexes_papers_alerts_and_the_saved_library():
 
 def test_a_new_paper_arrives_once_and_keeps_what_the_user_did():
     scholar = act(preloaded([BATCHING]), "save", {"paper_id": BATCHING})
-    again = arrive(scholar, BATCHING, at=50.0)
+    again = CAST.arrive(scholar, "new_paper", {"paper_id": BATCHING}, at=50.0)
     assert again is scholar
-    later = arrive(scholar, TARGET, at=60.0)
+    later = CAST.arrive(scholar, "new_paper", {"paper_id": TARGET}, at=60.0)
     assert screens.recommended(later)[0] == TARGET
     assert index.target_paper_available(later) == 1
 
@@ -56,7 +56,7 @@ def test_a_paper_not_indexed_yet_cannot_be_acted_on():
 
 
 def test_citation_counts_climb_from_the_moment_a_paper_is_indexed():
-    scholar = arrive(preloaded([]), BATCHING, at=100.0)
+    scholar = CAST.arrive(preloaded([]), "new_paper", {"paper_id": BATCHING}, at=100.0)
     paper = scholar.papers[BATCHING]
     assert paper.cited_by(0.0) == paper.cited_by(100.0) == 214  # catalogued until indexed
     assert paper.cited_by(100.0 + 900.0) == 214 + 1 + 214 // 50  # the growth point

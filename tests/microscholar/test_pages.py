@@ -13,7 +13,7 @@ from apps.scenarios.format import load_scenario_file
 from events import lifecycle
 from events.commands import current_state
 from events.models import ClockMode, Event, EventKind
-from tests.microscholar.index import TARGET
+from tests.microscholar.cast import TARGET
 
 pytestmark = pytest.mark.django_db
 
