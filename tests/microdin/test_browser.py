@@ -15,7 +15,7 @@ import re
 import pytest
 from playwright.sync_api import expect
 
-from tests import control_api
+from tests.browser_story import BrowserStory
 
 pytestmark = pytest.mark.browser
 
@@ -23,27 +23,22 @@ SCENARIO = "microdin-kubernetes-absolute-active"
 POSTED_AT = 262.8
 TITLE = "Infrastructure Engineer"
 
-api = control_api.call
-
 
 def test_a_pushed_job_is_opened_and_applied_to(live_site, browser):
-    run = api(live_site, "POST", "/api/runs/", {"scenario": SCENARIO, "clock_mode": "virtual"})
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(10_000)
+    story = BrowserStory.start(live_site, browser, SCENARIO)
+    page = story.page
 
-    page.goto(run["task_url"])
     primary = page.get_by_role("navigation", name="Primary")
     expect(primary.get_by_role("link", name=re.compile(r"^Home"))).to_be_visible()
     primary.get_by_role("link", name=re.compile(r"^Jobs")).click()
     jobs = page.get_by_role("list", name="Jobs")
     expect(jobs.get_by_role("link", name="Frontend Engineer")).to_be_visible()
     expect(jobs.get_by_role("link", name=TITLE)).to_have_count(0)
-    page.wait_for_function("() => document.getElementById('sentinel-live')")
-    page.evaluate("window.loadedOnce = true")  # gone if the page reloads
+    story.watch_for_reload()
 
-    api(live_site, "POST", f"/api/runs/{run['id']}/advance/", {"time": POSTED_AT})
+    story.advance(POSTED_AT)
     expect(jobs.get_by_role("link", name=TITLE)).to_be_visible()
-    assert page.evaluate("window.loadedOnce") is True, "the page reloaded"
+    story.assert_not_reloaded()
     expect(page.get_by_text("Hands-on Kubernetes operations")).to_have_count(0)
 
     jobs.get_by_role("link", name=TITLE).click()
@@ -53,10 +48,4 @@ def test_a_pushed_job_is_opened_and_applied_to(live_site, browser):
     expect(page.get_by_text("Application sent to CloudPeak Hosting")).to_be_visible()
     expect(jobs.get_by_text("Applied")).to_have_count(1)
 
-    page.goto(run["contact_url"])
-    verdict = api(live_site, "POST", f"/api/runs/{run['id']}/evaluate/")
-    assert verdict["success"] is True, verdict["detail"]
-    logged = api(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    assert [(e["type"], e["payload"]) for e in logged if e["kind"] == "action"] == [
-        ("apply_job", {"job_id": "job-09"})
-    ]
+    assert story.report() == [("apply_job", {"job_id": "job-09"})]

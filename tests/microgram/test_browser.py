@@ -10,15 +10,13 @@ from __future__ import annotations
 import pytest
 from playwright.sync_api import expect
 
-from tests import control_api
-from tests.conftest import browser  # noqa: F401  (the Chromium fixture, as this module's name)
+from tests.inline_story import inline_story
 from tests.microgram.cast import DESK, PRELOAD
 
 pytestmark = pytest.mark.browser
 
 ARRIVES_AT = 20.0  # simulated seconds; 5 wall seconds at speed factor 4
 SPEED_FACTOR = 4.0
-api = control_api.call
 
 
 def scenario() -> dict:
@@ -39,27 +37,22 @@ def scenario() -> dict:
     }
 
 
-def test_a_post_arrives_live_and_is_liked_with_the_heart(live_site, browser):  # noqa: F811
-    run = api(
-        live_site,
-        "POST",
-        "/api/runs/",
-        {"scenario_json": scenario(), "clock_mode": "live", "speed_factor": SPEED_FACTOR},
+def test_a_post_arrives_live_and_is_liked_with_the_heart(live_site, browser):
+    story = inline_story(
+        live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
-    page = browser.new_page(viewport={"width": 1280, "height": 800})
-    page.set_default_timeout(5000)
+    page = story.page
 
-    page.goto(run["task_url"])
     feed = page.get_by_role("main", name="Home")
     expect(feed.get_by_role("article", name="Post by nhaddad")).to_be_visible()
     expect(feed.get_by_role("article", name="Post by mbellini")).to_have_count(0)
 
     # The post arrives: it is pushed into the feed, on top, without a reload.
-    page.evaluate("window.__not_reloaded = true")
+    story.watch_for_reload()
     marco = feed.get_by_role("article", name="Post by mbellini")
-    expect(marco).to_be_visible(timeout=15000)
+    expect(marco).to_be_visible()
     expect(feed.get_by_role("article").first).to_have_accessible_name("Post by mbellini")
-    assert page.evaluate("window.__not_reloaded") is True
+    story.assert_not_reloaded()
 
     # Like it with the heart; the heart turns into "Unlike" and the count moves.
     marco.get_by_role("button", name="Like post by mbellini").click()
@@ -69,8 +62,4 @@ def test_a_post_arrives_live_and_is_liked_with_the_heart(live_site, browser):  #
     marco.get_by_role("link", name="View all 5 comments").click()
     expect(page.get_by_role("list", name="Comments").get_by_role("listitem")).to_have_count(5)
 
-    page.goto(run["contact_url"])
-    verdict = api(live_site, "POST", f"/api/runs/{run['id']}/evaluate/")
-    assert verdict["success"] is True, verdict["detail"]
-    logged = api(live_site, "GET", f"/api/runs/{run['id']}/events/")
-    assert [e["type"] for e in logged if e["kind"] == "action"] == ["like_post", "view_post"]
+    assert [name for name, _ in story.report()] == ["like_post", "view_post"]
