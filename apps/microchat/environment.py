@@ -16,13 +16,14 @@ from typing import Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.opening import opening
 from apps.kit.tables import KEY, Keyed, Table, tables
 from apps.microchat import state as chats
 from apps.microchat.actions import ACTIONS
 from apps.microchat.bench import sample_pages
 from apps.microchat.catalog import catalog_message, make_call, make_conversation, make_team
 from apps.microchat.state import ENVIRONMENT, Chat, Message, with_messages
-from events.registry import Environment, ImplicitAction, counted
+from events.registry import Environment, counted
 from events.schemas import Payload
 
 BASELINES = counted(
@@ -186,6 +187,10 @@ materialize = tables(
 )
 
 
+def has_unread(chat: Chat, conversation_id: str) -> bool:
+    return bool(chats.unread_in(chat, conversation_id))
+
+
 MICROCHAT = Environment(
     name=ENVIRONMENT,
     title="MicroChat",
@@ -197,13 +202,7 @@ MICROCHAT = Environment(
     urlconf="apps.microchat.urls",
     implicit_actions=(
         # Opening a chat marks what is unread in it read, as clicking its row does in Teams.
-        ImplicitAction(
-            page="chat",
-            param="conversation",
-            action="open_conversation",
-            payload=lambda conversation_id: {"conversation_id": conversation_id},
-            applies=lambda chat, conversation_id: bool(chats.unread_in(chat, conversation_id)),
-        ),
+        opening("chat", "conversation", "open_conversation", "conversation_id", applies=has_unread),
     ),
     sample_pages=sample_pages,
 )

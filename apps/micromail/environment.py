@@ -9,13 +9,14 @@ Scenario events (SentinelBench format):
 from __future__ import annotations
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
+from apps.kit.opening import opening
 from apps.kit.tables import KEY, Table, tables
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
 from apps.micromail.catalog import catalog_email, catalog_state
 from apps.micromail.state import ENVIRONMENT, Email, EmailState, Mail
-from events.registry import Environment, ImplicitAction, counted
+from events.registry import Environment, counted
 
 # Upstream stamps preloaded mail "five minutes before start", so the list reads "5 min ago".
 PRELOAD_AGE_S = 300.0
@@ -94,6 +95,10 @@ materialize = tables(
 )
 
 
+def unread(mail: Mail, email_id: str) -> bool:
+    return mail.has(email_id) and not mail.states[email_id].is_read
+
+
 MICROMAIL = Environment(
     name=ENVIRONMENT,
     title="MicroMail",
@@ -105,13 +110,7 @@ MICROMAIL = Environment(
     urlconf="apps.micromail.urls",
     implicit_actions=(
         # Opening an unread message in the mail client marks it read, as a click does.
-        ImplicitAction(
-            page="mailbox",
-            param="email",
-            action="open_email",
-            payload=lambda email_id: {"email_id": email_id},
-            applies=lambda mail, email_id: mail.has(email_id) and not mail.states[email_id].is_read,
-        ),
+        opening("mailbox", "email", "open_email", "email_id", applies=unread),
     ),
     sample_pages=sample_pages,
 )

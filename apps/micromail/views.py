@@ -13,7 +13,7 @@ from django.http import Http404, HttpRequest, HttpResponse, JsonResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
 from apps.kit.pages import Page, one_of, run_page
-from apps.kit.rendering import is_fragment, redirect_to, render_screen
+from apps.kit.rendering import is_fragment, redirect_after, redirect_to, render_screen
 from apps.micromail.actions import existing_email
 from apps.micromail.compose import COMPOSE_MODES, Composition, prefill
 from apps.micromail.query import MailboxQuery
@@ -162,8 +162,7 @@ def bulk_action(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def favorite_action(request: HttpRequest, page: Page) -> HttpResponse:
     """`POST favorites` (`action` = add_favorite|remove_favorite, `folder`), then back."""
-    action = request.POST.get("action")
-    one_of(action, FAVORITE_ACTIONS, "favorites action")
+    action = one_of(request.POST.get("action"), FAVORITE_ACTIONS, "favorites action")
     folder = request.POST.get("folder", "")
     page.act(action, {"folder": folder})
     title = FOLDER_TITLES[folder]
@@ -173,12 +172,7 @@ def favorite_action(request: HttpRequest, page: Page) -> HttpResponse:
 
 
 def render_compose(
-    request: HttpRequest,
-    page: Page,
-    composition: Composition,
-    *,
-    error: str = "",
-    status: int = 200,
+    request: HttpRequest, page: Page, composition: Composition, *, error: str = "", status=200
 ) -> HttpResponse:
     chosen = set(composition.attachments)
     context = {
@@ -229,21 +223,16 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
     if request.headers.get(AUTOSAVE_HEADER):
         return JsonResponse({"draft_id": event.payload["id"]})
     if intent == "send":
-        messages.success(request, "Message sent")
-        return redirect_to(
-            page, MailboxQuery(folder="sent", email=event.payload["id"]).querystring()
-        )
-    messages.success(request, "Draft saved")
-    return redirect_to(page, MailboxQuery(folder="drafts").querystring())
+        sent = MailboxQuery(folder="sent", email=event.payload["id"])
+        return redirect_after(request, page, sent.querystring(), "Message sent")
+    return redirect_after(request, page, MailboxQuery(folder="drafts").querystring(), "Draft saved")
 
 
 def discard(request: HttpRequest, page: Page, typed: Composition) -> HttpResponse:
     """Confirmed: the auto-saved draft is deleted for good (a draft deleted from Drafts is
     purged), and the user is back in the inbox."""
-    draft_id = typed.draft_id
+    draft_id, done = typed.draft_id, "Message discarded"
     if draft_id and page.state.has(draft_id) and page.state.folder_of(draft_id) == "drafts":
         page.act("delete", {"email_id": draft_id})
-        messages.success(request, "Draft discarded")
-    else:
-        messages.success(request, "Message discarded")
-    return redirect_to(page, MailboxQuery(folder="inbox").querystring())
+        done = "Draft discarded"
+    return redirect_after(request, page, MailboxQuery(folder="inbox").querystring(), done)
