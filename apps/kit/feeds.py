@@ -14,6 +14,8 @@ from functools import partial, wraps
 from typing import Any, Generic, NamedTuple, TypeVar
 from urllib.parse import quote
 
+from pydantic import Field
+
 from apps.kit import social
 from apps.kit.arrivals import Stamp
 from apps.kit.deciding import checking, found, new_id, required_text
@@ -153,6 +155,10 @@ def VALUE(row: Keyed) -> Any:  # named as a constant, like `tables.KEY` beside i
 
 
 # --- actions -------------------------------------------------------------------------------------
+
+
+class ConversationId(Payload):
+    conversation_id: str = Field(description="id of a one-to-one thread (a conversation)")
 
 
 def setting(field: str, key: str, **changes: Any) -> Reducer:

@@ -20,6 +20,7 @@ from pydantic import Field
 
 from apps.kit import feeds
 from apps.kit.deciding import found, new_id
+from apps.kit.feeds import ConversationId
 from apps.kit.frozen import with_changed, with_items
 from apps.kit.social import Comment, post_actions
 from apps.microdin import catalog as records
@@ -41,10 +42,6 @@ WHERE = "on this network"  # ends the 404 for an id that is not (yet) on the net
 
 class ConnectionId(Payload):
     connection_id: str = Field(description="id of a connection request")
-
-
-class ConversationId(Payload):
-    conversation_id: str = Field(description="id of a messaging thread")
 
 
 class SendMessage(ConversationId):

@@ -48,14 +48,14 @@ DEFAULT_PHRASES: Mapping[str, str] = {
 }
 
 
-def table(catalog: Any, name: str) -> Mapping[str, Mapping[str, Any]]:
-    return catalog.table(ENVIRONMENT, name)
-
-
 def company(catalog: Any, company_id: str | None, name: str = "") -> Company | None:
     if not company_id and not name:
         return None
-    entity = catalog.entities.get(company_id) or table(catalog, "companies").get(company_id) or {}
+    entity = (
+        catalog.entities.get(company_id)
+        or catalog.table(ENVIRONMENT, "companies").get(company_id)
+        or {}
+    )
     made_up = (company_id or "").removeprefix("company-").replace("-", " ").title()
     return Company(
         id=company_id or name,
@@ -198,13 +198,13 @@ def message_index(catalog: Any) -> Mapping[str, tuple[str, Mapping[str, Any]]]:
     """message id → (the id of the conversation record holding it, the message's record)."""
     return {
         str(m["id"]): (conversation_id, m)
-        for conversation_id, record in table(catalog, "messages").items()
+        for conversation_id, record in catalog.table(ENVIRONMENT, "messages").items()
         for m in thread_messages(record)
     }
 
 
 def message_records(catalog: Any, conversation_id: str) -> list[Mapping[str, Any]]:
-    return thread_messages(table(catalog, "messages").get(conversation_id))
+    return thread_messages(catalog.table(ENVIRONMENT, "messages").get(conversation_id))
 
 
 def catalog_message(
@@ -234,7 +234,7 @@ def preloaded_read(catalog: Any, conversation_id: str, message: Mapping[str, Any
     carry only that count)."""
     if "isRead" in message:
         return bool(message["isRead"])
-    record = table(catalog, "messages").get(conversation_id) or {}
+    record = catalog.table(ENVIRONMENT, "messages").get(conversation_id) or {}
     me = MEMBERS.me(catalog).id
     incoming = [
         m["id"]

@@ -17,6 +17,7 @@ from apps.microdin import catalog as records
 from apps.microdin import state as net
 from apps.microdin.query import JobsQuery, MessagingQuery, NotificationsQuery, SearchQuery
 from apps.microdin.state import (
+    ENVIRONMENT,
     Comment,
     Company,
     Connection,
@@ -108,7 +109,7 @@ def feed(network: Network) -> tuple[PostCard, ...]:
 
 def news(catalog: Any) -> tuple[Mapping[str, Any], ...]:
     """The right column's headlines (our catalog's `news` table; none in the original's)."""
-    return tuple(records.table(catalog, "news").values())
+    return tuple(catalog.table(ENVIRONMENT, "news").values())
 
 
 @per_state()

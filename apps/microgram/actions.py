@@ -21,6 +21,7 @@ from pydantic import Field
 
 from apps.kit import feeds
 from apps.kit.deciding import found, new_id
+from apps.kit.feeds import ConversationId
 from apps.kit.frozen import with_items
 from apps.kit.social import PostId, post_actions
 from apps.microgram.catalog import person
@@ -40,10 +41,6 @@ WHERE = "on MicroGram"  # ends the 404 for an id that is not (yet) on MicroGram
 
 class StoryId(Payload):
     story_id: str = Field(description="id of a story in the story bar")
-
-
-class ConversationId(Payload):
-    conversation_id: str = Field(description="id of a DM thread")
 
 
 class SendMessage(ConversationId):

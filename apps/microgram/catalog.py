@@ -46,10 +46,6 @@ MINUTES_PER_ORDER_STEP = 10  # the original's fabricated age: 10 minutes per ord
 UNKNOWN = "microgram_user"
 
 
-def table(catalog: Any, name: str) -> Mapping[str, Mapping[str, Any]]:
-    return catalog.table(ENVIRONMENT, name)
-
-
 def member(
     catalog: Any, user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]
 ) -> Person:
@@ -93,7 +89,9 @@ def picture(record: Mapping[str, Any], url_key: str) -> social.Picture:
 def _max_orders(catalog: Any) -> Mapping[str, int]:
     """Each table's highest `order` (built once per catalog)."""
     return {
-        name: max((int(r.get("order") or 0) for r in table(catalog, name).values()), default=0)
+        name: max(
+            (int(r.get("order") or 0) for r in catalog.table(ENVIRONMENT, name).values()), default=0
+        )
         for name in ("posts", "stories", "messages", "activity")
     }
 
@@ -205,5 +203,5 @@ def catalog_conversation(
 
 def initial_reads(catalog: Any, conversation_id: str) -> dict[str, bool]:
     """The read flag of each message as the catalog gives it (read when it says nothing)."""
-    record = table(catalog, "messages").get(conversation_id)
+    record = catalog.table(ENVIRONMENT, "messages").get(conversation_id)
     return {str(m["id"]): bool(m.get("isRead", True)) for m in thread_messages(record)}
