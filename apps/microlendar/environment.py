@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import replace
+from functools import partial
 from typing import Any, NamedTuple
 
 from pydantic import Field
@@ -39,9 +40,9 @@ BASELINES = counted(
     {
         "event_count": agenda_state.event_count,
         "today_event_count": agenda_state.today_event_count,
-        "work_event_count": agenda_state.work_event_count,
+        "work_event_count": partial(agenda_state.calendar_event_count, calendar="Work"),
         "task_count": agenda_state.task_count,
-        "personal_event_count": agenda_state.personal_event_count,
+        "personal_event_count": partial(agenda_state.calendar_event_count, calendar="Personal"),
         "conflict_count": agenda_state.conflict_count,
     }
 )

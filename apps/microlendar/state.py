@@ -12,13 +12,14 @@ the calendar, whatever zone the browser is in (upstream shifted days outside UTC
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from datetime import date, timedelta
 from types import MappingProxyType
 from typing import Any, ClassVar
 
 from apps.kit.frozen import with_items
 from apps.kit.self_user import SelfUserState
+from apps.kit.streaming import no_items
 
 ENVIRONMENT = "microlendar"
 
@@ -30,8 +31,6 @@ CALENDAR_COLORS: Mapping[str, str] = MappingProxyType(
 )
 DEFAULT_DURATION_MIN = 60  # an event without an end lasts an hour (upstream's conflict rule)
 DAY_MIN = 24 * 60
-
-EMPTY: Mapping = MappingProxyType({})
 
 
 @dataclass(frozen=True)
@@ -99,10 +98,10 @@ class Agenda(SelfUserState):
     )
     today: date | None = None  # the preload's `today`: what "today" means for the baselines
     initial_date: date | None = None  # the preload's `initial_date`: the day the UI opens on
-    events: Mapping[str, CalendarEvent] = field(default_factory=lambda: EMPTY)  # load order
-    event_states: Mapping[str, EventState] = field(default_factory=lambda: EMPTY)
-    tasks: Mapping[str, Task] = field(default_factory=lambda: EMPTY)
-    task_states: Mapping[str, TaskState] = field(default_factory=lambda: EMPTY)
+    events: Mapping[str, CalendarEvent] = no_items()  # load order
+    event_states: Mapping[str, EventState] = no_items()
+    tasks: Mapping[str, Task] = no_items()
+    task_states: Mapping[str, TaskState] = no_items()
 
     def has_event(self, event_id: str) -> bool:
         """Delivered and not deleted: what the calendar shows."""
@@ -188,14 +187,6 @@ def today_event_count(agenda: Agenda) -> int:
 
 def calendar_event_count(agenda: Agenda, calendar: str) -> int:
     return sum(1 for e in live_events(agenda) if e.calendar == calendar)
-
-
-def work_event_count(agenda: Agenda) -> int:
-    return calendar_event_count(agenda, "Work")
-
-
-def personal_event_count(agenda: Agenda) -> int:
-    return calendar_event_count(agenda, "Personal")
 
 
 def task_count(agenda: Agenda) -> int:

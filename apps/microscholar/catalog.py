@@ -87,6 +87,13 @@ def _domain(email: str) -> str:
     return email.partition("@")[2]
 
 
+def _profile(user_id: str, user: Mapping, affiliation: str, domain: str, interests) -> Profile:
+    name, is_self = str(user.get("name", user_id)), bool(user.get("isSelf", False))
+    return Profile(
+        user_id, name, affiliation, domain, tuple(str(i) for i in interests or ()), is_self
+    )
+
+
 def profiles(catalog: Any) -> Mapping[str, Profile]:
     """Every person with a scholar profile: ours from `scholars.jsonl`, the original's from the
     user records' `microscholar` blocks (computed once per catalog)."""
@@ -97,24 +104,13 @@ def profiles(catalog: Any) -> Mapping[str, Profile]:
             affiliation = ", ".join(
                 str(x) for x in (block.get("title"), block.get("affiliation")) if x
             )
-            found[user_id] = Profile(
-                user_id=user_id,
-                name=str(user.get("name", user_id)),
-                affiliation=affiliation,
-                email_domain=_domain(str(block.get("email") or user.get("email") or "")),
-                interests=tuple(str(i) for i in block.get("interests") or ()),
-                is_self=bool(user.get("isSelf", False)),
-            )
+            domain = _domain(str(block.get("email") or user.get("email") or ""))
+            found[user_id] = _profile(user_id, user, affiliation, domain, block.get("interests"))
     for user_id, record in catalog.table(ENVIRONMENT, "scholars").items():
         user = catalog.users.get(user_id) or {}
-        found[user_id] = Profile(
-            user_id=user_id,
-            name=str(user.get("name", user_id)),
-            affiliation=str(record.get("affiliation", "")),
-            email_domain=str(record.get("emailDomain") or _domain(str(user.get("email", "")))),
-            interests=tuple(str(i) for i in record.get("interests") or ()),
-            is_self=bool(user.get("isSelf", False)),
-        )
+        affiliation = str(record.get("affiliation", ""))
+        domain = str(record.get("emailDomain") or _domain(str(user.get("email", ""))))
+        found[user_id] = _profile(user_id, user, affiliation, domain, record.get("interests"))
     return found
 
 
@@ -127,12 +123,10 @@ def coauthors(catalog: Any) -> Mapping[str, tuple[str, ...]]:
     """Person → co-authors, in catalog order, from the pairs of `coauthors.jsonl` (both ways).
     All relations are always known (the original loads them whatever the preload says)."""
     found: dict[str, list[str]] = {}
-    for record in catalog.table(ENVIRONMENT, "coauthors").values():
-        one, two = str(record.get("authorId1", "")), str(record.get("authorId2", ""))
-        if not one or not two:
-            continue
-        found.setdefault(one, []).append(two)
-        found.setdefault(two, []).append(one)
+    for one, two, _ in coauthor_pairs(catalog):
+        if one and two:
+            found.setdefault(one, []).append(two)
+            found.setdefault(two, []).append(one)
     return {k: tuple(dict.fromkeys(v)) for k, v in found.items()}
 
 

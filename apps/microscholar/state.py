@@ -9,16 +9,14 @@ evaluation tables show the same number at the same simulated instant.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
-from types import MappingProxyType
+from dataclasses import dataclass
 from typing import Any
 
 from apps.kit.frozen import CatalogState, with_items
-from apps.kit.streaming import shown_count
+from apps.kit.streaming import no_items, shown_count
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microscholar"
-EMPTY: Mapping = MappingProxyType({})
 ALERT_TYPES = ("citation", "new_paper", "keyword")
 
 
@@ -67,10 +65,10 @@ class Alert:
 
 @dataclass(frozen=True)
 class Scholar(CatalogState):
-    papers: Mapping[str, Paper] = field(default_factory=lambda: EMPTY)  # arrival order
-    paper_states: Mapping[str, PaperState] = field(default_factory=lambda: EMPTY)
-    alerts: Mapping[str, Alert] = field(default_factory=lambda: EMPTY)  # arrival order
-    alert_read: Mapping[str, bool] = field(default_factory=lambda: EMPTY)
+    papers: Mapping[str, Paper] = no_items()  # arrival order
+    paper_states: Mapping[str, PaperState] = no_items()
+    alerts: Mapping[str, Alert] = no_items()  # arrival order
+    alert_read: Mapping[str, bool] = no_items()
 
     def has_paper(self, paper_id: str) -> bool:
         return paper_id in self.papers
