@@ -2,7 +2,7 @@
 list is still where it was; a message delivered while reading does not move it either.
 
 Opening a message is a new page (its own URL, hx-boost swaps the body), so without
-micromail/mail.js the list would be back at the top; live pushes are kept by static/site/live.js.
+static/micromail/micromail.js the list would be back at the top; live pushes are kept by static/site/live.js.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The message-list row cache (apps.kit.fragments, used by `{% message_rows %}`) is never a second source
+"""The message-list row cache (apps.kit.fragments, used by the kit's `{% rows %}`) is never a second source
 of truth: a page built from cached rows is the page a fresh render gives, a state change shows
 at once, and the "time ago" text follows the run's clock while the rest of the row is reused."""
 
