@@ -15,6 +15,18 @@ if "SENTINEL_SCENARIO_DIR" not in os.environ:
     os.environ["SENTINEL_SCENARIO_DIR"] = str(_copy)
     atexit.register(shutil.rmtree, _copy, ignore_errors=True)
 
-from sentinel_site.settings import *  # noqa: F403
+# Parallel test processes (pytest-xdist: gw0, gw1, …) each get their own Redis database, so their
+# channel layers and Celery queues never cross: run 1 of one process is not run 1 of another.
+# Their SQL databases are already their own (the test database's name carries the process id).
+_worker = os.environ.get("PYTEST_XDIST_WORKER", "")
+if _worker.startswith("gw") and os.environ.get("REDIS_URL"):
+    from urllib.parse import urlsplit, urlunsplit
+
+    _url = urlsplit(os.environ["REDIS_URL"])
+    _base = int(_url.path.strip("/") or 0)
+    _db = (_base + 1 + int(_worker[2:])) % 16  # Redis has databases 0–15
+    os.environ["REDIS_URL"] = urlunsplit(_url._replace(path=f"/{_db}"))
+
+from sentinel_site.settings import *  # noqa: E402, F403
 
 INSTALLED_APPS = [*INSTALLED_APPS, "apps.tally"]  # noqa: F405
