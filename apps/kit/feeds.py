@@ -171,25 +171,29 @@ def setting(field: str, key: str, **changes: Any) -> Reducer:
     return reduce
 
 
+def post_flag(**changes: bool) -> Reducer:
+    """A reducer setting flags of the post's user-side record (liked, saved, viewed)."""
+    return setting("post_states", "post_id", **changes)
+
+
 def liking(is_liked: bool) -> Reducer:
-    """How a feed keeps the self user's like: on the post's user-side record."""
-    return setting("post_states", "post_id", is_liked=is_liked)
+    """How a feed keeps the self user's like (`social.post_actions` asks)."""
+    return post_flag(is_liked=is_liked)
 
 
-def marking(
-    schema: type[Payload],
-    items: str,
-    key: str,
-    what: str,
-    where: str,
-    reduce: Reducer,
-    *,
-    help: str,
-    page: Callable[[Any, dict], PageStep],
-) -> Action:
-    """An action whose only rule is that its item is there (`payload[key]` among
-    `state.<items>`, else a 404 "no <what> '<id>' <where>"): a like, a save, a mark-read."""
-    return Action(schema, checking(items, key, what, where), reduce, help=help, page=page)
+def item_action(
+    schema: type[Payload], items: str, what: str, where: str
+) -> Callable[[Reducer, str, Callable[[Any, dict], PageStep]], Action]:
+    """The actions on one kind of item whose only rule is that the item is there (a save, a
+    mark-read): the payload's one field (`story_id`…) names it among `state.<items>`, else a 404
+    "no <what> '<id>' <where>". Returns `on(reduce, help, page)`, one such action."""
+    (key,) = schema.model_fields
+    exists = checking(items, key, what, where)
+
+    def on(reduce: Reducer, help: str, page: Callable[[Any, dict], PageStep]) -> Action:
+        return Action(schema, exists, reduce, help=help, page=page)
+
+    return on
 
 
 def sending(field: str, prefix: str, where: str) -> Callable[[Any, dict], dict]:

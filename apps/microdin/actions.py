@@ -193,6 +193,10 @@ def section_page(network: Network, payload: dict) -> PageStep:
     return PageStep(f"in/{quote(network.me.id)}/", form)
 
 
+on_thread = feeds.item_action(ConversationId, "conversations", "conversation", WHERE)
+on_notification = feeds.item_action(NotificationId, "notifications", "notification", WHERE)
+
+
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         **post_actions(WHERE, feeds.liking, reduce_comment, feeds.post_page("feed/update/", WHERE)),
@@ -210,15 +214,8 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Ignore (reject) a pending invitation.",
             page=invitations_page,
         ),
-        "open_conversation": feeds.marking(
-            ConversationId,
-            "conversations",
-            "conversation_id",
-            "conversation",
-            WHERE,
-            reduce_open,
-            help="Open a thread; this marks its messages read.",
-            page=thread_page,
+        "open_conversation": on_thread(
+            reduce_open, "Open a thread; this marks its messages read.", thread_page
         ),
         "send_message": Action(
             SendMessage,
@@ -234,15 +231,10 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Open the thread with a person (a new one if there is none).",
             page=feeds.profile_page("in/"),
         ),
-        "mark_notification_read": feeds.marking(
-            NotificationId,
-            "notifications",
-            "notification_id",
-            "notification",
-            WHERE,
+        "mark_notification_read": on_notification(
             feeds.setting("notification_states", "notification_id", is_read=True),
-            help="Mark a notification read (what clicking it does).",
-            page=notifications_page,
+            "Mark a notification read (what clicking it does).",
+            notifications_page,
         ),
         "apply_job": Action(
             JobId,

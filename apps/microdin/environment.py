@@ -242,14 +242,10 @@ materialize = tables(
 )
 
 
-def empty_network(catalog) -> Network:
-    return Network(catalog=catalog, me=records.MEMBERS.me(catalog))
-
-
 MICRODIN = Environment(
     name=ENVIRONMENT,
     title="MicroDin",
-    initial_state=empty_network,
+    initial_state=lambda catalog: Network(catalog, me=records.MEMBERS.me(catalog)),
     event_types=EVENT_TYPES,
     actions=ACTIONS,
     baselines=BASELINES,

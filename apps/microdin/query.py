@@ -8,9 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.kit.query import InvalidQuery, QueryState, choice, item, text
-
-__all__ = ["InvalidQuery", "JobsQuery", "MessagingQuery", "NotificationsQuery", "SearchQuery"]
+from apps.kit.query import QueryState, choice, item, text
 
 JOB_FILTERS = ("all", "applied")
 THREAD_FILTERS = ("all", "unread")

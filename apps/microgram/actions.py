@@ -212,43 +212,35 @@ def activity_page(gram: Gram, payload: dict) -> PageStep:
     return PageStep("activity/", form)
 
 
-def marking_post(help: str, page=post_page, **changes: bool) -> Action:
-    """A post's button: it sets fields of the post's user-side record (saved, viewed)."""
-    reduce = feeds.setting("post_states", "post_id", **changes)
-    return feeds.marking(PostId, "posts", "post_id", "post", WHERE, reduce, help=help, page=page)
+on_post = feeds.item_action(PostId, "posts", "post", WHERE)
+on_story = feeds.item_action(StoryId, "stories", "story", WHERE)
+on_thread = feeds.item_action(ConversationId, "conversations", "conversation", WHERE)
+on_activity = feeds.item_action(ActivityId, "activity", "activity item", WHERE)
 
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         **post_actions(WHERE, feeds.liking, reduce_comment, post_page),
-        "save_post": marking_post(
-            "Save a post (it shows under Saved on your profile).", is_saved=True
+        "save_post": on_post(
+            feeds.post_flag(is_saved=True),
+            "Save a post (it shows under Saved on your profile).",
+            post_page,
         ),
-        "unsave_post": marking_post("Remove a post from Saved.", is_saved=False),
-        "view_post": marking_post(
+        "unsave_post": on_post(
+            feeds.post_flag(is_saved=False), "Remove a post from Saved.", post_page
+        ),
+        "view_post": on_post(
+            feeds.post_flag(is_viewed=True),
             "Open a post with its comments (what opening it does).",
-            page=feeds.post_page("p/", WHERE, form=False),
-            is_viewed=True,
+            feeds.post_page("p/", WHERE, form=False),
         ),
-        "view_story": feeds.marking(
-            StoryId,
-            "stories",
-            "story_id",
-            "story",
-            WHERE,
-            reduce_view_story,
-            help="Watch a story (its ring turns grey).",
-            page=story_page,
+        "view_story": on_story(
+            reduce_view_story, "Watch a story (its ring turns grey).", story_page
         ),
-        "read_conversation": feeds.marking(
-            ConversationId,
-            "conversations",
-            "conversation_id",
-            "conversation",
-            WHERE,
+        "read_conversation": on_thread(
             reduce_read_conversation,
-            help="Open a DM thread; this marks its messages read.",
-            page=thread_page,
+            "Open a DM thread; this marks its messages read.",
+            thread_page,
         ),
         "send_message": Action(
             SendMessage,
@@ -281,15 +273,10 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Stop following a member.",
             page=profile_page,
         ),
-        "mark_activity_read": feeds.marking(
-            ActivityId,
-            "activity",
-            "activity_id",
-            "activity item",
-            WHERE,
+        "mark_activity_read": on_activity(
             reduce_read_activity,
-            help="Mark one activity item read (what clicking it does).",
-            page=activity_page,
+            "Mark one activity item read (what clicking it does).",
+            activity_page,
         ),
         "mark_all_activity_read": Action(
             Nothing,

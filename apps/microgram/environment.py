@@ -242,10 +242,6 @@ materialize = tables(
 )
 
 
-def empty_gram(catalog) -> Gram:
-    return Gram(catalog=catalog, me=records.MEMBERS.me(catalog))
-
-
 def _opens_unviewed_post(gram: Gram, post_id: str) -> bool:
     state = gram.post_states.get(post_id)
     return state is not None and not state.is_viewed
@@ -254,7 +250,7 @@ def _opens_unviewed_post(gram: Gram, post_id: str) -> bool:
 MICROGRAM = Environment(
     name=ENVIRONMENT,
     title="MicroGram",
-    initial_state=empty_gram,
+    initial_state=lambda catalog: Gram(catalog, me=records.MEMBERS.me(catalog)),
     event_types=EVENT_TYPES,
     actions=ACTIONS,
     baselines=BASELINES,

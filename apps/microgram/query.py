@@ -8,9 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from apps.kit.query import InvalidQuery, QueryState, choice, text
-
-__all__ = ["ExploreQuery", "FeedQuery", "InvalidQuery", "ProfileQuery", "SearchQuery"]
+from apps.kit.query import QueryState, choice, text
 
 FEED_PAGE_SIZE = 10  # posts per "Load more", as the original
 FEED_PAGES = tuple(str(n) for n in range(1, 31))  # up to the whole 300-post catalog
