@@ -25,7 +25,6 @@ from events.registry import Action, ImplicitAction, LoggedEvent, PageStep, Reduc
 from events.schemas import Payload
 
 Member = TypeVar("Member")  # a person as the app shows them (its own `Person`)
-S = TypeVar("S")
 Make = Callable[[Any, str, Stamp], Any]  # a Delivery's make: (state, item id, stamp) → item
 
 
@@ -68,8 +67,8 @@ class Members(Generic[Member]):
     def other_in(self, catalog: Any, thread: Mapping[str, Any]) -> Member:
         """The person a one-to-one thread record is with: its participant who is not the self
         user (the original's records list both)."""
-        me = self.me(catalog)
-        others = [p for p in thread.get("participantIds") or () if p != me.id]  # type: ignore[attr-defined]
+        me: Any = self.me(catalog)
+        others = [p for p in thread.get("participantIds") or () if p != me.id]
         return self.person(catalog, others[0] if others else None)
 
 
@@ -207,12 +206,12 @@ def sending(field: str, prefix: str, where: str) -> Callable[[Any, dict], dict]:
     return decide
 
 
-def starting(thread: Callable[[S, LoggedEvent], Any]) -> Callable[[S, LoggedEvent], S]:
+def starting(thread: Callable[[Any, LoggedEvent], Any]) -> Reducer:
     """The reducer of `start_conversation`: the thread `thread(state, event)` made, unless the
     decided `conversation_id` is one the state has already (the existing thread is reused)."""
 
-    def reduce(state: S, event: LoggedEvent) -> S:
-        if event.payload["conversation_id"] in state.conversations:  # type: ignore[attr-defined]
+    def reduce(state: Any, event: LoggedEvent) -> Any:
+        if event.payload["conversation_id"] in state.conversations:
             return state
         conversation = thread(state, event)
         return with_items(state, "conversations", [(conversation.id, conversation)])
