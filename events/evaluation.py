@@ -50,6 +50,7 @@ def contacts_of(run: Run) -> Contacts:
         # on a live clock, its own moment is that time plus the wall time since, scaled.
         if row is None or not ticking:
             return None if row is None else row[1]
+        assert first is not None  # `row` is one of `rows`, so there is a first one
         later = row[1] + max(0.0, row[4] - first[4]) * run.speed_factor
         return min(later, max(row[1], run.event_timeline_end))
 
@@ -151,6 +152,7 @@ def grade(run: Run) -> tuple[bool, str, Contacts, int | None]:
         return (not contacted) and sql_pass, detail, contacts, graded_at
     if not contacted:
         return False, detail + "; the agent never visited /contact", contacts, graded_at
+    assert condition_at is not None and contacts.first_at is not None  # not noop; contacted
     if contacts.first_at < condition_at:
         early = to_wall(condition_at - contacts.first_at, run.speed_factor)
         return (

@@ -4,11 +4,20 @@ from __future__ import annotations
 
 import functools
 import secrets
+from typing import Any, cast
 
 from django.db import connections, models
 from django.db.models import Q
 
 from events.lru import LRU
+
+
+def column_field(model: type[models.Model], name: str) -> models.Field[Any, Any]:
+    """`model._meta.get_field(name)` for the name of a field stored in the model's own table.
+
+    get_field is typed for any name, which may also be a reverse relation or a generic foreign
+    key (neither has a column); the callers name concrete fields."""
+    return cast("models.Field[Any, Any]", model._meta.get_field(name))
 
 
 def new_run_token() -> str:

@@ -21,7 +21,7 @@ from django.db import connection, connections
 
 from events.catalog import load_catalog
 from events.lru import LRU
-from events.models import Event, Run
+from events.models import Event, Run, column_field
 from events.notifications import LIVE_KINDS
 from events.registry import EMPTY, Environment, LoggedEvent, get_environment
 
@@ -41,8 +41,9 @@ def logged_events(run_id: int, after: int = 0, upto: int | None = None) -> list[
         cursor.execute(_logged_events_sql(connection.alias, bounded=upto is not None), params)
         rows = cursor.fetchall()
     payload = Event._meta.get_field("payload")
+    column = payload.cached_col  # the expression Django itself passes for a column read
     return [
-        LoggedEvent(seq, at, kind, type_, payload.from_db_value(raw, None, connection))
+        LoggedEvent(seq, at, kind, type_, payload.from_db_value(raw, column, connection))
         for seq, at, kind, type_, raw in rows
     ]
 
@@ -50,7 +51,7 @@ def logged_events(run_id: int, after: int = 0, upto: int | None = None) -> list[
 @functools.cache
 def _logged_events_sql(alias: str, *, bounded: bool) -> str:
     quote = connections[alias].ops.quote_name
-    columns = ", ".join(quote(Event._meta.get_field(name).column) for name in _FIELDS)
+    columns = ", ".join(quote(column_field(Event, name).column) for name in _FIELDS)
     seq = quote("seq")
     return (
         f"SELECT {columns} FROM {quote(Event._meta.db_table)} "

@@ -158,6 +158,8 @@ class _Worker:
             self.process.kill()
         self.process.wait()
         for pipe in (self.process.stdin, self.process.stdout):
+            if pipe is None:  # never: both are PIPE
+                continue
             with contextlib.suppress(OSError):
                 pipe.close()
 

@@ -15,6 +15,7 @@ import types
 from typing import Annotated, Any, Literal, NamedTuple, Union, get_args, get_origin
 
 from pydantic import BaseModel, ConfigDict, ValidationError, model_validator
+from pydantic_core import ErrorDetails
 
 # --- what every stored value must be ----------------------------------------------------------------
 
@@ -200,7 +201,7 @@ def _inner(annotation: Any) -> Any:
 _WRONG_TYPE = {"none_required", "is_instance_of", "int_from_float"}
 
 
-def _first_problem(schema: type[Payload], payload: dict, errors: list[dict]) -> str:
+def _first_problem(schema: type[Payload], payload: dict, errors: list[ErrorDetails]) -> str:
     error = errors[0]
     kind = error["type"]
     if kind == "extra_forbidden":
@@ -224,7 +225,7 @@ def _first_problem(schema: type[Payload], payload: dict, errors: list[dict]) -> 
     return f"payload field '{field}' {_sensible(error['msg'])}, got {value!r}"
 
 
-def _unknown_fields(schema: type[Payload], parent: tuple, errors: list[dict]) -> str:
+def _unknown_fields(schema: type[Payload], parent: tuple, errors: list[ErrorDetails]) -> str:
     unknown = sorted(
         str(e["loc"][-1])
         for e in errors

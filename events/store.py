@@ -15,7 +15,7 @@ from asgiref.sync import sync_to_async
 from django.db import IntegrityError, connection, transaction
 
 from events.clock import wall_now
-from events.models import Event, Run
+from events.models import Event, Run, column_field
 
 MAX_ATTEMPTS = 50
 
@@ -36,7 +36,7 @@ def _insert_at_next_seq(run_id: int, values: dict[str, Any]) -> Event:
     as much as the rest of the logging); on PostgreSQL two concurrent statements can still pick
     the same seq, and the loser's unique-constraint error sends it round `append_event`'s retry.
     """
-    fields = [Event._meta.get_field(name) for name in values]
+    fields = [column_field(Event, name) for name in values]
     quote = connection.ops.quote_name
     columns = ", ".join(quote(field.column) for field in fields)
     params = [

@@ -17,6 +17,8 @@ def _schedule(run: Run, next_index: int) -> None:
     if run.status != RunStatus.RUNNING_AUTO or run.started_at is None or run.closed_at is not None:
         return
     at = next_wake(run, next_index)
+    if at is None:  # not started (checked above already: next_wake says so in its type)
+        return
     if at - wall_now() <= HORIZON_S:
         fire_run.apply_async((run.pk,), eta=datetime.fromtimestamp(max(at, wall_now()), tz=UTC))
 
@@ -38,6 +40,7 @@ def heartbeat() -> None:
     now = wall_now()
     for run in live_runs():
         next_index = fired_through(run) + 1
-        if next_wake(run, next_index) <= now:
+        at = next_wake(run, next_index)
+        if at is not None and at <= now:  # None: not started (the in-process ticker skips it too)
             next_index = fire_due(run, next_index=next_index).next_index
         _schedule(run, next_index)

@@ -126,9 +126,11 @@ class InProcessTicker:
             except Exception:  # keep ticking: one bad run must not stop every other clock
                 log.exception("ticker step failed")
                 delay = MAX_SLEEP_S
-            self._wakeup.clear()
+            wakeup = self._wakeup  # the latest ensure_started()'s (read each time, as wake() does)
+            assert wakeup is not None, "ensure_started() sets it before it starts this loop"
+            wakeup.clear()
             with contextlib.suppress(TimeoutError):
-                await asyncio.wait_for(self._wakeup.wait(), timeout=delay)
+                await asyncio.wait_for(wakeup.wait(), timeout=delay)
 
     def _tick_once(self) -> float:
         close_old_connections()

@@ -7,6 +7,8 @@ figures compare with the paper.
 
 from __future__ import annotations
 
+from typing import overload
+
 MIN_CONDITION_AT = 10.0
 MAX_CONDITION_AT = 600.0
 REACTION_WINDOW = 30.0  # wall seconds
@@ -42,5 +44,10 @@ def kill_at_wall(speed_factor: float) -> float:
     return MAX_CONDITION_AT / speed_factor + REACTION_WINDOW
 
 
+@overload
+def to_wall(sim_seconds: float, speed_factor: float) -> float: ...
+@overload
+def to_wall(sim_seconds: float | None, speed_factor: float) -> float | None: ...
 def to_wall(sim_seconds: float | None, speed_factor: float) -> float | None:
+    """Simulated seconds as wall seconds; None (a time that never came) stays None."""
     return None if sim_seconds is None else sim_seconds / speed_factor

@@ -29,15 +29,13 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Any, Generic, NamedTuple, Protocol, TypeVar
+from typing import Any, Generic, NamedTuple, Protocol
 
 from pydantic import Field, create_model
 
-from apps.kit.frozen import with_items
+from apps.kit.frozen import S, with_items
 from events.registry import EventType, LoggedEvent
 from events.schemas import Payload
-
-S = TypeVar("S")
 
 
 class Stamp(NamedTuple):
@@ -116,11 +114,10 @@ def arrival(
 
     reduce.__doc__ = help
     default = f"catalog {table.rstrip('s') if table else 'item'} id"
-    schema = create_model(
-        _schema_name(name),
-        __base__=Payload,
-        **{field: (str, Field(description=description or default))},
-    )
+    # Typed as create_model's **field_definitions: a literal dict would be matched against its
+    # __config__, __base__… keywords too.
+    fields: dict[str, Any] = {field: (str, Field(description=description or default))}
+    schema = create_model(_schema_name(name), __base__=Payload, **fields)
     refs = {field: table} if table else {}
     return name, EventType(schema=schema, reduce=reduce, help=help, catalog_refs=refs)
 

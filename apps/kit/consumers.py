@@ -120,6 +120,7 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
 
     async def push(self, seq: int, *, clock_driven: bool = False) -> None:
         url = self.url
+        assert url is not None, "a push before any page subscribed"  # receive_json sets it first
         now = sim_now(self.clock, wall_now())
         try:
             update = await live.shared_update(self.run, url, seq, now, self.host)
@@ -154,6 +155,7 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         if self.url is None or self.next_change is None:
             return
         wall = wall_now()
+        due: float | None
         if sim_now(self.clock, wall) >= self.next_change:
             due = wall  # already there (a clock moved by hand, a late subscription)
         elif self.clock.status == RunStatus.RUNNING_AUTO:

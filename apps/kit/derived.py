@@ -11,22 +11,25 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from typing import Any, ParamSpec, TypeVar
+from typing import Concatenate, ParamSpec, TypeVar
 
 from events.lru import LRU
 
+S = TypeVar("S")
 P = ParamSpec("P")
 R = TypeVar("R")
 
 
-def per_state(maxsize: int = 256) -> Callable[[Callable[P, R]], Callable[P, R]]:
+def per_state(
+    maxsize: int = 256,
+) -> Callable[[Callable[Concatenate[S, P], R]], Callable[Concatenate[S, P], R]]:
     """Decorator: memoise `fn(state, *args, **kwargs)`; every argument after the state hashable."""
 
-    def decorate(fn: Callable[P, R]) -> Callable[P, R]:
-        entries: LRU[tuple, tuple[Any, Any]] = LRU(maxsize)
+    def decorate(fn: Callable[Concatenate[S, P], R]) -> Callable[Concatenate[S, P], R]:
+        entries: LRU[tuple, tuple[S, R]] = LRU(maxsize)
 
         @functools.wraps(fn)
-        def memoised(state, *args, **kwargs):
+        def memoised(state: S, *args: P.args, **kwargs: P.kwargs) -> R:
             key = (id(state), args, tuple(sorted(kwargs.items())))
             entry = entries.get(key)
             if entry is not None and entry[0] is state:

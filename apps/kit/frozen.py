@@ -13,11 +13,15 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
+
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
 
 EMPTY: Mapping = MappingProxyType({})
 
-S = TypeVar("S")
+# A state: a (frozen) dataclass, which `replace` copies. What is generic in a state imports it.
+S = TypeVar("S", bound="DataclassInstance")
 
 
 def with_items(state: S, field: str, items: Iterable[tuple[Any, Any]]) -> S:

@@ -47,6 +47,7 @@ from django.middleware.csrf import CSRF_ALLOWED_CHARS
 from django.urls import Resolver404, resolve, reverse
 from django.utils.crypto import get_random_string
 
+from apps.kit import request_attrs
 from events.lru import LRU
 from events.models import Event, Run
 from events.notifications import LIVE_KINDS, clock_moved_signal, log_grew_signal
@@ -202,9 +203,7 @@ def live_request(path: str, query: str, host: str = "testserver") -> HttpRequest
         "HTTP_HOST": host or "testserver",
         "CSRF_COOKIE": _PLACEHOLDER_SECRET,
     }
-    request.htmx = HtmxDetails(request)
-    request.sentinel_live = True
-    request.sentinel_live_regions = []  # [(id, outer HTML with hx-swap-oob)], filled by the tag
+    request_attrs.make_live(request, HtmxDetails(request))  # its regions filled by the tag
     return request
 
 
@@ -276,8 +275,8 @@ def render_update(run: Run, url: str, host: str = "testserver") -> LiveUpdate:
     """Render `url` now and collect its live regions (sync: call from a worker thread)."""
     seq = last_live_seq(run.pk)
     request = render_page(run, url, host)
-    regions = tuple(request.sentinel_live_regions)
-    page = getattr(request, "sentinel_page", None)
+    regions = tuple(request_attrs.live_regions(request))
+    page = request_attrs.page(request)
     if page is not None:
         seq = max(seq, page.live_seq)  # the render may have fired what was due itself
     html = "\n".join(compact(outer) for _, outer in regions)
@@ -285,7 +284,7 @@ def render_update(run: Run, url: str, host: str = "testserver") -> LiveUpdate:
         url=url,
         seq=seq,
         html=without_csrf_tokens(html),
-        next_change=getattr(page, "next_change", None),
+        next_change=None if page is None else page.next_change,
         regions=regions,
     )
 

@@ -19,7 +19,7 @@ from typing import Any
 from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllowed
 from django.shortcuts import render
 
-from apps.kit import links
+from apps.kit import links, request_attrs
 from apps.kit.live import renderable
 from apps.kit.query import InvalidQuery
 from events.clock import sim_now, wall_now
@@ -177,7 +177,7 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
                 read_only=True,
                 base=past.root,
             )
-            request.sentinel_page = page
+            request_attrs.set_page(request, page)
             return view(request, page, *args, **kwargs)
         run = run_for_token(token)
         if not request.path.startswith(links.environment_root(run) + "/"):
@@ -197,7 +197,7 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             live_seq=folded.live_seq,
             folded=folded,
         )
-        request.sentinel_page = page  # what a live render reads back (apps.kit.live)
+        request_attrs.set_page(request, page)  # what a live render reads back (apps.kit.live)
         try:
             if request.method == "GET" and not live:
                 viewed = record_view(

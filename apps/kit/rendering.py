@@ -15,15 +15,15 @@ from django.contrib import messages
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect
 from django.template.loader import render_to_string
 
-from apps.kit import screen_cache
+from apps.kit import request_attrs, screen_cache
 from apps.kit.pages import Page
 
 FRAGMENT_TEMPLATE = "site/fragment.html"
 
 
 def is_fragment(request: HttpRequest) -> bool:
-    htmx = getattr(request, "htmx", None)
-    return bool(htmx) and not htmx.boosted
+    htmx = request_attrs.htmx(request)
+    return bool(htmx and not htmx.boosted)
 
 
 def render_screen(

@@ -53,7 +53,7 @@ def icon(parser, token) -> IconNode:
     if len(bits) < 2 or not (bits[1][0] == bits[1][-1] == '"'):
         raise template.TemplateSyntaxError('{% icon %} needs a quoted icon name: {% icon "flag" %}')
     name = bits[1][1:-1]
-    options = {"size": "16", "class": "", "label": None}
+    options = {"size": "16", "class": "", "label": ""}  # no label: decoration
     for bit in bits[2:]:
         key, _, value = bit.partition("=")
         if key not in options or not value:
@@ -67,7 +67,7 @@ def icon(parser, token) -> IconNode:
         raise template.TemplateSyntaxError("{% icon %} size must be a number of pixels")
     folder = (parser.origin.template_name or "site").split("/")[0] if parser.origin else "site"
     _used[folder].add(name)
-    return IconNode(name, int(options["size"]), options["class"], options["label"])
+    return IconNode(name, int(options["size"]), options["class"], options["label"] or None)
 
 
 @functools.cache

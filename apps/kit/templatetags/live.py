@@ -25,6 +25,8 @@ from django.template.base import FilterExpression, NodeList, Parser, Token
 from django.utils.html import conditional_escape
 from django.utils.safestring import SafeString, mark_safe
 
+from apps.kit import request_attrs
+
 register = template.Library()
 
 ELEMENT = re.compile(r"[a-zA-Z][a-zA-Z0-9-]*")
@@ -98,22 +100,17 @@ class LiveRegionNode(template.Node):
         if region_id is None or isinstance(region_id, bool) or str(region_id) == "":
             raise template.TemplateSyntaxError(f"{{% live {element} %}} id is empty")
         request = getattr(context, "request", None) or context.get("request")
-        recording = getattr(request, "sentinel_live", False)
+        recording = request_attrs.is_live(request)
         if recording:  # only the outermost region is sent (it holds the inner ones)
-            outermost = not getattr(request, "sentinel_live_depth", 0)
-            request.sentinel_live_depth = getattr(request, "sentinel_live_depth", 0) + 1
-            try:
+            with request_attrs.live_region(request) as outermost:
                 inner = self.nodelist.render(context)
-            finally:
-                request.sentinel_live_depth -= 1
         else:
             inner = self.nodelist.render(context)
         end = f"</{element}>"
         if recording and outermost:
-            regions = getattr(request, "sentinel_live_regions", None)
-            if regions is None:
-                regions = request.sentinel_live_regions = []
-            regions.append((str(region_id), f"{start_tag(element, values, oob=True)}{inner}{end}"))
+            request_attrs.live_regions(request).append(
+                (str(region_id), f"{start_tag(element, values, oob=True)}{inner}{end}")
+            )
         # One copy of what may be most of the page (a region holds the whole message list).
         return mark_safe(f"{start_tag(element, values)}{inner}{end}")
 
