@@ -113,7 +113,9 @@ def arrival(
         return deliver(state, [event.payload[field]], event.at, preloaded=False)
 
     reduce.__doc__ = help
-    default = f"catalog {table.rstrip('s') if table else 'item'} id"
+    default = (
+        f"catalog {field.removesuffix('_id').replace('_', ' ')} id"  # email_id → catalog email id
+    )
     # Typed as create_model's **field_definitions: a literal dict would be matched against its
     # __config__, __base__… keywords too.
     fields: dict[str, Any] = {field: (str, Field(description=description or default))}

@@ -21,10 +21,10 @@ from django.test import Client
 from apps.kit import live
 from apps.kit.live import last_live_seq, render_update
 from events import lifecycle
-from events.models import ClockMode, Event, EventKind
+from events.models import Event, EventKind
 from events.projection import state_at
 from tests.live.pushed import regions
-from tests.micromail.cast import CATALOG_DIR, LATE_AT, mailbox_scenario
+from tests.micromail.cast import CAST, LATE_AT
 
 pytestmark = pytest.mark.django_db(transaction=True)
 
@@ -44,9 +44,7 @@ def in_memory_layer(settings):
 
 
 def new_run():
-    return lifecycle.create_run(
-        mailbox_scenario(), clock_mode=ClockMode.VIRTUAL, catalog_dir=CATALOG_DIR
-    )
+    return CAST.start()
 
 
 def inbox(run, rest: str = "?folder=inbox") -> str:

@@ -13,18 +13,14 @@ from django.test import Client
 
 from apps.kit.live import last_live_seq
 from apps.kit.simclock import absolute, ago, clock_time, relative, today
-from events import lifecycle
-from events.models import ClockMode
-from tests.micromail.cast import CATALOG_DIR, mailbox_scenario
+from tests.micromail.cast import CAST
 
 MONDAY = date(2025, 1, 6)
 
 
 @pytest.fixture
 def run(db):
-    return lifecycle.create_run(
-        mailbox_scenario(), clock_mode=ClockMode.VIRTUAL, catalog_dir=CATALOG_DIR
-    )
+    return CAST.start()
 
 
 def test_simulated_times_read_from_the_run_clock():

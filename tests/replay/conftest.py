@@ -7,15 +7,12 @@ import pytest
 from events import lifecycle
 from events.commands import perform_action
 from events.evaluation import evaluate
-from events.models import ClockMode
-from tests.micromail.cast import CATALOG_DIR, mailbox_scenario
+from tests.micromail.cast import CAST
 
 
 @pytest.fixture
 def finished_run(db):
-    run = lifecycle.create_run(
-        mailbox_scenario(), clock_mode=ClockMode.VIRTUAL, catalog_dir=CATALOG_DIR
-    )
+    run = CAST.start()
     lifecycle.advance(run, 60.0)
     perform_action(run, "flag", {"email_id": "budget-review"})
     lifecycle.advance(run, 125.0)

@@ -14,8 +14,7 @@ from apps.kit.live import render_update
 from apps.kit.pages import Page
 from apps.kit.templatetags.simtime import sim_ago, sim_now, sim_relative
 from events import lifecycle
-from events.models import ClockMode
-from tests.micromail.cast import CATALOG_DIR, mailbox_scenario
+from tests.micromail.cast import CAST
 
 FOLDERS = (
     '{% load live %}{% live "nav" id="folders" class=kind aria-label="Folders" hidden=no %}'
@@ -111,9 +110,7 @@ def test_a_void_element_cannot_be_a_region():
 
 @pytest.fixture
 def run(db):
-    return lifecycle.create_run(
-        mailbox_scenario(), clock_mode=ClockMode.VIRTUAL, catalog_dir=CATALOG_DIR
-    )
+    return CAST.start()
 
 
 def page_at(run, now: float) -> Page:
