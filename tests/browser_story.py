@@ -35,10 +35,16 @@ class BrowserStory:
     page: Any  # a Playwright page
 
     @classmethod
-    def start(cls, site: str, browser, scenario: str, *, open_task: bool = True, **run: Any):
-        """A virtual-clock run of `scenario` on the live site, its task URL opened."""
+    def start(
+        cls, site: str, browser, scenario: str | dict, *, open_task: bool = True, **run: Any
+    ) -> BrowserStory:
+        """A run of `scenario` — a library scenario's id, or a scenario written in the test —
+        on the live site (virtual clock unless `run` says otherwise), its task URL opened."""
+        chosen = (
+            {"scenario": scenario} if isinstance(scenario, str) else {"scenario_json": scenario}
+        )
         created = control_api.call(
-            site, "POST", "/api/runs/", {"scenario": scenario, "clock_mode": "virtual", **run}
+            site, "POST", "/api/runs/", {**chosen, "clock_mode": "virtual", **run}
         )
         page = browser.new_page(viewport=VIEWPORT)
         page.set_default_timeout(TIMEOUT_MS)

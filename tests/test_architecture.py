@@ -225,7 +225,7 @@ def shape_problems(app: Path) -> list[str]:
             )
     for module in app.rglob("*.py"):
         source = module.read_text(encoding="utf-8")
-        if "CREATE TABLE" in source or "legacy_tables" in source:
+        if "CREATE TABLE" in source:
             problems.append(
                 f"{name}: {module.relative_to(app)} writes tables by hand (apps.kit.tables)"
             )

@@ -33,7 +33,7 @@ from typing import Any, Generic, NamedTuple, Protocol
 
 from pydantic import Field, create_model
 
-from apps.kit.frozen import S, with_items
+from apps.kit.state import S, with_items, with_items_first
 from events.registry import EventType, LoggedEvent
 from events.schemas import Payload
 
@@ -61,12 +61,15 @@ class Delivery(Generic[S]):
     item_state)` when the per-item state depends on the record, or None when the catalog has
     no such id. The item goes into the state's mapping field `items` (id → item, delivery
     order); its per-item state into `states` (id → state), `fresh()` when `make` gave none.
+    `newest_first`: what arrives goes before what is there (a list the newest item heads, as
+    a repository's commits), instead of after it.
     """
 
     items: str
     make: Callable[[S, str, Stamp], Any]
     states: str | None = None
     fresh: Callable[[], Any] | None = None
+    newest_first: bool = False
 
     def __call__(self, state: S, ids: Iterable[str], at: float, *, preloaded: bool) -> S:
         present = getattr(state, self.items)
@@ -81,14 +84,15 @@ class Delivery(Generic[S]):
             arrivals.append((item, item_state))
         if not arrivals:
             return state
-        state = with_items(state, self.items, ((item.id, item) for item, _ in arrivals))
+        add = with_items_first if self.newest_first else with_items
+        state = add(state, self.items, [(item.id, item) for item, _ in arrivals])
         if self.states is None:
             return state
         fresh = self.fresh
-        return with_items(
+        return add(
             state,
             self.states,
-            ((item.id, s if s is not None or fresh is None else fresh()) for item, s in arrivals),
+            [(item.id, s if s is not None or fresh is None else fresh()) for item, s in arrivals],
         )
 
 
@@ -134,6 +138,8 @@ def preload(
     help: str,
     environment: str,
     required: Iterable[str] = (),
+    defaults: Mapping[str, list[str]] | None = None,
+    descriptions: Mapping[str, str] | None = None,
     base: type[Payload] = Payload,
     then: Then[S] | None = None,
     refs: Mapping[str, str] | None = None,
@@ -141,26 +147,34 @@ def preload(
     """The preload `name {<field>: [ids], …}`: for each `field → (table, deliver)`, in order,
     the ids (`["*"]` = every row of `table`) delivered as part of the starting world.
 
-    Fields in `required` must be given; the others default to none. `base` adds the preload's
-    other fields (numbers, ids already liked…), which `then(state, payload, at)` applies once
+    Fields in `required` must be given; the others default to their `defaults` entry (e.g.
+    `["*"]`: everything unless the scenario says otherwise), else to none. `descriptions` says
+    what a list means where the table name alone does not. `base` adds the preload's other
+    fields (numbers, ids already liked…), which `then(state, payload, at)` applies once
     everything is delivered. `refs` adds catalog references of `base`'s fields.
     """
     required = frozenset(required)
-    fields: dict[str, Any] = {
-        field: (
-            list[str],
-            Field(description=f'catalog {table} ids; ["*"] = every one')
-            if field in required
-            else Field(default_factory=list, description=f'catalog {table} ids; ["*"] = every one'),
-        )
-        for field, (table, _) in lists.items()
-    }
+    defaults = dict(defaults or {})
+    descriptions = dict(descriptions or {})
+
+    def declared(field: str, table: str) -> tuple[Any, Any]:
+        about = descriptions.get(field) or f'ids of the catalog\'s {table}; ["*"] = all of them'
+        if field in required:
+            return list[str], Field(description=about)
+        default = defaults.get(field, [])
+        return list[str], Field(default_factory=lambda: list(default), description=about)
+
+    fields: dict[str, Any] = {f: declared(f, t) for f, (t, _) in lists.items()}
     schema = create_model(_schema_name(name), __base__=base, **fields)
 
     def reduce(state: S, event: LoggedEvent) -> S:
         catalog, payload, at = state.catalog, event.payload, event.at  # type: ignore[attr-defined]
         for field, (table, deliver) in lists.items():
-            ids = catalog.expand(environment, table, payload.get(field) or [])
+            # The payload is logged as sent: a list left out takes its default here.
+            given = payload.get(field)
+            ids = catalog.expand(
+                environment, table, defaults.get(field, []) if given is None else given
+            )
             state = deliver(state, ids, at, preloaded=True)
         return then(state, payload, at) if then is not None else state
 

@@ -19,8 +19,7 @@ from pydantic import Field
 from apps.kit import social
 from apps.kit.arrivals import Stamp
 from apps.kit.deciding import checking, found, new_id, required_text
-from apps.kit.frozen import with_changed, with_items
-from apps.kit.tables import Keyed
+from apps.kit.state import with_changed, with_items
 from events.registry import Action, ImplicitAction, LoggedEvent, PageStep, Reducer
 from events.schemas import Payload
 
@@ -146,11 +145,6 @@ class PostRow(NamedTuple):
 
 def post_rows(state: Any, now: float) -> list[PostRow]:
     return [PostRow(post, likes_now(state, post.id)) for post in state.posts.values()]
-
-
-def VALUE(row: Keyed) -> Any:  # named as a constant, like `tables.KEY` beside it in a column map
-    """The value of a `Table.keyed` row whose mapping holds plain values (message id → read)."""
-    return row.value
 
 
 # --- actions -------------------------------------------------------------------------------------

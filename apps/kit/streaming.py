@@ -21,7 +21,7 @@ from typing import Any, Generic, TypeVar
 from django.http import Http404
 from pydantic import Field, create_model
 
-from apps.kit.frozen import EMPTY
+from apps.kit.state import EMPTY
 from apps.kit.waypoints import Waypoints
 from events.registry import ActionRejected
 from events.schemas import Payload
@@ -118,7 +118,8 @@ def bounded_text(
 
 def id_payload(name: str, field: str, description: str) -> type[Payload]:
     """The payload of an action on one item: `{<field>: id}` (e.g. `TrackId {track_id}`)."""
-    return create_model(name, __base__=Payload, **{field: (str, Field(description=description))})
+    fields: dict[str, Any] = {field: (str, Field(description=description))}
+    return create_model(name, __base__=Payload, **fields)
 
 
 def present(item: T | None, what: str) -> T:

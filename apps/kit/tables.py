@@ -12,8 +12,10 @@ mapping, so a column can never be added to the DDL and forgotten (or misplaced) 
     })
     EMAIL_STATES = Table.keyed("email_states", "states", {
         "email_id TEXT PRIMARY KEY": KEY,             # the mapping's key
-        "isRead INTEGER": "is_read",                  # attributes of the value
+        "isRead INTEGER": "is_read",                  # attributes of the value (or VALUE)
     })
+    ISSUES = Table("issues", lambda hub, now: hub.issues.values(),
+                   {**named("id TEXT", "title TEXT"), "parentId TEXT": "parent_id"})
     materialize = tables(EMAILS, EMAIL_STATES)
 """
 
@@ -39,6 +41,17 @@ class Keyed(NamedTuple):
     value: Any
 
 
+def VALUE(row: Keyed) -> Any:  # a function named as a constant, like KEY
+    """The value of a `Table.keyed` row whose mapping holds plain values (message id → read)."""
+    return row.value
+
+
+def named(*columns: str) -> dict[str, str]:
+    """`{column definition: attribute}` for columns named after the attribute they read:
+    `named("id TEXT", "number INTEGER")` → `{"id TEXT": "id", "number INTEGER": "number"}`."""
+    return {column: column.split()[0] for column in columns}
+
+
 def KEY(row: Keyed) -> Any:  # a function named as a constant: it reads as one in a column mapping
     """The mapping key of a `Table.keyed` row (e.g. the email id of an email's state)."""
     return row.key
@@ -52,14 +65,23 @@ class Table(Generic[S]):
     columns: Mapping[str, Getter]
 
     @classmethod
-    def keyed(cls, name: str, field: str, columns: Mapping[str, Getter]) -> Table[S]:
-        """A table of the state's mapping `field` (id → per-item state): `KEY` is the id, an
-        attribute name reads the per-item state."""
+    def keyed(
+        cls,
+        name: str,
+        mapping: str | Callable[[S, float], Mapping[Any, Any]],
+        columns: Mapping[str, Getter],
+    ) -> Table[S]:
+        """A table of one row per entry of a mapping — the state's field `mapping` (id →
+        per-item state), or one computed by `mapping(state, now)`: `KEY` is the key, `VALUE`
+        the value, an attribute name reads the value."""
         value_columns = {
             column: getter if callable(getter) else _of_value(getter)
             for column, getter in columns.items()
         }
-        return cls(name, lambda state, now: _entries(getattr(state, field)), value_columns)
+        if callable(mapping):
+            compute = mapping
+            return cls(name, lambda state, now: _entries(compute(state, now)), value_columns)
+        return cls(name, lambda state, now: _entries(getattr(state, mapping)), value_columns)
 
     @cached_property
     def _getters(self) -> tuple[Callable[[Any], Any], ...]:

@@ -17,10 +17,8 @@ from typing import Literal
 
 from pydantic import Field
 
-from apps.kit.changing import setting
 from apps.kit.deciding import checking, found, new_id
-from apps.kit.frozen import with_changed
-from apps.kit.without import without
+from apps.kit.state import setting, with_changed, without
 from apps.microchat.query import ChatQuery
 from apps.microchat.state import (
     REACTIONS,

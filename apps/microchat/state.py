@@ -15,8 +15,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import ClassVar
 
-from apps.kit.frozen import with_items
-from apps.kit.self_user import SelfUserState
+from apps.kit.state import SelfUserState, with_items
 
 ENVIRONMENT = "microchat"
 CONVERSATION_TYPES: tuple[str, ...] = ("direct", "group", "meeting")

@@ -21,8 +21,8 @@ from pydantic import Field
 from apps.kit import feeds
 from apps.kit.deciding import found, new_id
 from apps.kit.feeds import ConversationId
-from apps.kit.frozen import with_changed, with_items
 from apps.kit.social import Comment, post_actions
+from apps.kit.state import with_changed, with_items
 from apps.microdin import catalog as records
 from apps.microdin.query import JobsQuery, MessagingQuery
 from apps.microdin.state import (

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from typing import TypeVar
 
 from apps.kit.feeds import counting
-from apps.kit.frozen import EMPTY, CatalogState
 from apps.kit.social import Comment, Picture
+from apps.kit.state import EMPTY, CatalogState
 
 ENVIRONMENT = "microdin"
 Item = TypeVar("Item")  # a post, a job… (anything stamped with a time and a catalog order)

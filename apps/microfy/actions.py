@@ -17,9 +17,8 @@ from types import MappingProxyType
 
 from pydantic import Field
 
-from apps.kit.changing import setting
 from apps.kit.deciding import checking
-from apps.kit.frozen import with_changed, with_items
+from apps.kit.state import setting, with_changed, with_items
 from apps.kit.streaming import bounded_text, id_payload, numbered_id
 from apps.microfy import screens
 from apps.microfy.state import USER_PLAYLIST_PREFIX, Music, NowPlaying, Playlist, with_followed

@@ -20,7 +20,7 @@ from typing import Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.frozen import with_changed
+from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
 from apps.microfy import screens

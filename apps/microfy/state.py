@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 from types import MappingProxyType
 from typing import ClassVar
 
-from apps.kit.self_user import SelfUserState
+from apps.kit.state import SelfUserState
 from apps.kit.streaming import counting, no_items
 from apps.kit.waypoints import Waypoints
 

@@ -22,8 +22,8 @@ from pydantic import Field
 from apps.kit import feeds
 from apps.kit.deciding import found, new_id
 from apps.kit.feeds import ConversationId
-from apps.kit.frozen import with_items
 from apps.kit.social import PostId, post_actions
+from apps.kit.state import with_items
 from apps.microgram.catalog import person
 from apps.microgram.state import (
     Conversation,

@@ -18,10 +18,10 @@ from typing import NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.feeds import VALUE, opening, post_rows
-from apps.kit.frozen import with_changed, with_items
+from apps.kit.feeds import opening, post_rows
 from apps.kit.social import Comment
-from apps.kit.tables import KEY, Keyed, Table, tables
+from apps.kit.state import with_changed, with_items
+from apps.kit.tables import KEY, VALUE, Keyed, Table, tables
 from apps.microgram import catalog as records
 from apps.microgram import state as gram_state
 from apps.microgram.actions import ACTIONS

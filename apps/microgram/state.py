@@ -14,8 +14,8 @@ from typing import Any
 
 from apps.kit.derived import per_state
 from apps.kit.feeds import counting
-from apps.kit.frozen import EMPTY, CatalogState
 from apps.kit.social import Comment, Picture
+from apps.kit.state import EMPTY, CatalogState
 
 ENVIRONMENT = "microgram"
 

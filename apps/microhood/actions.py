@@ -18,7 +18,7 @@ from typing import Literal
 from pydantic import Field
 
 from apps.kit.deciding import found, new_id
-from apps.kit.frozen import with_items
+from apps.kit.state import with_items
 from apps.microhood import state as account
 from apps.microhood.catalog import watch_row
 from apps.microhood.orders import fill_price, marketable, settle, with_fill

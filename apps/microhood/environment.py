@@ -24,9 +24,8 @@ from typing import Annotated, Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
-from apps.kit.columns import named
-from apps.kit.frozen import with_items
-from apps.kit.tables import KEY, Keyed, Table, tables
+from apps.kit.state import with_items
+from apps.kit.tables import KEY, Keyed, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhood import state as account
 from apps.microhood.actions import ACTIONS

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from apps.kit.frozen import with_items
+from apps.kit.state import with_items
 from apps.microhood.state import Holding, Hood, Order, quote
 
 

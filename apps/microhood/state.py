@@ -12,7 +12,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from apps.kit.frozen import EMPTY, CatalogState
+from apps.kit.state import EMPTY, CatalogState
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microhood"

@@ -20,7 +20,7 @@ from typing import Literal
 from pydantic import Field
 
 from apps.kit.deciding import found, required_text
-from apps.kit.frozen import with_items
+from apps.kit.state import with_items
 from apps.microhub.state import (
     MERGE_STRATEGIES,
     VISIBILITIES,

@@ -21,9 +21,8 @@ from typing import Annotated, Any
 from pydantic import Field, model_validator
 
 from apps.kit.arrivals import Deliver, Delivery, Stamp, arrival, event_types
-from apps.kit.columns import named
-from apps.kit.frozen import EMPTY
-from apps.kit.tables import KEY, Keyed, Table, tables
+from apps.kit.state import EMPTY
+from apps.kit.tables import KEY, Keyed, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhub import catalog as records
 from apps.microhub.actions import ACTIONS

@@ -13,7 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from apps.kit.frozen import EMPTY, CatalogState, with_items
+from apps.kit.state import EMPTY, CatalogState, with_items
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microhub"

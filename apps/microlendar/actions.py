@@ -16,8 +16,7 @@ from urllib.parse import urlencode
 
 from pydantic import Field
 
-from apps.kit.changing import setting
-from apps.kit.frozen import with_changed
+from apps.kit.state import setting, with_changed
 from apps.kit.streaming import id_payload
 from apps.microlendar import times
 from apps.microlendar.query import CalendarQuery

@@ -17,8 +17,7 @@ from datetime import date, timedelta
 from types import MappingProxyType
 from typing import Any, ClassVar
 
-from apps.kit.frozen import with_items
-from apps.kit.self_user import SelfUserState
+from apps.kit.state import SelfUserState, with_items
 from apps.kit.streaming import no_items
 
 ENVIRONMENT = "microlendar"

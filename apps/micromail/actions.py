@@ -19,10 +19,8 @@ from urllib.parse import urlencode
 
 from pydantic import Field
 
-from apps.kit.changing import setting
 from apps.kit.deciding import checking, found, new_id
-from apps.kit.frozen import with_changed, with_items
-from apps.kit.without import without
+from apps.kit.state import setting, with_changed, with_items, without
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import (
     FOLDERS,

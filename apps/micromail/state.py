@@ -12,7 +12,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import ClassVar
 
-from apps.kit.self_user import SelfUserState
+from apps.kit.state import SelfUserState
 
 ENVIRONMENT = "micromail"
 

@@ -16,8 +16,8 @@ from types import MappingProxyType
 
 from pydantic import Field
 
-from apps.kit.changing import setting
 from apps.kit.deciding import checking, found
+from apps.kit.state import setting
 from apps.microscholar.state import Paper, Scholar, with_alert_read
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload

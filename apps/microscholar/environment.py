@@ -17,10 +17,9 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.columns import named
-from apps.kit.frozen import with_changed
+from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
-from apps.kit.tables import KEY, Table, tables
+from apps.kit.tables import KEY, Table, named, tables
 from apps.microscholar import state as index
 from apps.microscholar.actions import ACTIONS
 from apps.microscholar.bench import sample_pages

@@ -12,7 +12,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from apps.kit.frozen import CatalogState, with_items
+from apps.kit.state import CatalogState, with_items
 from apps.kit.streaming import no_items, shown_count
 from apps.kit.waypoints import Waypoints
 

@@ -16,9 +16,8 @@ from urllib.parse import quote
 
 from pydantic import Field
 
-from apps.kit.changing import setting
 from apps.kit.deciding import checking
-from apps.kit.frozen import with_changed, with_items
+from apps.kit.state import setting, with_changed, with_items
 from apps.kit.streaming import bounded_text, id_payload, numbered_id
 from apps.microtube.query import WatchQuery
 from apps.microtube.state import Comment, Playlist, Tube, with_subscription, with_watched

@@ -15,8 +15,7 @@ from dataclasses import dataclass, replace
 from types import MappingProxyType
 from typing import ClassVar
 
-from apps.kit.frozen import with_changed
-from apps.kit.self_user import SelfUserState
+from apps.kit.state import SelfUserState, with_changed
 from apps.kit.streaming import counting, no_items, shown_count
 from apps.kit.waypoints import Waypoints
 

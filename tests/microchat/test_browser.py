@@ -12,11 +12,10 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
-from tests.browser_story import TIMEOUT_MS
+from tests.browser_story import TIMEOUT_MS, BrowserStory
 
 # The Chromium `browser` fixture of tests/conftest.py (imported so the name is this module's).
 from tests.conftest import browser  # noqa: F401
-from tests.inline_story import inline_story
 
 pytestmark = pytest.mark.browser
 
@@ -59,7 +58,7 @@ def chat_row(page: Page, name: str):
 
 
 def test_a_user_sees_a_message_arrive_live_and_reads_and_likes_it(live_site, browser):  # noqa: F811
-    story = inline_story(
+    story = BrowserStory.start(
         live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
     page = story.page

@@ -12,9 +12,10 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
+from tests.browser_story import BrowserStory
+
 # The Chromium `browser` fixture of tests/conftest.py (imported so the name is this module's).
 from tests.conftest import browser  # noqa: F401
-from tests.inline_story import inline_story
 from tests.microfy.cast import FIRST_TEN, SLOW_HARBOR
 
 pytestmark = pytest.mark.browser
@@ -59,7 +60,7 @@ def trending(page: Page):
 
 
 def test_a_user_sees_a_song_drop_live_and_likes_and_plays_it(live_site, browser):  # noqa: F811
-    story = inline_story(live_site, browser, scenario())
+    story = BrowserStory.start(live_site, browser, scenario())
     page = story.page
     expect(page.get_by_role("heading", name=re.compile("^Trending Songs"))).to_be_visible()
     expect(trending(page).get_by_role("link", name="Slow Harbor by Neon Pilgrims")).to_have_count(0)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 from playwright.sync_api import expect
 
-from tests.inline_story import inline_story
+from tests.browser_story import BrowserStory
 from tests.microgram.cast import DESK, PRELOAD
 
 pytestmark = pytest.mark.browser
@@ -38,7 +38,7 @@ def scenario() -> dict:
 
 
 def test_a_post_arrives_live_and_is_liked_with_the_heart(live_site, browser):
-    story = inline_story(
+    story = BrowserStory.start(
         live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
     page = story.page

@@ -16,10 +16,11 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
+from tests.browser_story import BrowserStory
+
 # tests/microlendar/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
 from tests.conftest import browser  # noqa: F401
-from tests.inline_story import inline_story
 from tests.microlendar.cast import CAST, TODAY
 
 pytestmark = pytest.mark.browser
@@ -49,7 +50,7 @@ def block(page: Page, title: str):
 
 
 def test_a_user_sees_an_event_arrive_opens_it_and_drags_another(live_site, browser):  # noqa: F811
-    story = inline_story(live_site, browser, scenario())
+    story = BrowserStory.start(live_site, browser, scenario())
     page = story.page
 
     # The task URL lands on the week view (the hash became ?view=week), today highlighted.

@@ -18,9 +18,8 @@ from playwright.sync_api import Page, expect
 
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py, so it imports that fixture and overrides the name here.
-from tests.browser_story import TIMEOUT_MS
+from tests.browser_story import TIMEOUT_MS, BrowserStory
 from tests.conftest import browser  # noqa: F401
-from tests.inline_story import inline_story
 
 pytestmark = pytest.mark.browser
 
@@ -87,7 +86,7 @@ def row(page: Page, subject: str):
 
 
 def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_site, browser):  # noqa: F811
-    story = inline_story(
+    story = BrowserStory.start(
         live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
     page = story.page

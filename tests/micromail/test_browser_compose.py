@@ -10,10 +10,11 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
+from tests.browser_story import BrowserStory
+
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
 from tests.conftest import browser  # noqa: F401
-from tests.inline_story import inline_story
 
 pytestmark = pytest.mark.browser
 
@@ -48,7 +49,7 @@ def folder(page: Page, title: str):
 
 
 def test_attach_autosave_discard_and_preview(live_site, browser):  # noqa: F811
-    story = inline_story(live_site, browser, scenario())
+    story = BrowserStory.start(live_site, browser, scenario())
     page = story.page
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible(timeout=WAIT_MS)
 

@@ -14,10 +14,11 @@ import pytest
 from django.conf import settings
 from playwright.sync_api import Page, expect
 
+from tests.browser_story import BrowserStory
+
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
 from tests.conftest import browser  # noqa: F401
-from tests.inline_story import inline_story
 
 pytestmark = pytest.mark.browser
 
@@ -65,7 +66,7 @@ def rows(page: Page):
 
 def test_opening_the_150th_message_keeps_the_list_where_it_was(live_site, browser):  # noqa: F811
     """Also: a live push keeps it, closing the message keeps it, and rows name their parts."""
-    story = inline_story(live_site, browser, full_inbox_scenario())
+    story = BrowserStory.start(live_site, browser, full_inbox_scenario())
     page = story.page
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible(timeout=WAIT_MS)
     assert rows(page).count() >= 150

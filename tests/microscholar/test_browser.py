@@ -13,8 +13,8 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
+from tests.browser_story import BrowserStory
 from tests.conftest import browser  # noqa: F401  (the Chromium fixture)
-from tests.inline_story import inline_story
 from tests.microscholar.cast import CAST, TARGET_AT
 from tests.microscholar.cast import TARGET_TITLE as TITLE
 
@@ -26,7 +26,7 @@ def recommended(page: Page):
 
 
 def test_a_user_sees_the_paper_arrive_live_then_cites_and_saves_it(live_site, browser):  # noqa: F811
-    story = inline_story(live_site, browser, dict(CAST.scenario))
+    story = BrowserStory.start(live_site, browser, dict(CAST.scenario))
     page = story.page
 
     expect(page.get_by_role("heading", name=re.compile("Recommended articles"))).to_be_visible()
