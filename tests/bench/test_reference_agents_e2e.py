@@ -65,7 +65,10 @@ def paper_scenarios(tmp_path, settings) -> Path:
         ("sender-absolute-passive", "ref-passive"),
         ("sender-absolute-noop", "ref-noop"),
     ):
-        data = shorten(source, new_id, "", end=60.0)
+        # The agents' wall budget is the task's deadline (kill_at / speed + grace): 45 s, far
+        # more than either needs idle (about 15 s), so a fully loaded machine — a slow Chromium
+        # start, slow model turns — never cuts an agent short. The agents end when they are done.
+        data = shorten(source, new_id, "", kill_at=160.0, end=180.0)
         data["prompt"] = data["prompt"].removesuffix("\n[[script: ]]")
         (root / "micromail" / f"{new_id}.json").write_text(json.dumps(data))
     settings.SENTINEL_SCENARIO_DIR = root
