@@ -22,6 +22,7 @@ from typing import Any, NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.opening import opening
 from apps.kit.tables import Rows, Table, named, tables
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times
@@ -29,7 +30,7 @@ from apps.microlendar.actions import ACTIONS
 from apps.microlendar.bench import sample_pages
 from apps.microlendar.catalog import catalog_event, catalog_task
 from apps.microlendar.state import ENVIRONMENT, Agenda, EventState, empty_agenda
-from events.registry import Environment, ImplicitAction, counted
+from events.registry import Environment, counted
 from events.schemas import Payload
 
 DATE_PATTERN = r"^\d{4}-\d{2}-\d{2}$"
@@ -195,6 +196,14 @@ materialize = tables(
 )
 
 
+def unviewed_invitation(agenda: Agenda, event_id: str) -> bool:
+    return (
+        agenda.has_event(event_id)
+        and not agenda.events[event_id].user_created
+        and not agenda.event_states[event_id].viewed
+    )
+
+
 MICROLENDAR = Environment(
     name=ENVIRONMENT,
     title="MicroLendar",
@@ -207,17 +216,7 @@ MICROLENDAR = Environment(
     implicit_actions=(
         # Opening an event's details marks it viewed (upstream had a /view endpoint its page
         # never called, §6; the original's "open each event" eval_sql reads isViewed).
-        ImplicitAction(
-            page="calendar",
-            param="event",
-            action="view_event",
-            payload=lambda event_id: {"event_id": event_id},
-            applies=lambda agenda, event_id: (
-                agenda.has_event(event_id)
-                and not agenda.events[event_id].user_created
-                and not agenda.event_states[event_id].viewed
-            ),
-        ),
+        opening("calendar", "event", "view_event", "event_id", applies=unviewed_invitation),
     ),
     sample_pages=sample_pages,
 )

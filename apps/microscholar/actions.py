@@ -14,21 +14,15 @@ from __future__ import annotations
 from collections.abc import Mapping
 from types import MappingProxyType
 
-from pydantic import Field
-
 from apps.kit.deciding import checking, found
+from apps.kit.marking import marking
 from apps.kit.state import setting
+from apps.kit.streaming import id_payload
 from apps.microscholar.state import Paper, Scholar, with_alert_read
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
-from events.schemas import Payload
 
-
-class PaperId(Payload):
-    paper_id: str = Field(description="id of an indexed paper")
-
-
-class AlertId(Payload):
-    alert_id: str = Field(description="id of an alert that has arrived")
+PaperId = id_payload("PaperId", "paper_id", "id of an indexed paper")
+AlertId = id_payload("AlertId", "alert_id", "id of an alert that has arrived")
 
 
 def existing_paper(scholar: Scholar, paper_id: str) -> Paper:
@@ -68,22 +62,12 @@ def alerts_page(scholar: Scholar, payload: dict) -> PageStep:
     return PageStep("alerts", {"alert_id": payload["alert_id"]})
 
 
+marks_paper = marking(PaperId, decide_on_paper, "paper_states", "paper_id", page=paper_page)
+
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
-        "save": Action(
-            PaperId,
-            decide_on_paper,
-            setting("paper_states", "paper_id", saved=True),
-            help="Add a paper to My library.",
-            page=paper_page,
-        ),
-        "unsave": Action(
-            PaperId,
-            decide_on_paper,
-            setting("paper_states", "paper_id", saved=False),
-            help="Remove a paper from My library.",
-            page=paper_page,
-        ),
+        "save": marks_paper(saved=True, help="Add a paper to My library."),
+        "unsave": marks_paper(saved=False, help="Remove a paper from My library."),
         "cite": Action(
             PaperId,
             decide_on_paper,

@@ -112,23 +112,21 @@ def styles(paper: Paper, names: tuple[Name, ...]) -> tuple[tuple[str, str], ...]
     return tuple((style, makers[style](paper, names)) for style in STYLES)
 
 
+# The tagged export formats: (record type, tags of title, each author, source, year, end line).
+TAGGED = {
+    "endnote": ("%0 Conference Paper", "%T", "%A", "%B", "%D", None),
+    "refman": ("TY  - CONF", "T1  -", "AU  -", "T2  -", "PY  -", "ER  -"),
+    "refworks": ("RT Conference Proceedings", "T1", "A1", "JF", "YR", None),
+}
+
+
 def export(paper: Paper, names: tuple[Name, ...], fmt: str) -> str:
     """The file behind an export link (`fmt` one of EXPORTS)."""
     if fmt == "bibtex":
         return bibtex(paper, names) + "\n"
-    if fmt == "endnote":
-        lines = ["%0 Conference Paper", f"%T {paper.title}"]
-        lines += [f"%A {n.inverted}" for n in names]
-        lines += [f"%B {paper.source}", f"%D {paper.year}"]
-        return "\n".join(lines) + "\n"
-    if fmt == "refman":
-        lines = ["TY  - CONF", f"T1  - {paper.title}"]
-        lines += [f"AU  - {n.inverted}" for n in names]
-        lines += [f"T2  - {paper.source}", f"PY  - {paper.year}", "ER  -"]
-        return "\n".join(lines) + "\n"
-    if fmt == "refworks":
-        lines = ["RT Conference Proceedings", f"T1 {paper.title}"]
-        lines += [f"A1 {n.inverted}" for n in names]
-        lines += [f"JF {paper.source}", f"YR {paper.year}"]
-        return "\n".join(lines) + "\n"
-    raise ValueError(f"format={fmt!r} is not valid; allowed: {', '.join(EXPORTS)}")
+    if fmt not in TAGGED:
+        raise ValueError(f"format={fmt!r} is not valid; allowed: {', '.join(EXPORTS)}")
+    kind, title, author, source, year, end = TAGGED[fmt]
+    lines = [kind, f"{title} {paper.title}", *(f"{author} {n.inverted}" for n in names)]
+    lines += [f"{source} {paper.source}", f"{year} {paper.year}", *([end] if end else [])]
+    return "\n".join(lines) + "\n"

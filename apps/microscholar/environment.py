@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.opening import opening
 from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, named, tables
@@ -25,7 +26,7 @@ from apps.microscholar.actions import ACTIONS
 from apps.microscholar.bench import sample_pages
 from apps.microscholar.catalog import catalog_alert, catalog_paper, coauthor_pairs
 from apps.microscholar.state import ENVIRONMENT, PaperState, Scholar, empty_scholar
-from events.registry import Environment, ImplicitAction, counted
+from events.registry import Environment, counted
 
 # The original's metric names (eval_sql reads baseline_<name> from session_meta).
 BASELINES = counted(
@@ -77,6 +78,7 @@ EVENT_TYPES = event_types(
             "saved_paper_ids": ("papers", shelve),
         },
         environment=ENVIRONMENT,
+        descriptions={"saved_paper_ids": "papers already in the library"},
         help="Papers, alerts and the saved library at the start; baselines are measured after it.",
     ),
     NEW_PAPER,
@@ -126,6 +128,10 @@ materialize = tables(
 )
 
 
+def not_cited_yet(scholar: Scholar, paper_id: str) -> bool:
+    return scholar.has_paper(paper_id) and not scholar.is_cited(paper_id)
+
+
 MICROSCHOLAR = Environment(
     name=ENVIRONMENT,
     title="MicroScholar",
@@ -137,15 +143,7 @@ MICROSCHOLAR = Environment(
     urlconf="apps.microscholar.urls",
     implicit_actions=(
         # Opening the Cite dialog is what records a citation in the original (no confirmation).
-        ImplicitAction(
-            page="cite",
-            param="paper_id",
-            action="cite",
-            payload=lambda paper_id: {"paper_id": paper_id},
-            applies=lambda scholar, paper_id: (
-                scholar.has_paper(paper_id) and not scholar.is_cited(paper_id)
-            ),
-        ),
+        opening("cite", "paper_id", "cite", "paper_id", applies=not_cited_yet),
     ),
     sample_pages=sample_pages,
 )

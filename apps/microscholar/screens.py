@@ -310,13 +310,14 @@ def profile_screen(
 ) -> ProfileScreen:
     """`query.user` must have a profile (the view checks)."""
     catalog = scholar.catalog
-    profile = catalog.index(profiles)[query.user]
-    ids = authored(scholar, query.user)
-    articles = rows(scholar, ids, now, root)
-    if query.sortby == "pubdate":
-        articles = tuple(sorted(articles, key=lambda r: -r.year))
-    else:
-        articles = tuple(sorted(articles, key=lambda r: -r.cited_by))
+    known = catalog.index(profiles)
+    newest = query.sortby == "pubdate"
+    articles = tuple(
+        sorted(
+            rows(scholar, authored(scholar, query.user), now, root),
+            key=lambda r: -r.year if newest else -r.cited_by,
+        )
+    )
     since = this_year - 5
     recent = [
         sum(n for y, n in yearly(r.cited_by, r.year, this_year).items() if y >= since)
@@ -328,7 +329,6 @@ def profile_screen(
         Metric("h-index", h_index(counts), h_index(recent)),
         Metric("i10-index", sum(1 for c in counts if c >= 10), sum(1 for c in recent if c >= 10)),
     )
-    known = catalog.index(profiles)
     people = tuple(
         Coauthor(
             person_name(catalog, other),
@@ -338,7 +338,7 @@ def profile_screen(
         for other in catalog.index(coauthors).get(query.user, ())
     )
     return ProfileScreen(
-        profile=profile,
+        profile=known[query.user],
         articles=articles,
         metrics=metrics,
         since=since,
