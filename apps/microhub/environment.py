@@ -22,7 +22,7 @@ from pydantic import Field, model_validator
 
 from apps.kit.arrivals import Deliver, Delivery, Stamp, arrival, event_types
 from apps.kit.state import EMPTY
-from apps.kit.tables import KEY, Keyed, Table, named, tables
+from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhub import catalog as records
 from apps.microhub.actions import ACTIONS
@@ -89,24 +89,9 @@ deliver_runs = Delivery("runs", lambda hub, i, stamp: records.catalog_run(hub.ca
 deliver_files = Delivery("files", lambda hub, i, stamp: records.catalog_file(hub.catalog, i))
 
 
-def newest_first(delivery: Delivery[Hub]) -> Deliver[Hub]:
-    """`delivery` into a list the newest item heads (a pushed commit, a run just started): what
-    arrives goes before what is there, as the original's lists had it."""
-
-    def deliver(hub: Hub, ids: Iterable[str], at: float, *, preloaded: bool) -> Hub:
-        delivered = delivery(hub, ids, at, preloaded=preloaded)
-        there, now = getattr(hub, delivery.items), getattr(delivered, delivery.items)
-        arrived = {key: item for key, item in now.items() if key not in there}
-        if not arrived:
-            return hub
-        return replace(delivered, **{delivery.items: MappingProxyType({**arrived, **there})})
-
-    return deliver
-
-
 def push_commits(hub: Hub, ids: Iterable[str], at: float, *, preloaded: bool) -> Hub:
     """Pushed now: first in the history, and one more each in the repository's commit count."""
-    pushed = newest_first(deliver_commits)(hub, ids, at, preloaded=preloaded)
+    pushed = replace(deliver_commits, newest_first=True)(hub, ids, at, preloaded=preloaded)
     added = len(pushed.commits) - len(hub.commits)
     return replace(pushed, commit_total=hub.commit_total + added) if added else hub
 
@@ -159,16 +144,20 @@ def _ids(hub: Hub, payload: Mapping[str, Any], table: str, key: str) -> list[str
     return hub.catalog.expand(ENVIRONMENT, table, payload.get(key, WILDCARD))
 
 
+# preload field → the repository value it overrides
+INITIAL = {
+    "initial_stars": "stars",
+    "initial_forks": "forks",
+    "initial_watchers": "watchers",
+    "initial_commits": "commits",
+}
+
+
 def _preloaded_repo(hub: Hub, p: Mapping[str, Any]) -> Mapping[str, Any]:
     repo = dict(records.repository_record(hub.catalog))  # a copy: the catalog stays as it is
-    if p.get("initial_stars") is not None:
-        repo["stars"] = p["initial_stars"]
-    if p.get("initial_forks") is not None:
-        repo["forks"] = p["initial_forks"]
-    if p.get("initial_watchers") is not None:
-        repo["watchers"] = p["initial_watchers"]
-    if p.get("initial_commits") is not None:
-        repo["commits"] = p["initial_commits"]
+    for field, key in INITIAL.items():
+        if p.get(field) is not None:
+            repo[key] = p[field]
     if p.get("default_branch"):
         repo["defaultBranch"] = p["default_branch"]
         branches = list(repo.get("branches") or [])
@@ -278,7 +267,7 @@ EVENT_TYPES = event_types(
         "new_workflow_run",
         "run_id",
         "workflow-runs",
-        newest_first(deliver_runs),
+        replace(deliver_runs, newest_first=True),
         help="A workflow run starts.",
         description="catalog workflow run id",
     ),
@@ -309,10 +298,6 @@ def _text(value: Any) -> str:
     return json.dumps(value) if isinstance(value, dict | list) else str(value)
 
 
-def _entries(mapping: Mapping[str, Any]) -> Iterable[Keyed]:
-    return (Keyed(key, value) for key, value in mapping.items())
-
-
 def repo_flags(hub: Hub, now: float) -> dict[str, str]:
     """The user's flags on the repository and its counters; `star_count` is the live one."""
     return {
@@ -327,9 +312,9 @@ def repo_flags(hub: Hub, now: float) -> dict[str, str]:
 
 def json_rows(name: str, rows: Callable[[Hub], Mapping[str, Mapping[str, Any]]]) -> Table[Hub]:
     """A table the original exported as (id, the catalog row as JSON)."""
-    return Table(
+    return Table.keyed(
         name,
-        lambda hub, now: _entries(rows(hub)),
+        lambda hub, now: rows(hub),
         {"id TEXT": KEY, "data TEXT": lambda row: json.dumps(dict(row.value))},
     )
 
@@ -359,20 +344,20 @@ materialize = tables(
     ),
     # `isViewed`: the original kept it in the session without exporting it, yet its scenarios'
     # eval_sql read it; exported here as 0/1. The user's own issues are not in this table.
-    Table(
+    Table.keyed(
         "issue_states",
-        lambda hub, now: (row for row in _entries(hub.issue_states) if row.key in hub.issues),
-        {"issue_id TEXT": KEY, "state TEXT": "value.state", "isViewed INTEGER": "value.viewed"},
+        lambda hub, now: {i: s for i, s in hub.issue_states.items() if i in hub.issues},
+        {"issue_id TEXT": KEY, "state TEXT": "state", "isViewed INTEGER": "viewed"},
     ),
     Table(
         "prs",
         lambda hub, now: hub.prs.values(),
         named("id TEXT", "number INTEGER", "title TEXT", "state TEXT", "author TEXT"),
     ),
-    Table(
+    Table.keyed(
         "pr_states",
-        lambda hub, now: (Keyed(pr_id, hub.pr_state(pr_id)) for pr_id in hub.prs),
-        {"pr_id TEXT": KEY, "state TEXT": "value"},
+        lambda hub, now: {pr_id: hub.pr_state(pr_id) for pr_id in hub.prs},
+        {"pr_id TEXT": KEY, "state TEXT": VALUE},
     ),
     Table(
         "commits",
@@ -393,11 +378,7 @@ materialize = tables(
     Table("user_created_prs", lambda hub, now: (), named("id TEXT", "title TEXT", "body TEXT")),
     Table("merged_prs", lambda hub, now: hub.merged, {"pr_id TEXT": str}),
     Table("following_users", lambda hub, now: hub.following, {"username TEXT": str}),
-    Table(
-        "repo_flags",
-        lambda hub, now: _entries(repo_flags(hub, now)),
-        {"key TEXT": KEY, "value TEXT": "value"},
-    ),
+    Table.keyed("repo_flags", repo_flags, {"key TEXT": KEY, "value TEXT": VALUE}),
     json_rows("runs", catalog_runs),
     *(json_rows(table.replace("-", "_"), passed_through(table)) for table in records.PASS_THROUGH),
 )
