@@ -19,6 +19,7 @@ from pydantic import Field
 
 from apps.kit.deciding import checking, found, new_id
 from apps.kit.state import setting, with_changed, without
+from apps.kit.streaming import id_payload
 from apps.microchat.query import ChatQuery
 from apps.microchat.state import (
     REACTIONS,
@@ -31,17 +32,12 @@ from apps.microchat.state import (
     with_read,
 )
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
-from events.schemas import Payload
 
 MAX_MESSAGE_LENGTH = 4000
 
 
-class ConversationId(Payload):
-    conversation_id: str = Field(description="id of a conversation")
-
-
-class MessageId(Payload):
-    message_id: str = Field(description="id of a message that has arrived")
+ConversationId = id_payload("ConversationId", "conversation_id", "id of a conversation")
+MessageId = id_payload("MessageId", "message_id", "id of a message that has arrived")
 
 
 class React(MessageId):
@@ -209,25 +205,21 @@ def conversation_path(conversation_id: str, **extra: str) -> str:
     return ChatQuery(**extra).with_item("conversation", conversation_id)
 
 
-def open_page(chat: Chat, payload: dict) -> PageStep:
-    """Opening the chat is the action (an implicit action of the chat page)."""
-    existing_conversation(chat, payload["conversation_id"])
-    return PageStep(conversation_path(payload["conversation_id"]))
+def conversation_page(*, opened: bool, form: bool) -> Callable[[Chat, dict], PageStep]:
+    """The chat's form in the open chat (`opened`: its header menu) or in the chat list (the
+    star of its row); without a `form`, opening the chat is the action (an implicit one)."""
+
+    def page(chat: Chat, payload: dict) -> PageStep:
+        conversation_id = existing_conversation(chat, payload["conversation_id"]).id
+        path = conversation_path(conversation_id) if opened else ""
+        return PageStep(path, {"conversation_id": conversation_id} if form else None)
+
+    return page
 
 
-def chat_list_form(chat: Chat, payload: dict) -> PageStep:
-    """The star of the chat's row in the chat list."""
-    existing_conversation(chat, payload["conversation_id"])
-    return PageStep("", {"conversation_id": payload["conversation_id"]})
-
-
-def header_form(chat: Chat, payload: dict) -> PageStep:
-    """The open chat's header menu."""
-    existing_conversation(chat, payload["conversation_id"])
-    return PageStep(
-        conversation_path(payload["conversation_id"]),
-        {"conversation_id": payload["conversation_id"]},
-    )
+open_page = conversation_page(opened=True, form=False)
+chat_list_form = conversation_page(opened=False, form=True)
+header_form = conversation_page(opened=True, form=True)
 
 
 def composer(chat: Chat, payload: dict) -> PageStep:

@@ -17,7 +17,7 @@ from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.opening import opening
-from apps.kit.tables import KEY, Keyed, Table, tables
+from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.microchat import state as chats
 from apps.microchat.actions import ACTIONS
 from apps.microchat.bench import sample_pages
@@ -111,10 +111,6 @@ def received(chat: Chat, now: float) -> Iterable[Message]:
     return (m for m in chat.messages.values() if not m.sent_in_run)
 
 
-def read_states(chat: Chat, now: float) -> Iterable[Keyed]:
-    return (Keyed(m.id, chat.read[m.id]) for m in received(chat, now))
-
-
 def sent(chat: Chat, now: float) -> Iterable[Message]:
     return (m for m in chat.messages.values() if m.sent_in_run)
 
@@ -133,20 +129,15 @@ materialize = tables(
             "hasAttachment INTEGER": "has_attachment",
         },
     ),
-    Table(
+    Table.keyed(
         "message_states",
-        read_states,
-        {"message_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": "value"},
+        lambda chat, now: {m.id: chat.read[m.id] for m in received(chat, now)},
+        {"message_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": VALUE},
     ),
     Table(
         "conversations",
         lambda chat, now: chat.conversations.values(),
-        {
-            "id TEXT PRIMARY KEY": "id",
-            "name TEXT": "name",
-            "type TEXT": "type",
-            "teamId TEXT": "team_id",
-        },
+        {**named("id TEXT PRIMARY KEY", "name TEXT", "type TEXT"), "teamId TEXT": "team_id"},
     ),
     Table.keyed(
         "conversation_states",
@@ -160,7 +151,7 @@ materialize = tables(
     Table(
         "teams",
         lambda chat, now: chat.teams.values(),
-        {"id TEXT PRIMARY KEY": "id", "name TEXT": "name"},
+        named("id TEXT PRIMARY KEY", "name TEXT"),
     ),
     Table(
         "calls",

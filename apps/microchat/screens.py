@@ -1,12 +1,10 @@
 """What each MicroChat screen shows for a URL: pure functions of (chat, query, root), memoised
-per state, so templates only lay things out and tests can check screens without HTML.
-
-Times are passed on as simulated seconds; the template tags turn them into text against the
-page's clock (templatetags/microchat.py).
-"""
+per state. Times stay simulated seconds; the template tags put them in words against the page's
+clock (templatetags/microchat.py)."""
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass
 from datetime import date, timedelta
 
@@ -70,7 +68,7 @@ def conversation_messages(chat: Chat) -> dict[str, tuple[str, ...]]:
 
 @per_state()
 def unread_counts(chat: Chat) -> dict[str, int]:
-    return chats.unread_by_conversation(chat)
+    return dict(Counter(chat.messages[i].conversation_id for i in chats.unread_ids(chat)))
 
 
 def chat_url(root: str, filter: str = "all", conversation_id: str | None = None) -> str:
@@ -315,9 +313,7 @@ def search(chat: Chat, q: str, root: str) -> SearchResults:
     shown = tuple(
         MessageHit(
             m,
-            chat.conversations[m.conversation_id].name
-            if m.conversation_id in chat.conversations
-            else "",
+            getattr(chat.conversations.get(m.conversation_id), "name", ""),
             chat_url(root, conversation_id=m.conversation_id),
         )
         for m in hits[:SEARCH_LIMIT]
@@ -383,10 +379,8 @@ def newest_calls(chat: Chat) -> list[Call]:
 @per_state()
 def calls_screen(chat: Chat, query: CallsQuery) -> CallsScreen:
     calls = newest_calls(chat)
-    dial = []
-    for conversation in sorted(chat.conversations.values(), key=lambda c: c.order):
-        if conversation.type == "direct" and conversation.name not in dial:
-            dial.append(conversation.name)
+    by_order = sorted(chat.conversations.values(), key=lambda c: c.order)
+    dial = list(dict.fromkeys(c.name for c in by_order if c.type == "direct"))
     return CallsScreen(
         calls=tuple(c for c in calls if query.filter == "all" or c.missed),
         missed=chats.missed_call_count(chat),
@@ -414,24 +408,21 @@ def activity(chat: Chat, root: str) -> tuple[ActivityItem, ...]:
         for c in newest_calls(chat)
         if c.missed
     ]
-    for message_id, reactions in chat.reactions.items():
-        message = chat.messages.get(message_id)
-        if message is None or not message.by_self:
-            continue
-        for reaction, users in reactions:
-            for user in users:
-                if user == chat.self_id:
-                    continue
-                items.append(
-                    ActivityItem(
-                        "reaction",
-                        chat.user_name(user),
-                        f"Reacted {reaction} to “{snippet(message, 60)}”",
-                        message.sent_at,
-                        "",
-                        chat_url(root, conversation_id=message.conversation_id),
-                    )
-                )
+    items += [
+        ActivityItem(
+            "reaction",
+            chat.user_name(user),
+            f"Reacted {reaction} to “{snippet(message, 60)}”",
+            message.sent_at,
+            "",
+            chat_url(root, conversation_id=message.conversation_id),
+        )
+        for message_id, reactions in chat.reactions.items()
+        if (message := chat.messages.get(message_id)) is not None and message.by_self
+        for reaction, users in reactions
+        for user in users
+        if user != chat.self_id
+    ]
     items.sort(key=lambda i: i.at if i.at is not None else float("-inf"), reverse=True)
     return tuple(items)
 
@@ -483,5 +474,5 @@ class Rail:
 
 
 @per_state()
-def rail(chat: Chat, root: str) -> Rail:
+def rail(chat: Chat) -> Rail:
     return Rail(len(unread_counts(chat)), chats.missed_call_count(chat))

@@ -1,16 +1,13 @@
 """The chat workspace as immutable values, and the questions pages and baselines ask of it.
 
-`Chat` is what the reducers build and what every page, baseline and evaluation reads. It is
-never mutated: a reducer returns a new `Chat`. Conversations and teams come with the first
-preload (all of the catalog's, as in the original); messages and calls arrive by event; what the
-user changes (read, reactions, favourites, mute, own messages) lives in small mappings beside
-the content.
+Conversations and teams come with the first preload (all of the catalog's, as in the original);
+messages and calls arrive by event; what the user changes (read, reactions, favourites, mute,
+own messages) lives in small mappings beside the content.
 """
 
 from __future__ import annotations
 
-from collections import Counter
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import ClassVar
@@ -18,7 +15,6 @@ from typing import ClassVar
 from apps.kit.state import SelfUserState, with_items
 
 ENVIRONMENT = "microchat"
-CONVERSATION_TYPES: tuple[str, ...] = ("direct", "group", "meeting")
 
 # Reactions by name (Teams' six quick reactions); drawn as icons, never as emoji glyphs, which
 # render as empty boxes in a browser without an emoji font.
@@ -124,13 +120,6 @@ class Chat(SelfUserState):
     reactions: Mapping[str, Reactions] = field(default_factory=lambda: EMPTY)
     calls: Mapping[str, Call] = field(default_factory=lambda: EMPTY)  # delivery order
 
-    @property
-    def self_id(self) -> str:
-        return self.me("id")
-
-    def has_message(self, message_id: str) -> bool:
-        return message_id in self.messages
-
     def has_conversation(self, conversation_id: str) -> bool:
         return conversation_id in self.conversations
 
@@ -201,14 +190,13 @@ def unread_conversation_count(chat: Chat) -> int:
     return len({chat.messages[i].conversation_id for i in unread_ids(chat)})
 
 
-def mention_count(chat: Chat) -> int:
-    """Unread messages that mention the self user (the original's definition)."""
-    return sum(1 for i in unread_ids(chat) if chat.messages[i].mentions_me)
+def unread_with(flag: str) -> Callable[[Chat], int]:
+    """The count of unread messages with `flag` set (the original's definitions)."""
+    return lambda chat: sum(1 for i in unread_ids(chat) if getattr(chat.messages[i], flag))
 
 
-def urgent_count(chat: Chat) -> int:
-    """Unread urgent messages."""
-    return sum(1 for i in unread_ids(chat) if chat.messages[i].is_urgent)
+mention_count = unread_with("mentions_me")
+urgent_count = unread_with("is_urgent")
 
 
 def missed_call_count(chat: Chat) -> int:
@@ -217,7 +205,3 @@ def missed_call_count(chat: Chat) -> int:
 
 def total_message_count(chat: Chat) -> int:
     return len(chat.messages)
-
-
-def unread_by_conversation(chat: Chat) -> dict[str, int]:
-    return dict(Counter(chat.messages[i].conversation_id for i in unread_ids(chat)))

@@ -44,7 +44,7 @@ def show(
         "section": section or screen,
         "self_name": chat.self_name,
         "self_names": (chat.self_name, first),
-        "rail": screens.rail(chat, page.root + "/"),
+        "rail": screens.rail(chat),
     }
     return render_screen(request, page, f"microchat/{screen}.html", {**chrome, **context})
 

@@ -21,6 +21,7 @@ from pydantic import Field
 
 from apps.kit.deciding import checking, found, new_id
 from apps.kit.state import setting, with_changed, with_items, without
+from apps.kit.streaming import id_payload
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import (
     FOLDERS,
@@ -39,8 +40,7 @@ ADDRESS = re.compile(r"[^@\s,;<>]+@[^@\s,;<>]+\.[^@\s,;<>]+")
 PURGED_FROM = ("deleted", "drafts")  # deleting from these folders is permanent
 
 
-class EmailId(Payload):
-    email_id: str = Field(description="id of a message in the mailbox")
+EmailId = id_payload("EmailId", "email_id", "id of a message in the mailbox")
 
 
 class Move(EmailId):
@@ -129,9 +129,9 @@ def attached(mail: Mail, payload: dict) -> list[str]:
 
 def composed(mail: Mail, payload: dict, *, check_addresses: bool) -> dict:
     return {
-        "to": address_list(payload, "to", check=check_addresses),
-        "cc": address_list(payload, "cc", check=check_addresses),
-        "bcc": address_list(payload, "bcc", check=check_addresses),
+        **{
+            name: address_list(payload, name, check=check_addresses) for name in ("to", "cc", "bcc")
+        },
         "subject": payload.get("subject") or "",
         "body": payload.get("body") or "",
         "attachments": attached(mail, payload),
@@ -210,17 +210,14 @@ class Favorite(Payload):
     folder: Literal[FOLDERS]
 
 
-def decide_favorite(mail: Mail, payload: dict) -> dict:
-    return payload
-
-
-def favoring(on: bool) -> Callable[[Mail, LoggedEvent], Mail]:
-    """Add the folder to Favorites (at the end) or take it out; set, not toggled."""
+def favoring(on: bool, help: str) -> Action:
+    """Add the folder to Favorites (at the end) or take it out; set, not toggled. Any folder
+    may be a favourite: the schema has checked it, so the payload is logged as sent."""
 
     def reduce(mail: Mail, event: LoggedEvent) -> Mail:
         return with_favorite(mail, event.payload["folder"], on=on)
 
-    return reduce
+    return Action(Favorite, lambda mail, payload: payload, reduce, help=help, page=favorites_page)
 
 
 # --- where a person does it in the client (Action.page) ------------------------------------------
@@ -234,17 +231,13 @@ def message_screen(mail: Mail, email_id: str) -> str:
     return MailboxQuery(folder=mail.folder_of(email_id)).opening(email_id)
 
 
-def open_page(mail: Mail, payload: dict) -> PageStep:
-    """Opening the message is the action (declared as an implicit action of the mailbox page)."""
-    return PageStep(message_screen(mail, payload["email_id"]))
-
-
-def reading_pane(*fields: str) -> Callable[[Mail, dict], PageStep]:
-    """The open message's reading-pane form for the action, with `fields` of the payload."""
+def reading_pane(*fields: str, form: bool = True) -> Callable[[Mail, dict], PageStep]:
+    """The open message's reading-pane form for the action, with `fields` of the payload; with
+    no `form`, opening the message is the action (an implicit action of the mailbox page)."""
 
     def page(mail: Mail, payload: dict) -> PageStep:
-        form = {name: str(payload[name]) for name in fields}
-        return PageStep(message_screen(mail, payload["email_id"]), form)
+        values = {name: str(payload[name]) for name in fields}
+        return PageStep(message_screen(mail, payload["email_id"]), values if form else None)
 
     return page
 
@@ -276,6 +269,7 @@ def favorites_page(mail: Mail, payload: dict) -> PageStep:
 
 
 pane_button = reading_pane()  # the action's button in the open message's reading pane
+open_page = reading_pane(form=False)
 
 
 def marked(page: Callable[[Mail, dict], PageStep] = pane_button, **flags: bool) -> Action:
@@ -321,19 +315,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             "saves on its own while one types).",
             page=compose_page,
         ),
-        "add_favorite": Action(
-            Favorite,
-            decide_favorite,
-            favoring(True),
-            help="Add a folder to Favorites, at the top of the folder pane.",
-            page=favorites_page,
-        ),
-        "remove_favorite": Action(
-            Favorite,
-            decide_favorite,
-            favoring(False),
-            help="Take a folder out of Favorites.",
-            page=favorites_page,
-        ),
+        "add_favorite": favoring(True, "Add a folder to Favorites, at the top of the folder pane."),
+        "remove_favorite": favoring(False, "Take a folder out of Favorites."),
     }
 )

@@ -1,9 +1,5 @@
-"""The MicroMail pages worth timing (`manage.py bench_pages --env micromail`), from the state.
-
-A pure function of the mailbox: every folder, every quick filter, a search in the folder and
-across folders, an open message, each compose form and an attachment preview. Paths are relative to the
-environment root (`/r/<token>/micromail/`).
-"""
+"""The MicroMail pages worth timing (`manage.py bench_pages --env micromail`), from the state:
+every folder and quick filter, searches, an open message, each compose form, a preview."""
 
 from __future__ import annotations
 

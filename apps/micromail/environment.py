@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.opening import opening
-from apps.kit.tables import KEY, Table, tables
+from apps.kit.tables import KEY, Table, named, tables
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
@@ -68,10 +68,7 @@ materialize = tables(
         "emails",
         lambda mail, now: mail.emails.values(),
         {
-            "id TEXT PRIMARY KEY": "id",
-            "subject TEXT": "subject",
-            "sender_name TEXT": "sender_name",
-            "sender_email TEXT": "sender_email",
+            **named("id TEXT PRIMARY KEY", "subject TEXT", "sender_name TEXT", "sender_email TEXT"),
             "hasAttachment INTEGER": "has_attachment",
             "isExternal INTEGER": "is_external",
             "importance TEXT": "importance",

@@ -1,9 +1,5 @@
-"""What the mailbox screen shows for a URL: folder links, filter chips, rows, the open message.
-
-A pure function of (mail, query, root), so templates only lay things out and tests can check
-the screen without HTML. The folder links are the sidebar every page shares (views.base_context),
-so they are not part of the screen.
-"""
+"""What the mailbox screen shows for a URL, a pure function of (mail, query, root). The folder
+links are the sidebar every page shares (views.base_context), so not part of the screen."""
 
 from __future__ import annotations
 
@@ -14,8 +10,6 @@ from apps.kit.derived import per_state
 from apps.micromail import state as mailbox
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import FOLDER_TITLES, FOLDERS, Attachment, Email, EmailState, Mail
-
-FILTER_LABELS = {"all": "All", "unread": "Unread", "flagged": "Flagged", "mentions": "Mentions"}
 
 
 @dataclass(frozen=True)
@@ -200,10 +194,8 @@ def favorite_links(mail: Mail, current: str | None, root: str) -> tuple[FolderLi
     return tuple(by_folder[f] for f in mail.favorites if f in by_folder)
 
 
-@per_state()
-def attachment_choices(mail: Mail) -> tuple[Attachment, ...]:
-    """What the compose form's attachment picker offers: documents of mail in the mailbox."""
-    return mailbox.attachment_shelf(mail)
+# What the compose form's attachment picker offers: documents of mail in the mailbox.
+attachment_choices = per_state()(mailbox.attachment_shelf)
 
 
 @per_state()
@@ -220,7 +212,7 @@ def mailbox_screen(mail: Mail, query: MailboxQuery, root: str) -> Screen:
     chips = tuple(
         FilterChip(
             name,
-            FILTER_LABELS[name],
+            name.title(),  # All, Unread, Flagged, Mentions
             None if name == "all" else counts[name],
             root + query.but(filter=name, email=None).querystring(),
             name == query.filter,

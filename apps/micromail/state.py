@@ -1,12 +1,9 @@
-"""The mailbox as immutable values, and the questions pages and baselines ask of it.
-
-`Mail` is what the reducers build and what every page, baseline and evaluation reads. It is
-never mutated: a reducer returns a new `Mail` (cheap copies of small dicts). Everything below
-`Mail` is a pure function of it, so the same log always shows the same mailbox.
-"""
+"""The mailbox as immutable values (`Mail`, which reducers build and pages, baselines and
+evaluation read), and the questions they ask of it: pure functions of a `Mail`."""
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
@@ -126,7 +123,6 @@ def attachment_shelf(mail: Mail) -> tuple[Attachment, ...]:
 
 
 def counting(predicate: Callable[[Email, EmailState], bool]) -> Callable[[Mail], int]:
-    """The count of messages for which `predicate(email, state)` holds."""
     return lambda mail: sum(1 for i, s in mail.states.items() if predicate(mail.emails[i], s))
 
 
@@ -143,12 +139,8 @@ cc_count = counting(lambda e, s: e.is_cc and s.folder == "inbox")
 
 def folder_badges(mail: Mail) -> dict[str, int]:
     """Sidebar badges: Inbox shows its unread count, every other folder its total."""
-    totals = dict.fromkeys(FOLDERS, 0)
-    for email_state in mail.states.values():
-        if email_state.folder in totals:
-            totals[email_state.folder] += 1
-    totals["inbox"] = unread_count(mail)
-    return totals
+    totals = Counter(s.folder for s in mail.states.values())
+    return {folder: totals[folder] for folder in FOLDERS} | {"inbox": unread_count(mail)}
 
 
 # --- listing: folder, quick filter, search, order --------------------------------------------

@@ -8,6 +8,7 @@ from dataclasses import replace
 
 import pytest
 
+from apps.microchat import screens
 from apps.microchat import state as chats
 from apps.microchat.environment import MICROCHAT
 from events.registry import ActionRejected
@@ -47,7 +48,7 @@ def test_opening_reads_what_is_there_and_a_later_arrival_stays_unread_until_open
     assert all(chat.read[i] for i in GABRIEL_FRESH)
     chat = CAST.arrive(chat, "new_message", {"message_id": PAYMENTS_DOWN}, at=30.0)
     assert chat.read[PAYMENTS_DOWN] is False
-    assert chats.unread_by_conversation(chat) == {"direct-gabriel": 1}
+    assert screens.unread_counts(chat) == {"direct-gabriel": 1}
 
 
 def test_opening_a_chat_with_nothing_unread_is_not_an_action():
@@ -105,7 +106,7 @@ def test_sending_replying_editing_and_deleting_your_own_message():
     assert chat.messages[sent.id].content == "On it now" and chat.messages[sent.id].edited
     with pytest.raises(ActionRejected, match="only yours"):
         CAST.act(chat, "delete_message", {"message_id": "dm-gabriel-01"})
-    assert not CAST.act(chat, "delete_message", {"message_id": sent.id}).has_message(sent.id)
+    assert sent.id not in CAST.act(chat, "delete_message", {"message_id": sent.id}).messages
 
 
 def test_sending_checks_the_text_and_the_reply():

@@ -6,10 +6,9 @@ what they show of the clock goes in as text: `chat_day` and `message_stamp` give
 
 from __future__ import annotations
 
-from datetime import timedelta
+from datetime import datetime
 
 from django import template
-from django.utils.safestring import SafeString
 
 from apps.kit import simclock
 from apps.kit.templatetags.simtime import sim_ago
@@ -17,6 +16,14 @@ from apps.microchat.markup import render_markup
 from apps.microchat.state import REACTIONS
 
 register = template.Library()
+register.filter("markup", render_markup)
+
+
+def days_ago(at: float, page) -> tuple[datetime, int]:
+    """The moment `at` on the page's calendar, and how many days before today it falls."""
+    zero = simclock.day_zero(page.run)
+    then = simclock.moment(at, zero)
+    return then, (simclock.today(page.now, zero) - then.date()).days
 
 
 @register.filter
@@ -24,31 +31,18 @@ def chat_day(at: float | None, page) -> str:
     """How Teams dates a chat's last message: today's time, "Yesterday", else d/m."""
     if at is None:  # no message yet
         return ""
-    zero = simclock.day_zero(page.run)
-    then, today = simclock.moment(at, zero).date(), simclock.today(page.now, zero)
-    if then == today:
-        return simclock.clock_time(at)
-    if then == today - timedelta(days=1):
-        return "Yesterday"
-    return f"{then.day}/{then.month}"
+    then, ago = days_ago(at, page)
+    return {0: simclock.clock_time(at), 1: "Yesterday"}.get(ago, f"{then.day}/{then.month}")
 
 
 @register.filter
 def message_stamp(at: float, page) -> str:
     """A message's header time: "09:12", "Yesterday 17:30", "Mon 3/3 10:05"."""
-    zero = simclock.day_zero(page.run)
-    then, today = simclock.moment(at, zero), simclock.today(page.now, zero)
+    then, ago = days_ago(at, page)
     clock = simclock.clock_time(at)
-    if then.date() == today:
-        return clock
-    if then.date() == today - timedelta(days=1):
-        return f"Yesterday {clock}"
-    return f"{then:%a} {then.day}/{then.month} {clock}"
-
-
-@register.filter
-def markup(content: str, self_names: tuple[str, ...]) -> SafeString:
-    return render_markup(content, self_names)
+    return {0: clock, 1: f"Yesterday {clock}"}.get(
+        ago, f"{then:%a} {then.day}/{then.month} {clock}"
+    )
 
 
 @register.simple_tag
