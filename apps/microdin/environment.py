@@ -18,7 +18,8 @@ from dataclasses import replace
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.feeds import opening, post_rows
+from apps.kit.feed_tables import posts_table
+from apps.kit.feeds import opening
 from apps.kit.tables import KEY, Table, tables
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
@@ -163,17 +164,7 @@ EVENT_TYPES = event_types(
 # and profile sections are not exposed (as in the original).
 
 materialize = tables(
-    Table(
-        "posts",
-        post_rows,
-        {
-            "id TEXT PRIMARY KEY": "post.id",
-            "authorId TEXT": "post.author.id",
-            "content TEXT": "post.content",
-            "likes INTEGER": "likes",
-            "shares INTEGER": "post.shares",
-        },
-    ),
+    posts_table(("content TEXT", "post.content"), ("shares INTEGER", "post.shares")),
     Table.keyed(
         "post_states",
         "post_states",

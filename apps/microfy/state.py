@@ -108,10 +108,6 @@ class Music(SelfUserState):
     moods: Mapping[str, Mood] = no_items()
     now_playing: NowPlaying | None = None
 
-    @property
-    def self_id(self) -> str:
-        return self.me("id")
-
     def has(self, track_id: str) -> bool:
         return track_id in self.tracks
 

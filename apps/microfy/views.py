@@ -11,7 +11,8 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.kit.pages import Page, one_of, run_page
+from apps.kit.item_actions import act_on_item
+from apps.kit.pages import Page, run_page
 from apps.kit.rendering import back_field, redirect_after, render_screen
 from apps.kit.streaming import present, showing, shown_count
 from apps.microfy import screens
@@ -24,6 +25,7 @@ TRACK_ACTIONS = {
     "unlike_track": "Removed from Liked Songs",
     "add_to_playlist": "Added to playlist",
 }
+TRACK_FORMS = {"add_to_playlist": ("playlist_id",)}  # what a track action's form posts
 ARTIST_ACTIONS = {"follow_artist": "Following", "unfollow_artist": "Unfollowed"}
 
 
@@ -151,20 +153,15 @@ def playlist(request: HttpRequest, page: Page, playlist_id: str) -> HttpResponse
 @require_POST
 @run_page
 def track_action(request: HttpRequest, page: Page, track_id: str, action: str) -> HttpResponse:
-    one_of(action, TRACK_ACTIONS, "track action")
-    payload = {"track_id": track_id}
-    if action == "add_to_playlist":
-        payload["playlist_id"] = request.POST.get("playlist_id", "")
-    page.act(action, payload)
-    return redirect_after(request, page, back_field(request), TRACK_ACTIONS[action])
+    done = act_on_item(request, page, action, TRACK_ACTIONS, "track_id", track_id, TRACK_FORMS)
+    return redirect_after(request, page, back_field(request), done)
 
 
 @require_POST
 @run_page
 def artist_action(request: HttpRequest, page: Page, artist_id: str, action: str) -> HttpResponse:
-    one_of(action, ARTIST_ACTIONS, "artist action")
-    page.act(action, {"artist_id": artist_id})
-    return redirect_after(request, page, back_field(request), ARTIST_ACTIONS[action])
+    done = act_on_item(request, page, action, ARTIST_ACTIONS, "artist_id", artist_id)
+    return redirect_after(request, page, back_field(request), done)
 
 
 @require_POST

@@ -18,7 +18,8 @@ from typing import NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.feeds import opening, post_rows
+from apps.kit.feed_tables import posts_table
+from apps.kit.feeds import opening
 from apps.kit.social import Comment
 from apps.kit.state import with_changed, with_items
 from apps.kit.tables import KEY, VALUE, Keyed, Table, tables
@@ -160,17 +161,7 @@ def story_states(gram: Gram, now: float) -> Iterable[Keyed]:
 
 
 materialize = tables(
-    Table(
-        "posts",
-        post_rows,
-        {
-            "id TEXT PRIMARY KEY": "post.id",
-            "authorId TEXT": "post.author.id",
-            "caption TEXT": "post.caption",
-            "likes INTEGER": "likes",
-            "isTargetPost INTEGER": "post.is_target",
-        },
-    ),
+    posts_table(("caption TEXT", "post.caption"), ("isTargetPost INTEGER", "post.is_target")),
     Table.keyed(
         "post_states",
         "post_states",

@@ -15,6 +15,7 @@ from urllib.parse import quote
 from django.http import HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
+from apps.kit.item_actions import act_on_item
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.rendering import redirect_after, redirect_to, render_screen
 from apps.kit.streaming import present
@@ -32,6 +33,7 @@ VIDEO_ACTIONS = {
     "post_comment": "Comment added",
     "add_to_playlist": "",
 }
+VIDEO_FORMS = {"post_comment": ("content",), "add_to_playlist": ("playlist_id",)}  # fields posted
 CHANNEL_ACTIONS = {"subscribe": "Subscription added", "unsubscribe": "Subscription removed"}
 NOTIFICATION_ACTIONS = ("read_notification", "dismiss_notification")
 
@@ -162,16 +164,9 @@ def watch(request: HttpRequest, page: Page) -> HttpResponse:
 @require_POST
 @run_page
 def video_action(request: HttpRequest, page: Page, video_id: str, action: str) -> HttpResponse:
-    one_of(action, VIDEO_ACTIONS, "video action")
-    payload = {"video_id": video_id}
-    if action == "post_comment":
-        payload["content"] = request.POST.get("content", "")
+    done = act_on_item(request, page, action, VIDEO_ACTIONS, "video_id", video_id, VIDEO_FORMS)
     if action == "add_to_playlist":
-        payload["playlist_id"] = request.POST.get("playlist_id", "")
-    page.act(action, payload)
-    done = VIDEO_ACTIONS[action]
-    if action == "add_to_playlist":
-        done = f"Saved to {page.state.playlists[payload['playlist_id']].name}"
+        done = f"Saved to {page.state.playlists[request.POST.get('playlist_id', '')].name}"
     if request.POST.get("back") == "shorts":  # the form was in the Shorts player
         return redirect_after(request, page, f"shorts/{quote(video_id)}", done)
     anchor = "#comments" if action == "post_comment" else ""
