@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from apps.kit.arrivals import Stamp
+from apps.kit.feeds import from_catalog
 from apps.microchat.state import (
     ENVIRONMENT,
     REACTIONS,
@@ -104,28 +105,26 @@ def catalog_attachments(record: Mapping[str, Any]) -> tuple[Attachment, ...]:
     return tuple(items)
 
 
+@from_catalog(ENVIRONMENT, "messages")
 def catalog_message(
-    catalog: Any, message_id: str, *, at: float, preloaded: bool, self_id: str
-) -> tuple[Message, bool, Reactions] | None:
-    """The message as it arrives at `at` (a preloaded one `minutesAgo` earlier), its read state
-    (the catalog's, as in the original, for new and preloaded messages alike) and reactions;
-    None if the catalog lacks it."""
-    record = catalog.table(ENVIRONMENT, "messages").get(message_id)
-    if record is None:
-        return None
+    chat: Chat, message_id: str, record: Mapping[str, Any], stamp: Stamp
+) -> tuple[Message, bool, Reactions]:
+    """The message as it arrives (a preloaded one `minutesAgo` before the preload), its read
+    state (the catalog's, as in the original, for new and preloaded messages alike) and
+    reactions."""
     sender_id = str(_field(record, "sender_id", "senderId", default=""))
     attachments = catalog_attachments(record)
     minutes_ago = float(_field(record, "minutesAgo", default=DEFAULT_MINUTES_AGO))
-    by_self = sender_id == self_id
+    by_self = sender_id == chat.self_id
     message = Message(
         id=message_id,
         conversation_id=str(_field(record, "conversation_id", "conversationId", default="")),
         sender_id=sender_id,
         sender_name=_name_of(
-            catalog, sender_id, otherwise=str(_field(record, "senderName", default="Unknown"))
+            chat.catalog, sender_id, otherwise=str(_field(record, "senderName", default="Unknown"))
         ),
         content=str(record.get("content") or ""),
-        sent_at=at - 60 * minutes_ago if preloaded else at,
+        sent_at=stamp.at - 60 * minutes_ago if stamp.preloaded else stamp.at,
         is_urgent=bool(record.get("isUrgent", False)),
         mentions_me=bool(record.get("mentionsMe", False)),
         has_attachment=bool(record.get("hasAttachment", False)) or bool(attachments),
@@ -144,13 +143,11 @@ def _schedule(record: Mapping[str, Any]) -> tuple[int, str, int] | None:
     return (int(schedule.get("day", 0)), str(schedule["start"]), int(schedule.get("minutes", 30)))
 
 
+@from_catalog(ENVIRONMENT, "conversations")
 def make_conversation(
-    chat: Chat, conversation_id: str, stamp: Stamp
-) -> tuple[Conversation, ConversationState] | None:
+    chat: Chat, conversation_id: str, record: Mapping[str, Any], stamp: Stamp
+) -> tuple[Conversation, ConversationState]:
     """A conversation of the workspace; a direct chat is named after the other person."""
-    record = chat.catalog.table(ENVIRONMENT, "conversations").get(conversation_id)
-    if record is None:
-        return None
     participants = tuple(str(p) for p in record.get("participantIds") or ())
     kind = str(record.get("type") or "group")
     name = str(record.get("name") or "")
@@ -174,10 +171,8 @@ def make_conversation(
     return conversation, flags
 
 
-def make_team(chat: Chat, team_id: str, stamp: Stamp) -> Team | None:
-    record = chat.catalog.table(ENVIRONMENT, "teams").get(team_id)
-    if record is None:
-        return None
+@from_catalog(ENVIRONMENT, "teams")
+def make_team(chat: Chat, team_id: str, record: Mapping[str, Any], stamp: Stamp) -> Team:
     channels = tuple(
         Channel(
             id=str(c["id"]),
@@ -197,17 +192,14 @@ def make_team(chat: Chat, team_id: str, stamp: Stamp) -> Team | None:
         owner_id=record.get("ownerId"),
         channels=channels,
         avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
-        initials=str(record.get("avatarInitials") or ""),
         order=int(record.get("order") or 0),
     )
 
 
-def make_call(chat: Chat, call_id: str, stamp: Stamp) -> Call | None:
+@from_catalog(ENVIRONMENT, "calls")
+def make_call(chat: Chat, call_id: str, record: Mapping[str, Any], stamp: Stamp) -> Call:
     """A call of the log: one delivered by a `new_call` event carries its arrival time, one
     preloaded the catalog's own words ("2 hours ago")."""
-    record = chat.catalog.table(ENVIRONMENT, "calls").get(call_id)
-    if record is None:
-        return None
     user_id = _field(record, "userId", "user_id")
     return Call(
         id=call_id,
@@ -216,7 +208,6 @@ def make_call(chat: Chat, call_id: str, stamp: Stamp) -> Call | None:
         # The original wrote `callerId`, which its catalog never sets (its UI read `userId`):
         # the column now names the caller whenever the catalog does either way.
         caller_id=_field(record, "callerId", "userId"),
-        user_id=user_id,
         type=str(record.get("type") or "incoming"),
         missed=bool(record.get("missed", False)),
         duration=str(record.get("duration") or ""),

@@ -1,12 +1,5 @@
-"""MicroChat's registration with the core: scenario events, baselines, evaluation tables.
-
-Scenario events (SentinelBench format):
-- `preload_messages {message_ids, call_ids?}` — history already in the chats and the call log
-  (`["*"]` = the whole catalog table). The first one also loads every catalog conversation and
-  team. Baselines are measured right after it applies.
-- `new_message {message_id}` — one message arriving now (read state from the catalog).
-- `new_call {call_id}` — one call appearing in the call log.
-"""
+"""MicroChat's registration with the core: scenario events (SentinelBench's `preload_messages`,
+`new_message`, `new_call`: their help says what each does), baselines, evaluation tables."""
 
 from __future__ import annotations
 
@@ -15,7 +8,7 @@ from typing import Any
 
 from pydantic import Field
 
-from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.opening import opening
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.microchat import state as chats
@@ -42,17 +35,9 @@ def deliver_messages(chat: Chat, ids: Iterable[str], at: float, *, preloaded: bo
     """Put catalog messages in their conversations, each with the read state and reactions the
     catalog gives it (three mappings: more than a `Delivery` fills). An id already delivered is
     left as it is; one missing from the catalog is skipped."""
-    arrivals = [
-        arrived
-        for message_id in dict.fromkeys(ids)
-        if message_id not in chat.messages
-        and (
-            arrived := catalog_message(
-                chat.catalog, message_id, at=at, preloaded=preloaded, self_id=chat.self_id
-            )
-        )
-        is not None
-    ]
+    new = [i for i in dict.fromkeys(ids) if i not in chat.messages]
+    made = (catalog_message(chat, i, Stamp(at, preloaded, n)) for n, i in enumerate(new))
+    arrivals = [arrived for arrived in made if arrived is not None]
     return with_messages(chat, arrivals)
 
 
@@ -111,10 +96,6 @@ def received(chat: Chat, now: float) -> Iterable[Message]:
     return (m for m in chat.messages.values() if not m.sent_in_run)
 
 
-def sent(chat: Chat, now: float) -> Iterable[Message]:
-    return (m for m in chat.messages.values() if m.sent_in_run)
-
-
 materialize = tables(
     Table(
         "messages",
@@ -167,7 +148,7 @@ materialize = tables(
     # out of `messages`, so typing a watched phrase into a chat can never satisfy a content check.
     Table(
         "sent_messages",
-        sent,
+        lambda chat, now: (m for m in chat.messages.values() if m.sent_in_run),
         {
             "id TEXT PRIMARY KEY": "id",
             "conversationId TEXT": "conversation_id",

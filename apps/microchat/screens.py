@@ -101,13 +101,8 @@ def last_message(chat: Chat, conversation_id: str) -> Message | None:
 
 
 def matches_filter(conversation: Conversation, unread: int, name: str) -> bool:
-    if name == "unread":
-        return unread > 0
-    if name == "chats":
-        return conversation.type != "meeting"
-    if name == "meetings":
-        return conversation.type == "meeting"
-    return True
+    meeting = conversation.type == "meeting"
+    return {"unread": unread > 0, "chats": not meeting, "meetings": meeting}.get(name, True)
 
 
 @per_state()

@@ -8,18 +8,18 @@ own messages) lives in small mappings beside the content.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from types import MappingProxyType
 from typing import ClassVar
 
 from apps.kit.state import SelfUserState, with_items
+from apps.kit.streaming import counting, no_items
 
 ENVIRONMENT = "microchat"
 
 # Reactions by name (Teams' six quick reactions); drawn as icons, never as emoji glyphs, which
 # render as empty boxes in a browser without an emoji font.
 REACTIONS: tuple[str, ...] = ("like", "heart", "laugh", "celebrate", "sad", "angry")
-EMPTY: Mapping = MappingProxyType({})
 
 
 @dataclass(frozen=True)
@@ -87,7 +87,6 @@ class Team:
     owner_id: str | None
     channels: tuple[Channel, ...]
     avatar_color: str = "#5B5FC7"
-    initials: str = ""
     order: int = 0
 
 
@@ -96,7 +95,6 @@ class Call:
     id: str
     name: str
     caller_id: str | None  # the original's `callerId` column (its UI used `userId`)
-    user_id: str | None
     type: str  # incoming | outgoing | group
     missed: bool
     duration: str
@@ -112,13 +110,13 @@ Reactions = tuple[tuple[str, tuple[str, ...]], ...]  # ((reaction, user ids), â€
 class Chat(SelfUserState):
     # Used only when a catalog has no user marked isSelf (e.g. a minimal test catalog).
     FALLBACK: ClassVar[Mapping[str, str]] = MappingProxyType({"id": "user000", "name": "Me"})
-    conversations: Mapping[str, Conversation] = field(default_factory=lambda: EMPTY)
-    conversation_states: Mapping[str, ConversationState] = field(default_factory=lambda: EMPTY)
-    teams: Mapping[str, Team] = field(default_factory=lambda: EMPTY)
-    messages: Mapping[str, Message] = field(default_factory=lambda: EMPTY)  # delivery order
-    read: Mapping[str, bool] = field(default_factory=lambda: EMPTY)
-    reactions: Mapping[str, Reactions] = field(default_factory=lambda: EMPTY)
-    calls: Mapping[str, Call] = field(default_factory=lambda: EMPTY)  # delivery order
+    conversations: Mapping[str, Conversation] = no_items()
+    conversation_states: Mapping[str, ConversationState] = no_items()
+    teams: Mapping[str, Team] = no_items()
+    messages: Mapping[str, Message] = no_items()  # delivery order
+    read: Mapping[str, bool] = no_items()
+    reactions: Mapping[str, Reactions] = no_items()
+    calls: Mapping[str, Call] = no_items()  # delivery order
 
     def has_conversation(self, conversation_id: str) -> bool:
         return conversation_id in self.conversations
@@ -199,9 +197,5 @@ mention_count = unread_with("mentions_me")
 urgent_count = unread_with("is_urgent")
 
 
-def missed_call_count(chat: Chat) -> int:
-    return sum(1 for call in chat.calls.values() if call.missed)
-
-
-def total_message_count(chat: Chat) -> int:
-    return len(chat.messages)
+missed_call_count = counting("calls", "missed")
+total_message_count = counting("messages")

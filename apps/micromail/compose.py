@@ -71,13 +71,11 @@ def _prefixed(prefix: str, subject: str) -> str:
 
 def _without(addresses: Iterable[str], *excluded: str) -> tuple[str, ...]:
     """Addresses minus `excluded` (case-insensitive), without repeats, in order."""
-    seen = {e.casefold() for e in excluded}
-    kept = []
+    first: dict[str, str] = {}  # each address as first written, by its case-folded form
     for address in addresses:
-        if address.casefold() not in seen:
-            seen.add(address.casefold())
-            kept.append(address)
-    return tuple(kept)
+        first.setdefault(address.casefold(), address)
+    left_out = {e.casefold() for e in excluded}
+    return tuple(address for key, address in first.items() if key not in left_out)
 
 
 def _quoted(email: Email) -> str:

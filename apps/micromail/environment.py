@@ -1,10 +1,5 @@
-"""MicroMail's registration with the core: scenario events, baselines, evaluation tables.
-
-Scenario events (SentinelBench format):
-- `preload_emails {email_ids: [...]}` — mail already in the mailbox when the task starts
-  (`["*"]` = the whole `emails` catalog table). Baselines are captured right after it applies.
-- `new_email {email_id}` — one message arriving now.
-"""
+"""MicroMail's registration with the core: scenario events (SentinelBench's `preload_emails`
+and `new_email`), baselines, evaluation tables."""
 
 from __future__ import annotations
 

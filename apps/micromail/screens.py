@@ -203,12 +203,7 @@ def mailbox_screen(mail: Mail, query: MailboxQuery, root: str) -> Screen:
     """The screen for `query`; `query.email` must be in the mailbox and `query.preview` one of
     its attachments (the view checks)."""
     folder = None if query.searches_everywhere else query.folder
-    searched = [
-        i
-        for i in mailbox.in_folder(mail, folder)
-        if mailbox.matches_search(mail.emails[i], query.q)
-    ]
-    counts = mailbox.filter_counts(mail, searched)
+    counts = mailbox.filter_counts(mail, mailbox.select(mail, folder=folder, query=query.q))
     chips = tuple(
         FilterChip(
             name,

@@ -5,11 +5,12 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from types import MappingProxyType
 from typing import ClassVar
 
 from apps.kit.state import SelfUserState
+from apps.kit.streaming import no_items
 
 ENVIRONMENT = "micromail"
 
@@ -29,8 +30,6 @@ QUICK_FILTERS: tuple[str, ...] = ("all", "unread", "flagged", "mentions")
 # The original's Favorites section, top of the folder pane; the user may add and remove folders.
 DEFAULT_FAVORITES: tuple[str, ...] = ("inbox", "sent", "archive", "deleted")
 PREVIEW_LENGTH = 140
-
-EMPTY: Mapping = MappingProxyType({})
 
 
 @dataclass(frozen=True)
@@ -87,8 +86,8 @@ class Mail(SelfUserState):
     FALLBACK: ClassVar[Mapping[str, str]] = MappingProxyType(
         {"name": "Me", "email": "me@micromail.local"}
     )
-    emails: Mapping[str, Email] = field(default_factory=lambda: EMPTY)  # in delivery order
-    states: Mapping[str, EmailState] = field(default_factory=lambda: EMPTY)
+    emails: Mapping[str, Email] = no_items()  # in delivery order
+    states: Mapping[str, EmailState] = no_items()
     favorites: tuple[str, ...] = DEFAULT_FAVORITES  # folders, in the order they were added
 
     def has(self, email_id: str) -> bool:
@@ -148,13 +147,11 @@ def folder_badges(mail: Mail) -> dict[str, int]:
 
 def matches_filter(mail: Mail, email_id: str, quick_filter: str) -> bool:
     email_state = mail.states[email_id]
-    if quick_filter == "unread":
-        return not email_state.is_read
-    if quick_filter == "flagged":
-        return email_state.is_flagged
-    if quick_filter == "mentions":
-        return mail.emails[email_id].mentions_me
-    return True
+    return {
+        "unread": not email_state.is_read,
+        "flagged": email_state.is_flagged,
+        "mentions": mail.emails[email_id].mentions_me,
+    }.get(quick_filter, True)
 
 
 def matches_search(email: Email, query: str) -> bool:

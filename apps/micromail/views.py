@@ -48,7 +48,7 @@ def root_url(page: Page) -> str:
     return page.root + "/"
 
 
-FAVORITE_ACTIONS = ("add_favorite", "remove_favorite")
+FAVORITE_ACTIONS = {"add_favorite": "added to", "remove_favorite": "removed from"}
 # Sent by the compose form's own saving (static/micromail/micromail.js): answered with the draft's id.
 AUTOSAVE_HEADER = "X-MicroMail-Autosave"
 
@@ -165,9 +165,7 @@ def favorite_action(request: HttpRequest, page: Page) -> HttpResponse:
     action = one_of(request.POST.get("action"), FAVORITE_ACTIONS, "favorites action")
     folder = request.POST.get("folder", "")
     page.act(action, {"folder": folder})
-    title = FOLDER_TITLES[folder]
-    verb = "added to" if action == "add_favorite" else "removed from"
-    messages.success(request, f"{title} {verb} Favorites")
+    messages.success(request, f"{FOLDER_TITLES[folder]} {FAVORITE_ACTIONS[action]} Favorites")
     return back_to(request, page, MailboxQuery.from_querystring(request.POST.get("back", "")))
 
 
