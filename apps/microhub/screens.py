@@ -6,6 +6,7 @@ templates render it with the simtime filters, which register when the text next 
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass
 
 from apps.kit.derived import per_state
@@ -14,6 +15,7 @@ from apps.microhub.state import (
     Commit,
     Hub,
     Issue,
+    Post,
     PullRequest,
     RepoFile,
     WorkflowRun,
@@ -32,15 +34,10 @@ class Counts:
 
 
 @dataclass(frozen=True)
-class IssueRow:
-    issue: Issue
-    state: str
-    comments: int
+class PostRow:
+    """An issue or a pull request in its list: its current state, how many comments it has."""
 
-
-@dataclass(frozen=True)
-class PrRow:
-    pr: PullRequest
+    post: Post
     state: str
     comments: int
 
@@ -71,19 +68,19 @@ def _issues(hub: Hub) -> list[Issue]:
 
 
 @per_state()
-def issue_rows(hub: Hub, state: str, q: str, sort: str) -> tuple[IssueRow, ...]:
+def issue_rows(hub: Hub, state: str, q: str, sort: str) -> tuple[PostRow, ...]:
     """The Issues tab: open or closed, searched in title and body (case-insensitive)."""
     needle = q.lower()
     rows = [
-        IssueRow(i, hub.issue_state(i.id), len(comments_on(hub, "issue", i.id)))
+        PostRow(i, hub.issue_state(i.id), len(comments_on(hub, "issue", i.id)))
         for i in _issues(hub)
         if hub.issue_state(i.id) == state
         and (not needle or needle in i.title.lower() or needle in i.body.lower())
     ]
     if sort == "comments":
-        rows.sort(key=lambda r: (-r.comments, -r.issue.number))
+        rows.sort(key=lambda r: (-r.comments, -r.post.number))
     else:
-        rows.sort(key=lambda r: r.issue.number, reverse=sort == "newest")
+        rows.sort(key=lambda r: r.post.number, reverse=sort == "newest")
     return tuple(rows)
 
 
@@ -94,15 +91,15 @@ def search_counts(hub: Hub, q: str) -> tuple[int, int]:
 
 
 @per_state()
-def pr_rows(hub: Hub, state: str) -> tuple[PrRow, ...]:
+def pr_rows(hub: Hub, state: str) -> tuple[PostRow, ...]:
     """Pull requests, newest number first; merged ones count as closed."""
     wanted = (lambda s: s == "open") if state == "open" else (lambda s: s != "open")
     rows = [
-        PrRow(pr, hub.pr_state(pr.id), len(comments_on(hub, "pr", pr.id)))
+        PostRow(pr, hub.pr_state(pr.id), len(comments_on(hub, "pr", pr.id)))
         for pr in hub.prs.values()
         if wanted(hub.pr_state(pr.id))
     ]
-    rows.sort(key=lambda r: r.pr.number, reverse=True)
+    rows.sort(key=lambda r: r.post.number, reverse=True)
     return tuple(rows)
 
 
@@ -134,8 +131,7 @@ def commit_history(hub: Hub) -> tuple[Commit, ...]:
 
 
 def latest_commit(hub: Hub) -> Commit | None:
-    history = commit_history(hub)
-    return history[0] if history else None
+    return next(iter(commit_history(hub)), None)
 
 
 @per_state()
@@ -156,10 +152,8 @@ def workflows(hub: Hub) -> tuple[tuple[str, str], ...]:
 @per_state()
 def contributors(hub: Hub) -> tuple[tuple[str, str], ...]:
     """(username, name) of everyone with a commit here, most commits first."""
-    tally: dict[tuple[str, str], int] = {}
-    for c in hub.commits.values():
-        tally[(c.author, c.author_name)] = tally.get((c.author, c.author_name), 0) + 1
-    return tuple(k for k, _ in sorted(tally.items(), key=lambda kv: -kv[1]))
+    tally = Counter((c.author, c.author_name) for c in hub.commits.values())
+    return tuple(person for person, _ in tally.most_common())
 
 
 def person_activity(hub: Hub, username: str) -> tuple[Issue | PullRequest | Commit, ...]:

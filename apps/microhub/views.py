@@ -13,6 +13,7 @@ from django.views.decorators.http import require_GET, require_http_methods, requ
 
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.rendering import back_field, redirect_after, redirect_to, render_screen
+from apps.kit.streaming import present
 from apps.microhub import screens
 from apps.microhub.markup import render_markdown
 from apps.microhub.query import ActionsQuery, IssuesQuery, PullsQuery
@@ -146,9 +147,7 @@ def new_issue(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def issue(request: HttpRequest, page: Page, issue_id: str) -> HttpResponse:
     hub = page.state
-    found = hub.issue(issue_id)
-    if found is None:
-        raise Http404("no such issue")  # unknown or not filed yet: alike
+    found = present(hub.issue(issue_id), "issue")  # unknown or not filed yet: alike
     return show(
         request,
         page,
@@ -193,9 +192,7 @@ def pulls(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def pull(request: HttpRequest, page: Page, pr_id: str) -> HttpResponse:
     hub = page.state
-    pr = hub.prs.get(pr_id)
-    if pr is None:
-        raise Http404("no such pull request")
+    pr = present(hub.prs.get(pr_id), "pull request")
     return show(
         request,
         page,
@@ -249,9 +246,7 @@ def actions(request: HttpRequest, page: Page) -> HttpResponse:
 @require_GET
 @run_page
 def run(request: HttpRequest, page: Page, run_id: str) -> HttpResponse:
-    found = page.state.runs.get(run_id)
-    if found is None:
-        raise Http404("no such workflow run")
+    found = present(page.state.runs.get(run_id), "workflow run")
     return show(request, page, "run.html", "actions", run=found)
 
 
