@@ -168,7 +168,7 @@ def decide_create(agenda: Agenda, payload: dict) -> dict:
     day = _read(times.parse_date, payload["date"], "date")
     start, end = _times(payload.get("time") or DEFAULT_START, payload.get("endTime"))
     return {
-        "id": f"user-event-{agenda.user_event_count() + 1}",  # upstream's id shape
+        "id": f"user-event-{agenda.created_count('event') + 1}",  # upstream's id shape
         "title": _title(payload["title"]),
         "date": day.isoformat(),
         "time": start,
@@ -233,7 +233,7 @@ def decide_reschedule(agenda: Agenda, payload: dict) -> dict:
 def decide_create_task(agenda: Agenda, payload: dict) -> dict:
     due = payload.get("dueDate")
     return {
-        "id": f"user-task-{agenda.user_task_count() + 1}",
+        "id": f"user-task-{agenda.created_count('task') + 1}",
         "title": _title(payload["title"]),
         "dueDate": _read(times.parse_date, due, "dueDate").isoformat() if due else None,
     }

@@ -19,14 +19,7 @@ from apps.microlendar.state import CALENDARS
 __all__ = ["VIEWS", "CalendarQuery", "InvalidQuery"]
 
 VIEWS: tuple[str, ...] = ("day", "week", "month", "year", "schedule", "4days")
-VIEW_TITLES: Mapping[str, str] = {
-    "day": "Day",
-    "week": "Week",
-    "month": "Month",
-    "year": "Year",
-    "schedule": "Schedule",
-    "4days": "4 days",
-}
+VIEW_TITLES: Mapping[str, str] = {view: view.title() for view in VIEWS} | {"4days": "4 days"}
 
 
 @dataclass(frozen=True)

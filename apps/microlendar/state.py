@@ -111,12 +111,10 @@ class Agenda(SelfUserState):
         state = self.task_states.get(task_id)
         return state is not None and not state.deleted
 
-    def user_event_count(self) -> int:
-        """User-created events so far, deleted ones included (they are only marked deleted)."""
-        return sum(1 for e in self.events.values() if e.user_created)
-
-    def user_task_count(self) -> int:
-        return sum(1 for t in self.tasks.values() if t.user_created)
+    def created_count(self, kind: str) -> int:
+        """How many `kind`s ("event", "task") the user created, deleted ones included (they are
+        only marked deleted): the number in the next one's id."""
+        return sum(1 for item in getattr(self, f"{kind}s").values() if item.user_created)
 
 
 empty_agenda = Agenda.of

@@ -114,11 +114,6 @@ def profiles(catalog: Any) -> Mapping[str, Profile]:
     return found
 
 
-def self_id(catalog: Any) -> str | None:
-    user = catalog.self_user
-    return str(user["id"]) if user else None
-
-
 def coauthors(catalog: Any) -> Mapping[str, tuple[str, ...]]:
     """Person → co-authors, in catalog order, from the pairs of `coauthors.jsonl` (both ways).
     All relations are always known (the original loads them whatever the preload says)."""

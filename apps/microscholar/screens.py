@@ -15,7 +15,7 @@ from urllib.parse import quote, urlencode
 from apps.kit.derived import per_state
 from apps.microscholar import search
 from apps.microscholar import state as index
-from apps.microscholar.catalog import Profile, coauthors, person_name, profiles, self_id
+from apps.microscholar.catalog import Profile, coauthors, person_name, profiles
 from apps.microscholar.query import PER_PAGE, AlertsQuery, ProfileQuery, SearchQuery
 from apps.microscholar.state import Alert, Paper, Scholar
 
@@ -241,10 +241,6 @@ class Bar:
     y: int
     height: int
 
-    @property
-    def label_x(self) -> int:
-        return self.x + 10
-
 
 @dataclass(frozen=True)
 class Metric:
@@ -354,8 +350,8 @@ def profile_screen(
 
 
 def my_profile_id(scholar: Scholar) -> str | None:
-    user_id = self_id(scholar.catalog)
-    return user_id if user_id in scholar.catalog.index(profiles) else None
+    me = scholar.catalog.self_user
+    return str(me["id"]) if me and str(me["id"]) in scholar.catalog.index(profiles) else None
 
 
 # --- library and alerts ------------------------------------------------------------------------------

@@ -13,11 +13,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from apps.kit.state import CatalogState, with_items
-from apps.kit.streaming import no_items, shown_count
+from apps.kit.streaming import counting, no_items, shown_count
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microscholar"
-ALERT_TYPES = ("citation", "new_paper", "keyword")
 
 
 @dataclass(frozen=True)
@@ -96,12 +95,8 @@ def with_alert_read(scholar: Scholar, alert_id: str) -> Scholar:
 # --- counts (baselines, badges) ------------------------------------------------------------------
 
 
-def paper_count(scholar: Scholar) -> int:
-    return len(scholar.papers)
-
-
-def saved_paper_count(scholar: Scholar) -> int:
-    return sum(1 for s in scholar.paper_states.values() if s.saved)
+paper_count = counting("papers")
+saved_paper_count = counting("paper_states", "saved")
 
 
 def unread_alert_count(scholar: Scholar) -> int:

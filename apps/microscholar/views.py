@@ -35,15 +35,21 @@ def this_year(page: Page) -> int:
     return simclock.moment(page.now, simclock.day_zero(page.run)).year
 
 
-def base_context(page: Page, current: str) -> dict:
+def show(
+    request: HttpRequest, page: Page, template: str, current: str, back: str, **context
+) -> HttpResponse:
+    """The template `template` with what its chrome needs: the `current` tab, the library and
+    alerts badges, "My profile", and `back` (where its forms come back to)."""
     scholar = page.state
     me = screens.my_profile_id(scholar)
-    return {
+    chrome = {
         "current": current,
         "library_count": index.saved_paper_count(scholar),
         "unread_alerts": index.unread_alert_count(scholar),
         "my_profile_url": screens.profile_url(root_url(page), me) if me else None,
+        "back": back,
     }
+    return render_screen(request, page, f"microscholar/{template}.html", chrome | context)
 
 
 def watch(page: Page, ids) -> None:
@@ -63,34 +69,36 @@ def search(request: HttpRequest, page: Page) -> HttpResponse:
     root = root_url(page)
     screen = screens.search_screen(page.state, query, this_year(page), root)
     watch(page, screen.ids)
-    context = {
-        **base_context(page, "search" if query.q else "home"),
-        "screen": screen,
-        "query": query,
-        "rows": screens.rows(page.state, screen.ids, page.now, root),
-        "back": query.querystring(),
-    }
-    template = "microscholar/results.html" if query.q else "microscholar/home.html"
-    return render_screen(request, page, template, context)
+    return show(
+        request,
+        page,
+        "results" if query.q else "home",
+        "search" if query.q else "home",
+        query.querystring(),
+        screen=screen,
+        query=query,
+        rows=screens.rows(page.state, screen.ids, page.now, root),
+    )
 
 
-def paper_context(page: Page, paper_id: str) -> dict:
+def show_paper(request: HttpRequest, page: Page, paper_id: str, template: str, **context):
+    """The paper's page (`template` "paper", or "cite" with the dialog open) and its related."""
+    shown_paper(page, paper_id)
     root = root_url(page)
     related = screens.related(page.state, paper_id)
     watch(page, (paper_id, *related))
-    return {
-        **base_context(page, "paper"),
-        "paper": screens.row(page.state, paper_id, page.now, root, full=True),
-        "related": screens.rows(page.state, related, page.now, root),
-        "back": f"papers/{paper_id}",
-    }
+    paper = screens.row(page.state, paper_id, page.now, root, full=True)
+    related_rows = screens.rows(page.state, related, page.now, root)
+    back = f"papers/{paper_id}"
+    return show(
+        request, page, template, "paper", back, paper=paper, related=related_rows, **context
+    )
 
 
 @require_GET
 @run_page
 def paper(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
-    shown_paper(page, paper_id)
-    return render_screen(request, page, "microscholar/paper.html", paper_context(page, paper_id))
+    return show_paper(request, page, paper_id, "paper")
 
 
 @require_GET
@@ -99,12 +107,9 @@ def cite(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
     """The paper's page with the Cite dialog open: five styles and the export links."""
     found = shown_paper(page, paper_id)
     names = citing.author_names(found, page.state.catalog)
-    context = {
-        **paper_context(page, paper_id),
-        "styles": citing.styles(found, names),
-        "exports": [(fmt, label) for fmt, (label, _, _) in citing.EXPORTS.items()],
-    }
-    return render_screen(request, page, "microscholar/cite.html", context)
+    styles = citing.styles(found, names)
+    exports = [(fmt, label) for fmt, (label, _, _) in citing.EXPORTS.items()]
+    return show_paper(request, page, paper_id, "cite", styles=styles, exports=exports)
 
 
 @require_GET
@@ -134,12 +139,9 @@ def profile(request: HttpRequest, page: Page) -> HttpResponse:
         raise Http404("no such scholar")
     screen = screens.profile_screen(page.state, query, page.now, this_year(page), root_url(page))
     watch(page, screens.authored(page.state, query.user))
-    context = {
-        **base_context(page, "profile"),
-        "screen": screen,
-        "back": "citations" + query.querystring(),
-    }
-    return render_screen(request, page, "microscholar/profile.html", context)
+    return show(
+        request, page, "profile", "profile", "citations" + query.querystring(), screen=screen
+    )
 
 
 @require_GET
@@ -147,24 +149,16 @@ def profile(request: HttpRequest, page: Page) -> HttpResponse:
 def library(request: HttpRequest, page: Page) -> HttpResponse:
     ids = screens.library(page.state)
     watch(page, ids)
-    context = {
-        **base_context(page, "library"),
-        "rows": screens.rows(page.state, ids, page.now, root_url(page)),
-        "back": "library",
-    }
-    return render_screen(request, page, "microscholar/library.html", context)
+    rows = screens.rows(page.state, ids, page.now, root_url(page))
+    return show(request, page, "library", "library", "library", rows=rows)
 
 
 @require_GET
 @run_page
 def alerts(request: HttpRequest, page: Page) -> HttpResponse:
     query = AlertsQuery.from_params(request.GET)
-    context = {
-        **base_context(page, "alerts"),
-        "screen": screens.alerts_screen(page.state, query, root_url(page)),
-        "back": "alerts" + query.querystring(),
-    }
-    return render_screen(request, page, "microscholar/alerts.html", context)
+    screen = screens.alerts_screen(page.state, query, root_url(page))
+    return show(request, page, "alerts", "alerts", "alerts" + query.querystring(), screen=screen)
 
 
 def posting(action: str, field: str, done: Callable[[Scholar, str], str]):

@@ -17,11 +17,5 @@ def hour_rows() -> tuple[tuple[int, str], ...]:
     return HOURS
 
 
-@register.filter
-def clock_label(minutes: int) -> str:
-    return times.label(minutes)
-
-
-@register.filter
-def hhmm(minutes: int) -> str:
-    return times.hhmm(minutes)
+register.filter("clock_label", times.label)
+register.filter("hhmm", times.hhmm)
