@@ -153,6 +153,10 @@ INITIAL = {
 }
 
 
+def _present(rows: Mapping[str, Any], ids: Iterable[str]) -> dict[str, Any]:
+    return {i: rows[i] for i in ids if i in rows}
+
+
 def _preloaded_repo(hub: Hub, p: Mapping[str, Any]) -> Mapping[str, Any]:
     repo = dict(records.repository_record(hub.catalog))  # a copy: the catalog stays as it is
     for field, key in INITIAL.items():
@@ -186,13 +190,7 @@ def reduce_preload_repo(hub: Hub, event: LoggedEvent) -> Hub:
     for key, (table, deliver) in LOADED.items():
         hub = deliver(hub, _ids(hub, p, table, key), start, preloaded=True)
     passed = {
-        table: MappingProxyType(
-            {
-                i: records.table(catalog, table)[i]
-                for i in _ids(hub, p, table, key)
-                if i in records.table(catalog, table)
-            }
-        )
+        table: MappingProxyType(_present(records.table(catalog, table), _ids(hub, p, table, key)))
         for table, key in records.PASS_THROUGH.items()
     }
     repo = _preloaded_repo(hub, p)

@@ -13,15 +13,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from apps.kit.state import EMPTY, CatalogState, with_items
+from apps.kit.state import CatalogState, with_items
+from apps.kit.streaming import no_items
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microhub"
-
-
-def nothing() -> Any:
-    """An empty mapping as a dataclass default (a shared, read-only one)."""
-    return field(default_factory=lambda: EMPTY)
 
 
 MERGE_STRATEGIES = ("merge", "squash", "rebase")
@@ -199,18 +195,18 @@ class Hub(CatalogState):
     watched: bool = False
     forked: bool = False
     preloaded: bool = False
-    issues: Mapping[str, Issue] = nothing()  # catalog-derived, in arrival order
-    user_issues: Mapping[str, Issue] = nothing()
-    issue_states: Mapping[str, IssueState] = nothing()  # catalog and user issues
-    prs: Mapping[str, PullRequest] = nothing()
-    pr_states: Mapping[str, str] = nothing()
+    issues: Mapping[str, Issue] = no_items()  # catalog-derived, in arrival order
+    user_issues: Mapping[str, Issue] = no_items()
+    issue_states: Mapping[str, IssueState] = no_items()  # catalog and user issues
+    prs: Mapping[str, PullRequest] = no_items()
+    pr_states: Mapping[str, str] = no_items()
     merged: tuple[str, ...] = ()
-    commits: Mapping[str, Commit] = nothing()
+    commits: Mapping[str, Commit] = no_items()
     commit_total: int = 0  # the repository's commit count ("2,186 commits")
-    runs: Mapping[str, WorkflowRun] = nothing()
-    files: Mapping[str, RepoFile] = nothing()
+    runs: Mapping[str, WorkflowRun] = no_items()
+    files: Mapping[str, RepoFile] = no_items()
     # Tables the pages show little of and eval_sql may read as (id, JSON): workflows, labels…
-    records: Mapping[str, Mapping[str, Mapping[str, Any]]] = nothing()
+    records: Mapping[str, Mapping[str, Mapping[str, Any]]] = no_items()
     user_comments: tuple[Comment, ...] = ()
     following: tuple[str, ...] = ()
     user_repos: tuple[UserRepo, ...] = ()

@@ -45,20 +45,17 @@ def markdown(text: str) -> SafeString:
 # Reactions by GitHub's names (our catalog) or as the emoji the original stored; drawn as icons
 # because emoji render as empty boxes without an emoji font.
 REACTIONS = {
-    "+1": "thumbs-up",
-    "👍": "thumbs-up",
-    "-1": "thumbs-down",
-    "👎": "thumbs-down",
-    "rocket": "rocket",
-    "🚀": "rocket",
-    "hooray": "party-popper",
-    "🎉": "party-popper",
-    "heart": "heart",
-    "❤️": "heart",
-    "laugh": "laugh",
-    "😄": "laugh",
-    "eyes": "eye",
-    "👀": "eye",
+    name: icon
+    for icon, names in {
+        "thumbs-up": ("+1", "👍"),
+        "thumbs-down": ("-1", "👎"),
+        "rocket": ("rocket", "🚀"),
+        "party-popper": ("hooray", "🎉"),
+        "heart": ("heart", "❤️"),
+        "laugh": ("laugh", "😄"),
+        "eye": ("eyes", "👀"),
+    }.items()
+    for name in names
 }
 
 
