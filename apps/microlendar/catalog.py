@@ -8,7 +8,6 @@ catalog may add `due_date` (YYYY-MM-DD) and `notes` to tasks; upstream's tasks h
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from typing import Any
 
 from apps.microlendar import times
@@ -27,14 +26,6 @@ from apps.microlendar.state import (
 TABLE = "events"
 
 
-def records(catalog: Any) -> Mapping[str, Mapping[str, Any]]:
-    return catalog.table(ENVIRONMENT, TABLE)
-
-
-def is_task(record: Mapping[str, Any]) -> bool:
-    return bool(record.get("is_task", False))
-
-
 def attendee(catalog: Any, user_id: str) -> Attendee | None:
     user = catalog.users.get(str(user_id))
     if user is None:
@@ -49,8 +40,8 @@ def attendee(catalog: Any, user_id: str) -> Attendee | None:
 
 def catalog_event(catalog: Any, event_id: str) -> CalendarEvent | None:
     """The event `event_id`; None if the catalog lacks it, it is a task or has no start time."""
-    record = records(catalog).get(event_id)
-    if record is None or is_task(record) or not record.get("start_time"):
+    record = catalog.table(ENVIRONMENT, TABLE).get(event_id)
+    if record is None or record.get("is_task") or not record.get("start_time"):
         return None
     day, start = times.parse_iso(record["start_time"])
     end = start + DEFAULT_DURATION_MIN
@@ -78,8 +69,8 @@ def catalog_event(catalog: Any, event_id: str) -> CalendarEvent | None:
 
 def catalog_task(catalog: Any, task_id: str) -> tuple[Task, TaskState] | None:
     """The task `task_id` with its catalog completion; None if missing or not a task."""
-    record = records(catalog).get(task_id)
-    if record is None or not is_task(record):
+    record = catalog.table(ENVIRONMENT, TABLE).get(task_id)
+    if record is None or not record.get("is_task"):
         return None
     due = record.get("due_date") or record.get("dueDate") or record.get("start_time")
     task = Task(

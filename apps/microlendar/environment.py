@@ -136,13 +136,17 @@ def due(task: Entry) -> str | None:
 
 CATALOG_EVENTS, USER_EVENTS = (entries("event", user_created=mine) for mine in (False, True))
 CATALOG_TASKS, USER_TASKS = (entries("task", user_created=mine) for mine in (False, True))
+# Columns several tables share.
+ITEM = named("id TEXT PRIMARY KEY", "title TEXT")
+COMPLETED = {"completed INTEGER": "state.completed"}
+DELETED = {"deleted INTEGER": "state.deleted"}
 
 materialize = tables(
     Table(
         "events",
         CATALOG_EVENTS,
         {
-            **named("id TEXT PRIMARY KEY", "title TEXT"),
+            **ITEM,
             "start_time TEXT": lambda event: times.iso(event.day, event.start),
             "end_time TEXT": lambda event: times.iso(event.day, event.end),
             "category TEXT": "calendar",
@@ -153,46 +157,23 @@ materialize = tables(
     Table(
         "event_states",
         CATALOG_EVENTS,
-        {
-            "event_id TEXT PRIMARY KEY": "id",
-            "deleted INTEGER": "state.deleted",
-            "isViewed INTEGER": "state.viewed",
-        },
+        {"event_id TEXT PRIMARY KEY": "id", **DELETED, "isViewed INTEGER": "state.viewed"},
     ),
     Table(
         "user_created_events",
         USER_EVENTS,
         {
-            **named("id TEXT PRIMARY KEY", "title TEXT"),
+            **ITEM,
             "date TEXT": lambda event: event.day.isoformat(),
             "time TEXT": lambda event: times.hhmm(event.start),
             "endTime TEXT": lambda event: times.hhmm(event.end),
             **named("calendar TEXT"),
-            "deleted INTEGER": "state.deleted",
+            **DELETED,
         },
     ),
-    Table(
-        "tasks", CATALOG_TASKS, {**named("id TEXT PRIMARY KEY", "title TEXT"), "dueDate TEXT": due}
-    ),
-    Table(
-        "task_states",
-        CATALOG_TASKS,
-        {
-            "task_id TEXT PRIMARY KEY": "id",
-            "completed INTEGER": "state.completed",
-            "deleted INTEGER": "state.deleted",
-        },
-    ),
-    Table(
-        "user_created_tasks",
-        USER_TASKS,
-        {
-            **named("id TEXT PRIMARY KEY", "title TEXT"),
-            "dueDate TEXT": due,
-            "completed INTEGER": "state.completed",
-            "deleted INTEGER": "state.deleted",
-        },
-    ),
+    Table("tasks", CATALOG_TASKS, {**ITEM, "dueDate TEXT": due}),
+    Table("task_states", CATALOG_TASKS, {"task_id TEXT PRIMARY KEY": "id", **COMPLETED, **DELETED}),
+    Table("user_created_tasks", USER_TASKS, {**ITEM, "dueDate TEXT": due, **COMPLETED, **DELETED}),
 )
 
 

@@ -2,7 +2,7 @@
 memoised per state (apps.kit.derived.per_state: the fold hands out the same agenda until an
 event changes it, so a reload or a live push of an unchanged calendar costs a lookup).
 
-`today` is an input, not read here: it moves with the simulated clock (views.calendar_today).
+`today` is an input, not read here: it moves with the simulated clock (views.calendar_moment).
 The current-time line is not part of a screen (it moves every minute); the template places it.
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import calendar as month_math
 from dataclasses import dataclass, replace
-from datetime import date, timedelta
+from datetime import date, datetime, timedelta
 
 from apps.kit.derived import per_state
 from apps.microlendar import times
@@ -151,6 +151,11 @@ def period_title(view: str, first: date, last: date) -> str:
             return f"{first:%b %Y} – {last:%b %Y}"
         return f"{first:%b} – {last:%b %Y}"
     return f"{first:%B %Y}"
+
+
+def now_line_top(moment: datetime) -> int:
+    """Pixels from the top of a day column to the current-time line."""
+    return (moment.hour * 60 + moment.minute) * HOUR_PX // 60
 
 
 # --- rows ---------------------------------------------------------------------------------------

@@ -10,15 +10,16 @@ viewed: declared with the environment (`implicit_actions`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from datetime import datetime
 
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
+from apps.kit import simclock
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.rendering import redirect_after, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, EVENT_FIELDS, existing_event
-from apps.microlendar.clock import calendar_moment, now_line_top
 from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
 from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda, CalendarEvent
 from events.registry import ActionRejected
@@ -26,6 +27,16 @@ from events.registry import ActionRejected
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
 EVENT_ACTIONS = {"reschedule": "reschedule_event", "delete": "delete_event"}
 TASK_ACTIONS = {"toggle": "toggle_task", "delete": "delete_task"}
+
+
+def calendar_moment(agenda: Agenda, page: Page) -> datetime:
+    """The page's simulated moment on the calendar: simulated second 0 is 09:00 (simclock) on the
+    day the scenario opens on (`initial_date`, else `today`, else the run's day zero), so "today"
+    and the current-time line move as the shell's time does, past midnight to the next day. The
+    page is pushed again next minute."""
+    page.changes_at(simclock.next_minute(page.now))
+    start = agenda.initial_date or agenda.today or simclock.day_zero(page.run)
+    return simclock.moment(page.now, start)
 
 
 def base_context(page: Page, query: CalendarQuery) -> dict:
@@ -65,7 +76,7 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
     screen = screens.calendar_screen(agenda, query, context["today"])
     context.update(
         screen=screen,
-        now_top=now_line_top(context["moment"]),
+        now_top=screens.now_line_top(context["moment"]),
         details=screens.details(agenda, query.event) if query.event else None,
         close_url=query.but(event=None).querystring() or "?",
         clear_search_url=query.but(q="", event=None).querystring() or "?",
