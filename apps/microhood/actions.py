@@ -1,12 +1,6 @@
-"""What an agent can do: place and cancel orders, put symbols on and off the watchlist.
-
-`decide` checks a request against the account as of its moment (orders are `timed`: a market
-order is checked against the price when it is placed) and returns the payload to log; `reduce`
-applies a logged action at its own simulated time and never raises. Fixed from the original
-(§6): quantities must be whole and positive, unknown symbols are refused, limit orders rest
-until the price reaches them (apps.microhood.orders), orders have ids. The watchlist has
-explicit add/remove instead of the original's toggle, so a repeated request cannot undo itself.
-"""
+"""What an agent can do: place and cancel orders, put symbols on and off the watchlist (README:
+"Agent actions"). The watchlist has explicit add/remove instead of the original's toggle, so a
+repeated request cannot undo itself."""
 
 from __future__ import annotations
 
@@ -17,7 +11,7 @@ from typing import Literal
 
 from pydantic import Field
 
-from apps.kit.deciding import found, new_id
+from apps.kit.deciding import checking, found, new_id
 from apps.kit.state import with_items
 from apps.microhood import state as account
 from apps.microhood.catalog import watch_row
@@ -106,7 +100,7 @@ def reduce_place_order(hood: Hood, event: LoggedEvent) -> Hood:
     """A market (or marketable limit) order fills at its moment's price; a limit order rests,
     holding back buying power (a buy) — shares promised to a resting sell stay held."""
     order = new_order(event.payload, event.at)
-    if not hood.has_stock(order.symbol):
+    if order.symbol not in hood.stocks:
         return hood
     hood = replace(hood, orders=(*hood.orders, order))
     if fills_now(hood, order, event.at):
@@ -138,9 +132,7 @@ def reduce_cancel_order(hood: Hood, event: LoggedEvent) -> Hood:
     return replace(hood, orders=orders, buying_power=round(hood.buying_power + order.reserved, 2))
 
 
-def decide_watch(hood: Hood, payload: dict) -> dict:
-    listed(hood, payload["symbol"])
-    return payload
+decide_watch = checking("stocks", "symbol", "stock", "is listed")
 
 
 def watching(on: bool):

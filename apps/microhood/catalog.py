@@ -1,12 +1,5 @@
-"""Catalog records (SentinelBench format) → listings, news items, watchlist rows, price traces.
-
-Tables in `microhood/`: `stocks.jsonl` (symbol, name, shares, avgCost, currentPrice, color,
-orgId…), `watchlist.jsonl` (symbol, name, price, change, changePercent), `news.jsonl` (id,
-source, title…). Our catalog also authors a price trace per symbol in `price_traces.json`
-(symbol → [[time, price], …], times from the preload): waypoints the price ramps through when a
-scenario does not set its own for that symbol. The original's current handler has no traces (its
-obsolete `stock_price_traces.json` is a bare list of prices and is not read).
-"""
+"""Catalog records (SentinelBench format) → listings, news items, watchlist rows, and our
+authored price traces (`price_traces.json`: symbol → [[time, price], …]; README: "Prices")."""
 
 from __future__ import annotations
 

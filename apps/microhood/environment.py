@@ -1,16 +1,6 @@
-"""MicroHood's registration with the core: scenario events, baselines, evaluation tables.
-
-Scenario events (SentinelBench format, upstream-env-microhood.md §3):
-- `preload_stocks {stock_symbols, watchlist_symbols, news_ids, buying_power, price_waypoints}`
-  — the account the task starts from; `["*"]` = the whole catalog table. Each loaded symbol's
-  price starts at its catalog price and ramps through `price_waypoints[symbol]` if given, else
-  through our catalog's authored trace. Baselines are measured right after it.
-- `new_news {news_id}` — a story arrives now.
-- `set_price {symbol, price}` — a waypoint at the event's own time: the price jumps then.
-
-Every reducer first settles resting limit orders up to the event's time (apps.microhood.orders),
-so fills depend only on the log.
-"""
+"""MicroHood's registration with the core: scenario events, baselines, evaluation tables (the
+README's "Scenario events" and "Evaluation tables"). Every reducer first settles resting limit
+orders up to the event's time (apps.microhood.orders), so fills depend only on the log."""
 
 from __future__ import annotations
 
@@ -25,7 +15,7 @@ from pydantic import Field
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.state import with_items
-from apps.kit.tables import KEY, Keyed, Table, named, tables
+from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhood import state as account
 from apps.microhood.actions import ACTIONS
@@ -40,17 +30,13 @@ from apps.microhood.state import (
     NewsItem,
     Stock,
     WatchRow,
-    empty_hood,
 )
 from events.registry import Environment, EventType, LoggedEvent, Reducer, counted
 from events.schemas import Payload
 
-# --- catalog items arriving -----------------------------------------------------------------
-
 
 def make_listing(hood: Hood, symbol: str, stamp: Stamp) -> tuple[Stock, Holding] | None:
-    """A listing and the position the catalog gives it (its price series comes once the preload
-    knows its waypoints: `open_account`)."""
+    """A listing and the position the catalog gives it (its prices come in `open_account`)."""
     record = stock_record(hood.catalog, symbol)
     if record is None:
         return None
@@ -75,8 +61,6 @@ TimePrice = Annotated[list[float], Field(min_length=2, max_length=2)]
 
 
 class AccountFields(Payload):
-    """The preload's fields besides its id lists."""
-
     buying_power: float = DEFAULT_BUYING_POWER
     price_waypoints: dict[str, list[TimePrice]] | None = Field(
         None, description="symbol → [[time, price], …] (overrides the catalog trace)"
@@ -113,7 +97,7 @@ def reduce_set_price(hood: Hood, event: LoggedEvent) -> Hood:
     return with_items(hood, "prices", [(symbol, hood.prices[symbol].with_point(event.at, value))])
 
 
-def settling(reduce: Reducer[Hood]) -> Reducer[Hood]:
+def settled_first(reduce: Reducer[Hood]) -> Reducer[Hood]:
     """`reduce`, after resting orders are settled up to the event's time."""
     return lambda hood, event: reduce(settle(hood, event.at), event)
 
@@ -148,11 +132,10 @@ DECLARED = event_types(
         ),
     ),
 )
-EVENT_TYPES = MappingProxyType(
-    {name: replace(event, reduce=settling(event.reduce)) for name, event in DECLARED.items()}
-)
-SETTLED_ACTIONS = MappingProxyType(
-    {name: replace(action, reduce=settling(action.reduce)) for name, action in ACTIONS.items()}
+
+EVENT_TYPES, SETTLED_ACTIONS = (
+    MappingProxyType({name: replace(e, reduce=settled_first(e.reduce)) for name, e in d.items()})
+    for d in (DECLARED, ACTIONS)
 )
 
 # The original's metrics (eval_sql reads session_meta `baseline_<name>`), plus `news_count`,
@@ -210,10 +193,10 @@ write_tables = tables(
         },
     ),
     # The price at `now`, unrounded.
-    Table(
+    Table.keyed(
         "current_prices",
-        lambda hood, now: (Keyed(s, account.price(hood, s, now)) for s in hood.prices),
-        {"symbol TEXT": KEY, "price REAL": "value"},
+        lambda hood, now: {s: account.price(hood, s, now) for s in hood.prices},
+        {"symbol TEXT": KEY, "price REAL": VALUE},
     ),
 )
 
@@ -231,7 +214,7 @@ def materialize(hood: Hood, now: float, conn: sqlite3.Connection) -> None:
 MICROHOOD = Environment(
     name=ENVIRONMENT,
     title="MicroHood",
-    initial_state=empty_hood,
+    initial_state=Hood.of,
     event_types=EVENT_TYPES,
     actions=SETTLED_ACTIONS,
     baselines=BASELINES,

@@ -1,15 +1,9 @@
 """Filling orders: a market order at the price of its moment, a limit order when the price
-reaches its limit.
+reaches its limit — at the limit, or at the price after a jump if that is better (the original
+filled every limit order at once at the limit: a sell limit far above the market minted cash).
 
-The original filled every limit order at once at the limit price (a sell limit far above the
-market minted cash). Here a limit order that is marketable when placed fills at once at the
-market price (never worse than its limit); otherwise it rests, and fills at the first simulated
-instant the price reaches the limit — at the limit, or at the price after a jump if that is
-better. That instant is a pure function of the price series, so fills are computed, not logged:
-before each logged event the reducers settle resting orders up to the event's time
-(`settle(hood, event.at)`), with the series as it was until then, and readers settle up to
-their `now` the same way. Replaying the log therefore fills the same orders at the same prices.
-"""
+The fill instant is a pure function of the price series, so fills are computed, not logged:
+reducers and readers `settle` up to their moment, and replay fills the same orders alike."""
 
 from __future__ import annotations
 

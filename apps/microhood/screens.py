@@ -11,9 +11,9 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from apps.kit.charts import Chart, chart, session_samples, sparkline
 from apps.kit.derived import per_state
 from apps.microhood import state as account
-from apps.microhood.charts import Chart, chart, session_samples, sparkline
 from apps.microhood.orders import next_fill_time, settle
 from apps.microhood.state import Hood, NewsItem, Order
 
@@ -26,19 +26,11 @@ def money(value: float) -> str:
     return f"-${-value:,.2f}" if value < 0 else f"${value:,.2f}"
 
 
-def sign(value: float, digits: str) -> str:
-    """A sign that agrees with the digits shown: a change that rounds to zero is "+"."""
-    return "-" if value < 0 and digits.strip("0.,") else "+"
-
-
-def signed_money(value: float) -> str:
+def signed(value: float, shape: str) -> str:
+    """`shape` ("${}", "{}%") around the size, after a sign that agrees with the digits shown: a
+    change that rounds to zero is "+"."""
     digits = f"{abs(value):,.2f}"
-    return f"{sign(value, digits)}${digits}"
-
-
-def signed_percent(value: float) -> str:
-    digits = f"{abs(value):,.2f}"
-    return f"{sign(value, digits)}{digits}%"
+    return ("-" if value < 0 and digits.strip("0.,") else "+") + shape.format(digits)
 
 
 def price_text(value: float) -> str:
@@ -77,8 +69,8 @@ def row(hood: Hood, symbol: str, now: float, detail: str = "", spark: bool = Fal
         symbol=symbol,
         name=stock.name,
         price=price_text(shown_price(hood, symbol, now)),
-        change=signed_money(delta),
-        percent=signed_percent(percent),
+        change=signed(delta, "${}"),
+        percent=signed(percent, "{}%"),
         up=delta >= 0,
         detail=detail,
         spark=line,
@@ -138,8 +130,8 @@ def portfolio(hood: Hood, now: float, range_name: str, span: float) -> Portfolio
     line = chart("portfolio", range_name, lambda t: account.portfolio_value(hood, t), now, span)
     return Portfolio(
         value=money(value),
-        change=signed_money(delta),
-        percent=signed_percent(percent),
+        change=signed(delta, "${}"),
+        percent=signed(percent, "{}%"),
         up=delta >= 0,
         buying_power=money(hood.buying_power),
         cash=money(account.total_cash(hood)),
@@ -181,7 +173,7 @@ def position(hood: Hood, symbol: str, now: float) -> Position | None:
         available=account.shares_available(hood, symbol),
         market_value=money(value),
         avg_cost=money(held.avg_cost),
-        total_return=f"{signed_money(gain)} ({signed_percent(percent)})",
+        total_return=f"{signed(gain, '${}')} ({signed(percent, '{}%')})",
         total_return_up=gain >= 0,
     )
 
@@ -252,40 +244,27 @@ def search(hood: Hood, query: str, now: float) -> list[Row]:
 
 @dataclass(frozen=True)
 class OrderRow:
-    id: str
-    symbol: str
+    order: Order
     name: str
     what: str  # "Market buy", "Limit sell"
-    quantity: int
-    status: str
     limit: str
     price: str
     total: str
-    placed_at: float
-    filled_at: float | None
 
 
 def order_rows(hood: Hood, now: float) -> list[OrderRow]:
     hood = settled(hood, now)
-    rows = []
-    for o in reversed(hood.orders):
-        stock = hood.stocks.get(o.symbol)
-        rows.append(
-            OrderRow(
-                id=o.id,
-                symbol=o.symbol,
-                name=stock.name if stock else o.symbol,
-                what=f"{o.type.title()} {o.side}",
-                quantity=o.quantity,
-                status=o.status,
-                limit=money(o.limit_price) if o.limit_price is not None else "",
-                price=money(o.price) if o.price is not None else "",
-                total=money(o.price * o.quantity) if o.price is not None else "",
-                placed_at=o.placed_at,
-                filled_at=o.filled_at,
-            )
+    return [
+        OrderRow(
+            order=o,
+            name=hood.stocks[o.symbol].name if o.symbol in hood.stocks else o.symbol,
+            what=f"{o.type.title()} {o.side}",
+            limit=money(o.limit_price) if o.limit_price is not None else "",
+            price=money(o.price) if o.price is not None else "",
+            total=money(o.price * o.quantity) if o.price is not None else "",
         )
-    return rows
+        for o in reversed(hood.orders)
+    ]
 
 
 def resting_orders(hood: Hood, symbol: str, now: float) -> list[Order]:

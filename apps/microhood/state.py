@@ -1,18 +1,15 @@
 """The brokerage account as immutable values, and the questions pages, baselines and grading ask.
-
-`Hood` is what the reducers build. Prices are not stored as numbers: each loaded symbol has a
-`Waypoints` series (its starting price, the catalog's authored trace or the scenario's
-`price_waypoints`, and any `set_price` points), and every reader asks `price(hood, symbol, now)`
-with the one `now` of its operation — page, live push and evaluation alike.
-"""
+Prices are `Waypoints` series, read as `price(hood, symbol, now)` with the one `now` of the
+operation — page, live push and evaluation alike (README: "Prices")."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from types import MappingProxyType
+from typing import Any, ClassVar
 
-from apps.kit.state import EMPTY, CatalogState
+from apps.kit.state import EMPTY, SelfUserState
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microhood"
@@ -98,10 +95,9 @@ class WatchRow:
 
 
 @dataclass(frozen=True)
-class Hood(CatalogState):
-    # Who the user is comes from the catalog too: an input, not state.
-    self_name: str = field(default="Me", compare=False, repr=False)
-    self_username: str = field(default="me", compare=False, repr=False)
+class Hood(SelfUserState):
+    FALLBACK: ClassVar[Mapping[str, str]] = MappingProxyType({"name": "Me"})
+
     stocks: Mapping[str, Stock] = field(default_factory=lambda: EMPTY)  # in preload order
     # symbol → price series (start = starting price)
     prices: Mapping[str, Waypoints] = field(default_factory=lambda: EMPTY)
@@ -114,20 +110,8 @@ class Hood(CatalogState):
     settled_to: float = 0.0  # resting orders are decided up to this simulated second
     opening_value: float = 0.0  # the portfolio value when the preload applied ("Today" vs it)
 
-    def has_stock(self, symbol: str) -> bool:
-        return symbol in self.stocks
-
     def holding(self, symbol: str) -> Holding:
         return self.holdings.get(symbol) or Holding()
-
-
-def empty_hood(catalog: Any) -> Hood:
-    me = catalog.self_user or {}
-    return Hood(
-        catalog=catalog,
-        self_name=str(me.get("name") or "Me"),
-        self_username=str(me.get("username") or "me"),
-    )
 
 
 # --- prices -----------------------------------------------------------------------------------
@@ -145,14 +129,10 @@ def quote(hood: Hood, symbol: str, now: float) -> float:
     return round(price(hood, symbol, now), 2)
 
 
-def starting_price(hood: Hood, symbol: str) -> float:
-    series = hood.prices.get(symbol)
-    return series.start if series is not None else 0.0
-
-
 def change(hood: Hood, symbol: str, now: float) -> tuple[float, float]:
     """(change, percent) of the shown price since the start of the task."""
-    start = starting_price(hood, symbol)
+    series = hood.prices.get(symbol)
+    start = series.start if series is not None else 0.0
     delta = quote(hood, symbol, now) - start
     return delta, (delta / start * 100 if start else 0.0)
 

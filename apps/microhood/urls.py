@@ -1,16 +1,4 @@
-"""MicroHood pages, mounted by the core under /r/<token>/microhood/.
-
-GET  ./?range=                       Investing: portfolio value and chart, buying power, news,
-                                     the Stocks / Lists sidebar
-GET  ./stocks/<symbol>?range=&side=  a stock: price chart, about, position, order ticket
-POST ./stocks/<symbol>/order         place_order (side, type, quantity, limit_price)
-POST ./stocks/<symbol>/watch         add_to_watchlist / remove_from_watchlist (field `intent`)
-GET  ./market                        equity and crypto cards
-GET  ./watchlist                     the list, with remove buttons
-GET  ./news                          every story, newest first
-GET  ./orders                        order history; POST ./orders/cancel cancels a resting order
-GET  ./search?q=                     symbol or company name
-"""
+"""MicroHood pages, mounted by the core under /r/<token>/microhood/ (README: Pages)."""
 
 from django.urls import path
 

@@ -40,8 +40,10 @@ def base_context(page: Page, tab: str) -> dict:
     }
 
 
-def sidebar(page: Page) -> dict:
+def investing(page: Page) -> dict:
+    """The Investing tab's context, with the Stocks / Lists sidebar."""
     return {
+        **base_context(page, "investing"),
         "holdings": screens.holding_rows(page.state, page.now),
         "watchlist": screens.watch_rows(page.state, page.now),
     }
@@ -54,8 +56,7 @@ def home(request: HttpRequest, page: Page) -> HttpResponse:
     hood = page.state
     watch(page, [*hood.holdings, *account.watchlist_symbols(hood)])
     context = {
-        **base_context(page, "investing"),
-        **sidebar(page),
+        **investing(page),
         "query": query,
         "portfolio": screens.portfolio(hood, page.now, query.range, span(page)),
         "news": screens.newest_first(hood.news.values())[:8],
@@ -64,7 +65,7 @@ def home(request: HttpRequest, page: Page) -> HttpResponse:
 
 
 def listed(page: Page, symbol: str) -> str:
-    if not page.state.has_stock(symbol):
+    if symbol not in page.state.stocks:
         raise Http404("no such stock")  # unknown, or not loaded: alike
     return symbol
 
@@ -77,8 +78,7 @@ def stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     watch(page, [symbol, *page.state.holdings, *account.watchlist_symbols(page.state)])
     hood = screens.settled(page.state, page.now)
     context = {
-        **base_context(page, "investing"),
-        **sidebar(page),
+        **investing(page),
         "query": query,
         "screen": screens.stock_screen(page.state, symbol, page.now, query.range, span(page)),
         "resting": screens.resting_orders(page.state, symbol, page.now),

@@ -1,10 +1,11 @@
-"""Line charts as SVG paths: a value over the simulated session, or a longer made-up history.
+"""Line charts as SVG paths: a value over the simulated session, or a longer made-up history
+(first drawn for MicroHood's price and portfolio charts; any value over time can use them).
 
 The 1D line is the real thing — the value at sampled simulated instants from the preload to
 `now`, ending exactly at the value of `now` — and it grows across the session's width as time
 passes. Longer ranges (1W…ALL) have no data behind them in any catalog: they are a deterministic
-walk (seeded by the symbol and the range) that ends at the starting value, then the session's
-last value, so every range ends at the price shown above it.
+walk (seeded by the chart's name, e.g. a symbol, and the range) that ends at the starting value,
+then the session's last value, so every range ends at the value shown above it.
 """
 
 from __future__ import annotations
