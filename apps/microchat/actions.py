@@ -1,9 +1,5 @@
 """What an agent can do in the chat: `Action(schema, decide, reduce, page=…)` per action name.
 
-`decide(chat, payload)` checks the request against the current chat and returns the payload to
-log, adding what it decided (which messages an opening marks read, a sent message's id);
-`reduce` applies a logged action, trusts the log and never raises, so replay always succeeds.
-
 Favourite, mute and reactions are set explicitly (pin / unpin, react / unreact), not toggled as
 in the original: a repeated request or two racing tabs cannot flip them back by accident. A
 reaction is the self user's (the original always wrote the literal "user000").
@@ -89,8 +85,6 @@ def decide_open(chat: Chat, payload: dict) -> dict:
     existing_conversation(chat, conversation_id)
     unread = unread_in(chat, conversation_id)
     if not unread:
-        # Opening a chat with nothing unread changes nothing, so nothing is logged (the page's
-        # implicit action does not fire either).
         raise ActionRejected(f"conversation {conversation_id!r} has nothing unread to open", 409)
     return {**payload, "message_ids": unread}
 

@@ -54,12 +54,6 @@ def _field(record: Mapping[str, Any], *names: str, default: Any = None) -> Any:
     return default
 
 
-def _name_of(catalog: Any, user_id: str | None, *, otherwise: str) -> str:
-    """A person's name from the user catalog, else `otherwise`."""
-    person = catalog.users.get(user_id) if user_id else None
-    return str(person["name"]) if person and person.get("name") else otherwise
-
-
 def _json_list(value: Any) -> list:
     if isinstance(value, str):
         try:
@@ -120,9 +114,7 @@ def catalog_message(
         id=message_id,
         conversation_id=str(_field(record, "conversation_id", "conversationId", default="")),
         sender_id=sender_id,
-        sender_name=_name_of(
-            chat.catalog, sender_id, otherwise=str(_field(record, "senderName", default="Unknown"))
-        ),
+        sender_name=chat.user_name(sender_id, str(_field(record, "senderName", default="Unknown"))),
         content=str(record.get("content") or ""),
         sent_at=stamp.at - 60 * minutes_ago if stamp.preloaded else stamp.at,
         is_urgent=bool(record.get("isUrgent", False)),
@@ -153,7 +145,7 @@ def make_conversation(
     name = str(record.get("name") or "")
     if kind == "direct":
         other = next((p for p in participants if p != chat.self_id), None)
-        name = _name_of(chat.catalog, other, otherwise=name)
+        name = chat.user_name(other, name)
     conversation = Conversation(
         id=conversation_id,
         type=kind,
@@ -204,7 +196,7 @@ def make_call(chat: Chat, call_id: str, record: Mapping[str, Any], stamp: Stamp)
     return Call(
         id=call_id,
         # The newer original handler names a person's call after the person.
-        name=_name_of(chat.catalog, user_id, otherwise=str(record.get("name", ""))),
+        name=chat.user_name(user_id, str(record.get("name", ""))),
         # The original wrote `callerId`, which its catalog never sets (its UI read `userId`):
         # the column now names the caller whenever the catalog does either way.
         caller_id=_field(record, "callerId", "userId"),

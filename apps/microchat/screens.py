@@ -55,8 +55,7 @@ class ChatList:
 
 @per_state()
 def conversation_messages(chat: Chat) -> dict[str, tuple[str, ...]]:
-    """Each conversation's message ids in display order: by time sent, then delivery (the
-    order they are grouped in, which a stable sort keeps)."""
+    """Each conversation's message ids by time sent, then delivery (a stable sort keeps it)."""
     grouped: dict[str, list[str]] = {}
     for message_id, message in chat.messages.items():
         grouped.setdefault(message.conversation_id, []).append(message_id)

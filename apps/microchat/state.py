@@ -127,9 +127,10 @@ class Chat(SelfUserState):
     def muted(self, conversation_id: str) -> bool:
         return self.conversation_states.get(conversation_id, ConversationState()).is_muted
 
-    def user_name(self, user_id: str | None) -> str:
+    def user_name(self, user_id: str | None, otherwise: str = "Unknown user") -> str:
+        """A person's name from the user catalog, else `otherwise`."""
         user = self.catalog.users.get(user_id) if user_id else None
-        return str(user.get("name")) if user and user.get("name") else "Unknown user"
+        return str(user["name"]) if user and user.get("name") else otherwise
 
     def called(self, user_id: str | None) -> str:
         """How the workspace names a person to the self user: "You", or their name."""

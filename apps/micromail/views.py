@@ -44,10 +44,6 @@ DONE = {
 }
 
 
-def root_url(page: Page) -> str:
-    return page.root + "/"
-
-
 FAVORITE_ACTIONS = {"add_favorite": "added to", "remove_favorite": "removed from"}
 # Sent by the compose form's own saving (static/micromail/micromail.js): answered with the draft's id.
 AUTOSAVE_HEADER = "X-MicroMail-Autosave"
@@ -55,28 +51,28 @@ AUTOSAVE_HEADER = "X-MicroMail-Autosave"
 
 def base_context(page: Page, current_folder: str | None, back: str = "") -> dict:
     """What the chrome shows on every page; `back` = the screen the folder stars return to."""
-    mail = page.state
+    mail, root = page.state, page.root + "/"
     return {
         "token": page.run.token,
         "self_name": mail.self_name,
         "self_first_name": mail.self_name.split()[0] if mail.self_name.split() else mail.self_name,
         "self_email": mail.self_email,
-        "folders": folder_links(mail, current_folder, root_url(page)),
-        "favorites": favorite_links(mail, current_folder, root_url(page)),
+        "folders": folder_links(mail, current_folder, root),
+        "favorites": favorite_links(mail, current_folder, root),
         "folders_back": back,
         "current_folder": current_folder,
-        "compose_url": compose_url(root_url(page), "new"),
+        "compose_url": compose_url(root, "new"),
         "all_folders": [(f, FOLDER_TITLES[f]) for f in FOLDERS],
     }
 
 
 def render_mailbox(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpResponse:
-    screen = mailbox_screen(page.state, query, root_url(page))
+    screen = mailbox_screen(page.state, query, page.root + "/")
     context = {
         **base_context(page, query.folder, screen.back),
         "screen": screen,
         "query": query,
-        "self_url": root_url(page) + query.querystring(),
+        "self_url": page.root + "/" + query.querystring(),
     }
     return render_screen(request, page, "micromail/mailbox.html", context)
 
