@@ -15,6 +15,9 @@ from events import registry
 from events.projection import clear_cache
 
 REPO = Path(__file__).resolve().parents[1]
+# The scenarios of ours the tests play and count: the session's copy of the files git tracks in
+# scenarios/ (tests/settings.py), so a scenario authored in the admin never changes the suite.
+OUR_SCENARIOS = Path(os.environ["SENTINEL_TEST_OUR_SCENARIOS"])
 # The original benchmark's data, for the conformance tests (README, "Conformance tests").
 UPSTREAM = Path(os.environ.get("SENTINEL_UPSTREAM_DIR") or REPO.parent / "shared" / "upstream")
 UPSTREAM_ABSENT = (
@@ -109,7 +112,7 @@ def own_scenarios(settings, tmp_path) -> Path:
     the copy every other test of the session plays. Ask for it before `live_site`, whose
     server is started with the folder."""
     root = tmp_path / "scenarios"
-    shutil.copytree(REPO / "scenarios", root)
+    shutil.copytree(OUR_SCENARIOS, root)
     settings.SENTINEL_SCENARIO_DIR = root
     return root
 

@@ -13,8 +13,10 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import OUR_SCENARIOS
+
 REPO = Path(__file__).resolve().parents[2]
-REAL = REPO / "scenarios" / "micromail"
+REAL = OUR_SCENARIOS / "micromail"
 AGENT = Path(__file__).with_name("scripted_agent.py")
 
 

@@ -48,7 +48,9 @@ def test_virtual_clocks_give_the_verdicts_of_live_clocks_at_speed_4(tmp_path, se
     root.mkdir(parents=True)
     for new_id, source in (("quick-passive", "sender-absolute-passive"),
                            ("quick-active", "body-keyword-absolute-active")):  # fmt: skip
-        data = shorten(source, new_id, "", condition_at=6.0, kill_at=10.0, end=14.0)
+        # Seconds of wall time at speed 4 (condition at 3 s, deadline at 5 s): a loaded machine's
+        # slow agent start must not move a live verdict across the condition or the deadline.
+        data = shorten(source, new_id, "", condition_at=12.0, kill_at=20.0, end=28.0)
         (root / f"{new_id}.json").write_text(json.dumps(data))
     settings.SENTINEL_SCENARIO_DIR = root.parent
 

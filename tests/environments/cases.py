@@ -34,6 +34,7 @@ from apps.scenarios.format import (
     read_json_file,
 )
 from events.registry import environment_names
+from tests.conftest import OUR_SCENARIOS
 
 HERE = Path(__file__).resolve().parent
 TEST_SCENARIOS = HERE / "scenarios"
@@ -127,13 +128,10 @@ def scenario_files(folder: Path) -> list[Path]:
     return sorted(p for p in folder.glob("*.json") if p.name != DEV_FILENAME)
 
 
-OUR_SCENARIOS = HERE.parents[1] / "scenarios"  # the repository's own, never edited by a test
-
-
 def our_cases(environment: str) -> list[Case]:
-    # The repository's files, not SENTINEL_SCENARIO_DIR: tests that edit scenarios (the admin
-    # writes edits through to files) work on copies, and these cases must stay as authored
-    # whatever ran before them.
+    # The session's copy of the tracked files, not SENTINEL_SCENARIO_DIR: tests that edit
+    # scenarios (the admin writes edits through to files) work on copies of their own, and these
+    # cases must stay as authored whatever ran before them.
     folders = (OUR_SCENARIOS / environment, TEST_SCENARIOS / environment)
     return [Case(environment, path) for folder in folders for path in scenario_files(folder)]
 

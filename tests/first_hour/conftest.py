@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from rest_framework.test import APIClient
 
-from tests.conftest import REPO
+from tests.conftest import OUR_SCENARIOS
 
 INBOX = "micromail/inbox-relative-passive.json"
 JUNK = "micromail/junk-relative-passive.json"
@@ -23,6 +23,6 @@ def api() -> APIClient:
 def scenario_dir(settings, tmp_path) -> Path:
     """SENTINEL_SCENARIO_DIR: a copy of our MicroMail scenarios, free to edit and break."""
     root = tmp_path / "scenarios"
-    shutil.copytree(REPO / "scenarios" / "micromail", root / "micromail")
+    shutil.copytree(OUR_SCENARIOS / "micromail", root / "micromail")
     settings.SENTINEL_SCENARIO_DIR = root
     return root

@@ -12,7 +12,7 @@ from django.contrib.auth import get_user_model
 
 from sentinel_site.site_server import site_server
 from tests.browser_story import TIMEOUT_MS
-from tests.conftest import REPO
+from tests.conftest import OUR_SCENARIOS
 
 pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
 
@@ -25,7 +25,7 @@ def author_site(transactional_db, tmp_path, settings):
     """A server on the test database whose scenario folder is a fresh copy of ours."""
     get_user_model().objects.create_superuser(AUTHOR, "grace@example.test", PASSWORD)
     root = tmp_path / "scenarios"
-    shutil.copytree(REPO / "scenarios" / "micromail", root / "micromail")
+    shutil.copytree(OUR_SCENARIOS / "micromail", root / "micromail")
     settings.SENTINEL_SCENARIO_DIR = root  # the server started below shares it
     with site_server(log_path=settings.BASE_DIR / "var" / "live-site.log") as base_url:
         yield base_url, root

@@ -10,7 +10,7 @@ from django.core.management import call_command
 from apps.scenarios.admin import TimelineEventForm
 from apps.scenarios.models import Scenario
 from events.models import Run
-from tests.conftest import REPO
+from tests.conftest import OUR_SCENARIOS
 
 pytestmark = pytest.mark.django_db
 
@@ -19,9 +19,7 @@ INBOX = "micromail/inbox-relative-passive.json"
 
 @pytest.fixture
 def scenarios(own_scenarios):
-    call_command(
-        "loadscenarios", str(REPO / "scenarios"), stdout=io.StringIO(), stderr=io.StringIO()
-    )
+    call_command("loadscenarios", str(OUR_SCENARIOS), stdout=io.StringIO(), stderr=io.StringIO())
     return Scenario.objects.all()
 
 
@@ -84,7 +82,7 @@ def test_export_downloads_the_file_byte_identical(scenarios, admin_client):
     scenario = scenarios.get(path=INBOX)
     response = admin_client.get(f"/admin/scenarios/scenario/{scenario.pk}/export/")
     assert response["Content-Disposition"] == 'attachment; filename="inbox-relative-passive.json"'
-    assert response.content == (REPO / "scenarios" / INBOX).read_bytes()
+    assert response.content == (OUR_SCENARIOS / INBOX).read_bytes()
 
 
 def test_duplicate_copies_the_timeline(scenarios, admin_client):

@@ -10,7 +10,7 @@ from django.core.management import call_command
 
 from apps.scenarios.models import Scenario
 from tests.browser_story import TIMEOUT_MS
-from tests.conftest import REPO
+from tests.conftest import OUR_SCENARIOS
 
 pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
 
@@ -22,9 +22,7 @@ def inbox_scenario(own_scenarios, live_site):
     """Our scenarios loaded, and an author who may log in. Set up before the browser starts:
     Playwright's sync API runs an event loop in this thread, where the ORM refuses to work."""
     get_user_model().objects.create_superuser(AUTHOR, "ada@example.test", PASSWORD)
-    call_command(
-        "loadscenarios", str(REPO / "scenarios"), stdout=io.StringIO(), stderr=io.StringIO()
-    )
+    call_command("loadscenarios", str(OUR_SCENARIOS), stdout=io.StringIO(), stderr=io.StringIO())
     scenario = Scenario.objects.get(path="micromail/inbox-relative-passive.json")
     # cc-03, the fifth new inbox mail, at 173.64 s
     return scenario.pk, scenario.timeline.get(position=8).time, scenario.timeline.count()

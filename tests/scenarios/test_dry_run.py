@@ -9,16 +9,14 @@ from django.core.management import call_command
 
 from apps.scenarios.dry_run import dry_run, validate_timeline_entry
 from apps.scenarios.models import Scenario
-from tests.conftest import REPO
+from tests.conftest import OUR_SCENARIOS
 
 pytestmark = pytest.mark.django_db
 
 
 @pytest.fixture
 def our_scenarios():
-    call_command(
-        "loadscenarios", str(REPO / "scenarios"), stdout=io.StringIO(), stderr=io.StringIO()
-    )
+    call_command("loadscenarios", str(OUR_SCENARIOS), stdout=io.StringIO(), stderr=io.StringIO())
     return Scenario.objects.filter(environment="micromail", is_dev=False)
 
 

@@ -11,7 +11,7 @@ from django.core.management import call_command
 from django.core.management.base import CommandError
 
 from apps.scenarios.models import Scenario
-from tests.conftest import REPO
+from tests.conftest import OUR_SCENARIOS, REPO
 
 pytestmark = pytest.mark.django_db
 
@@ -26,7 +26,7 @@ def round_trip(source: Path, target: Path) -> None:
 
 
 def test_our_scenarios_survive_load_and_dump_byte_identical(tmp_path):
-    source = REPO / "scenarios"
+    source = OUR_SCENARIOS
     round_trip(source, tmp_path)
     assert files_of(tmp_path) == files_of(source)
 
@@ -56,14 +56,14 @@ def test_two_upstream_files_sharing_an_id_are_two_rows(upstream_dir):
 
 
 def test_an_edited_row_is_dumped_with_the_edit_in_file_key_order(tmp_path):
-    round_trip(REPO / "scenarios", tmp_path / "first")
+    round_trip(OUR_SCENARIOS, tmp_path / "first")
     row = Scenario.objects.get(path="micromail/inbox-relative-passive.json")
     event = row.timeline.get(position=8)
     type(event).objects.filter(pk=event.pk).update(time=203.64)
     call_command("dumpscenarios", str(tmp_path / "second"), stdout=io.StringIO())
     text = (tmp_path / "second" / row.path).read_text()
     data = json.loads(text)
-    original = json.loads((REPO / "scenarios" / row.path).read_text())
+    original = json.loads((OUR_SCENARIOS / row.path).read_text())
     assert list(data) == list(original)
     assert data["events"][8]["time"] == 203.64
     assert data["event_timeline_end"] == 720.0 and "720.0" in text
@@ -133,7 +133,7 @@ def test_a_scenario_authored_in_the_admin_is_written_in_our_key_order():
 
 def write_scenario(folder: Path, name: str, **changes) -> dict:
     template = next(
-        p for p in sorted((REPO / "scenarios" / "micromail").glob("*.json")) if p.name != "dev.json"
+        p for p in sorted((OUR_SCENARIOS / "micromail").glob("*.json")) if p.name != "dev.json"
     )
     data = json.loads(template.read_text())
     data.update(changes)
