@@ -10,7 +10,6 @@ count stays as catalogued, which is the original's behaviour.
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, NamedTuple
@@ -83,10 +82,6 @@ class Profile:
     is_self: bool = False
 
 
-def _domain(email: str) -> str:
-    return email.partition("@")[2]
-
-
 def _profile(user_id: str, user: Mapping, affiliation: str, domain: str, interests) -> Profile:
     name, is_self = str(user.get("name", user_id)), bool(user.get("isSelf", False))
     return Profile(
@@ -104,12 +99,13 @@ def profiles(catalog: Any) -> Mapping[str, Profile]:
             affiliation = ", ".join(
                 str(x) for x in (block.get("title"), block.get("affiliation")) if x
             )
-            domain = _domain(str(block.get("email") or user.get("email") or ""))
+            domain = str(block.get("email") or user.get("email") or "").partition("@")[2]
             found[user_id] = _profile(user_id, user, affiliation, domain, block.get("interests"))
     for user_id, record in catalog.table(ENVIRONMENT, "scholars").items():
         user = catalog.users.get(user_id) or {}
         affiliation = str(record.get("affiliation", ""))
-        domain = str(record.get("emailDomain") or _domain(str(user.get("email", ""))))
+        email = str(user.get("email", ""))
+        domain = str(record.get("emailDomain") or email.partition("@")[2])
         found[user_id] = _profile(user_id, user, affiliation, domain, record.get("interests"))
     return found
 
@@ -126,16 +122,11 @@ def coauthors(catalog: Any) -> Mapping[str, tuple[str, ...]]:
 
 
 class Coauthorship(NamedTuple):
-    """A relation of `coauthors.jsonl` (authorId1, authorId2, sharedPapers), for the evaluation
-    table."""
+    """A relation of `coauthors.jsonl` (authorId1, authorId2, sharedPapers)."""
 
     one: str
     two: str
     shared: tuple[str, ...]
-
-    @property
-    def shared_json(self) -> str:
-        return json.dumps(list(self.shared))
 
 
 def coauthor_pairs(catalog: Any) -> tuple[Coauthorship, ...]:

@@ -12,7 +12,6 @@ from typing import Any
 
 from apps.microscholar.state import Paper
 
-STYLES = ("MLA", "APA", "Chicago", "Harvard", "BibTeX")
 # format → (link text, file extension, media type)
 EXPORTS: dict[str, tuple[str, str, str]] = {
     "bibtex": ("BibTeX", "bib", "application/x-bibtex"),
@@ -106,10 +105,12 @@ def bibtex(paper: Paper, names: tuple[Name, ...]) -> str:
     )
 
 
+# The dialog's styles, in its order.
+STYLES = {"MLA": mla, "APA": apa, "Chicago": chicago, "Harvard": harvard, "BibTeX": bibtex}
+
+
 def styles(paper: Paper, names: tuple[Name, ...]) -> tuple[tuple[str, str], ...]:
-    """(style, text) for each style of the dialog, in the dialog's order."""
-    makers = {"MLA": mla, "APA": apa, "Chicago": chicago, "Harvard": harvard, "BibTeX": bibtex}
-    return tuple((style, makers[style](paper, names)) for style in STYLES)
+    return tuple((style, make(paper, names)) for style, make in STYLES.items())
 
 
 # The tagged export formats: (record type, tags of title, each author, source, year, end line).

@@ -14,6 +14,7 @@ already indexed is left as the user has it (no duplicate, no reset of saved/cite
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterable
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
@@ -123,7 +124,11 @@ materialize = tables(
     Table(
         "coauthors",
         lambda scholar, now: coauthor_pairs(scholar.catalog),
-        {"authorId1 TEXT": "one", "authorId2 TEXT": "two", "sharedPapers TEXT": "shared_json"},
+        {
+            "authorId1 TEXT": "one",
+            "authorId2 TEXT": "two",
+            "sharedPapers TEXT": lambda pair: json.dumps(list(pair.shared)),
+        },
     ),
 )
 

@@ -33,21 +33,21 @@ class AuthorLink:
 
 @dataclass(frozen=True)
 class Row:
-    """One paper as a result entry (inputs of the row fragment: hashable, read at `now`)."""
+    """One paper as a result entry (inputs of the row fragment: hashable, read at `now`). What
+    it does not say itself (id, title, source, year, versions…) is its paper's."""
 
-    id: str
-    title: str
+    paper: Paper
     url: str
     cite_url: str
     authors: tuple[AuthorLink, ...]
-    source: str
-    year: int
     snippet: str
     cited_by: int
-    versions: int
     saved: bool
-    pdf_source: str
-    is_book: bool
+
+    def __getattr__(self, name: str) -> Any:  # only called for what the row itself lacks
+        if name.startswith("__"):  # copy and pickle probe before `paper` is set
+            raise AttributeError(name)
+        return getattr(self.paper, name)
 
 
 @dataclass(frozen=True)
@@ -99,19 +99,13 @@ def row(scholar: Scholar, paper_id: str, now: float, root: str, *, full: bool = 
     paper = scholar.papers[paper_id]
     url = paper_url(root, paper_id)
     return Row(
-        id=paper_id,
-        title=paper.title,
+        paper=paper,
         url=url,
         cite_url=url + "/cite",
         authors=author_links(scholar, paper, root),
-        source=paper.source,
-        year=paper.year,
         snippet=paper.snippet if full else short_snippet(paper.snippet),
         cited_by=paper.cited_by(now),
-        versions=paper.versions,
         saved=scholar.is_saved(paper_id),
-        pdf_source=paper.pdf_source,
-        is_book=paper.is_book,
     )
 
 
