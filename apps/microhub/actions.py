@@ -15,7 +15,7 @@ import re
 from collections.abc import Callable, Mapping
 from dataclasses import replace
 from types import MappingProxyType
-from typing import Literal
+from typing import Any, Literal
 
 from pydantic import Field
 
@@ -156,7 +156,8 @@ def decide_set_state(wanted: str) -> Callable[[Hub, dict], dict]:
 # --- comments ---------------------------------------------------------------------------------------
 
 
-def decide_comment(target_type: str) -> Callable[[Hub, dict], dict]:
+def comment_action(target_type: str, payload: type[Payload], **where: Any) -> Action[Hub]:
+    """Commenting as the user on the issue or pull request `payload[<target_type>_id]`."""
     key = f"{target_type}_id"
     existing = existing_issue if target_type == "issue" else existing_pr
 
@@ -164,12 +165,6 @@ def decide_comment(target_type: str) -> Callable[[Hub, dict], dict]:
         existing(hub, payload[key])
         body = required_text(payload, "body")
         return {key: payload[key], "body": body, "id": f"user-comment-{len(hub.user_comments) + 1}"}
-
-    return decide
-
-
-def reduce_comment(target_type: str) -> Callable[[Hub, LoggedEvent], Hub]:
-    key = f"{target_type}_id"
 
     def reduce(hub: Hub, event: LoggedEvent) -> Hub:
         p = event.payload
@@ -184,7 +179,7 @@ def reduce_comment(target_type: str) -> Callable[[Hub, LoggedEvent], Hub]:
         )
         return replace(hub, user_comments=(*hub.user_comments, comment))
 
-    return reduce
+    return Action(payload, decide, reduce, **where)
 
 
 # --- pull requests -----------------------------------------------------------------------------
@@ -280,7 +275,7 @@ def reduce_settings(hub: Hub, event: LoggedEvent) -> Hub:
     return replace(hub, repo=MappingProxyType(repo))
 
 
-def decide_follow(following: bool) -> Callable[[Hub, dict], dict]:
+def follow_action(following: bool) -> Action[Hub]:
     def decide(hub: Hub, payload: dict) -> dict:
         username = required_text(payload, "username")
         if username == hub.self_username:
@@ -291,16 +286,12 @@ def decide_follow(following: bool) -> Callable[[Hub, dict], dict]:
             )
         return {"username": username}
 
-    return decide
-
-
-def reduce_follow(following: bool) -> Callable[[Hub, LoggedEvent], Hub]:
     def reduce(hub: Hub, event: LoggedEvent) -> Hub:
         name = event.payload["username"]
         kept = tuple(u for u in hub.following if u != name)
         return replace(hub, following=(*kept, name) if following else kept)
 
-    return reduce
+    return Action(Username, decide, reduce, page=profile_page)
 
 
 # --- where a person does it (Action.page); forms are marked data-action="<name>" ----------------
@@ -359,12 +350,8 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             reduce_create_issue,
             page=on("issues/new", "title", "body"),
         ),
-        "comment_issue": Action(
-            IssueComment,
-            decide_comment("issue"),
-            reduce_comment("issue"),
-            help="Comment on an issue as the user.",
-            page=issue_page("body"),
+        "comment_issue": comment_action(
+            "issue", IssueComment, help="Comment on an issue as the user.", page=issue_page("body")
         ),
         "close_issue": Action(
             IssueId, decide_set_state("closed"), set_issue(state="closed"), page=issue_page()
@@ -379,9 +366,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Opening an issue marks it viewed (implicit).",
             page=lambda hub, p: PageStep(f"issues/{p['issue_id']}"),
         ),
-        "comment_pr": Action(
-            PrComment, decide_comment("pr"), reduce_comment("pr"), page=pr_page("body")
-        ),
+        "comment_pr": comment_action("pr", PrComment, page=pr_page("body")),
         "merge_pr": Action(
             Merge,
             decide_merge,
@@ -408,11 +393,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Settings → General: rename, describe, change visibility.",
             page=settings_page,
         ),
-        "follow_user": Action(
-            Username, decide_follow(True), reduce_follow(True), page=profile_page
-        ),
-        "unfollow_user": Action(
-            Username, decide_follow(False), reduce_follow(False), page=profile_page
-        ),
+        "follow_user": follow_action(True),
+        "unfollow_user": follow_action(False),
     }
 )
