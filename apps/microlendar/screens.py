@@ -300,24 +300,6 @@ def grouped(agenda: Agenda, query: CalendarQuery, events: list[CalendarEvent]):
 
 
 @dataclass(frozen=True)
-class Details:
-    event: CalendarEvent
-    date_text: str  # "Thursday, September 18"
-    when: str  # "9:30 – 10:15am"
-    conflicts: tuple[CalendarEvent, ...]
-
-
-def details(agenda: Agenda, event_id: str) -> Details:
-    event = agenda.events[event_id]
-    return Details(
-        event=event,
-        date_text=f"{event.day:%A, %B} {event.day.day}",
-        when=times.span(event.start, event.end),
-        conflicts=tuple(conflicts_with(agenda, event)),
-    )
-
-
-@dataclass(frozen=True)
 class TaskRow:
     id: str
     title: str

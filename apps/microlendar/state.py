@@ -19,6 +19,7 @@ from typing import Any, ClassVar
 
 from apps.kit.state import SelfUserState, with_items
 from apps.kit.streaming import no_items
+from apps.microlendar import times
 
 ENVIRONMENT = "microlendar"
 
@@ -59,6 +60,11 @@ class CalendarEvent:
     @property
     def color(self) -> str:
         return CALENDAR_COLORS.get(self.calendar, CALENDAR_COLORS[DEFAULT_CALENDAR])
+
+    @property
+    def span(self) -> str:
+        """ "9:30 – 10:15am", as the event's details show its times."""
+        return times.span(self.start, self.end)
 
     @property
     def duration(self) -> int:

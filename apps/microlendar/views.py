@@ -21,7 +21,13 @@ from apps.kit.rendering import redirect_after, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, EVENT_FIELDS, existing_event
 from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
-from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda, CalendarEvent
+from apps.microlendar.state import (
+    CALENDAR_COLORS,
+    CALENDARS,
+    Agenda,
+    CalendarEvent,
+    conflicts_with,
+)
 from events.registry import ActionRejected
 
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
@@ -77,7 +83,8 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
     context.update(
         screen=screen,
         now_top=screens.now_line_top(context["moment"]),
-        details=screens.details(agenda, query.event) if query.event else None,
+        details=agenda.events[query.event] if query.event else None,
+        conflicts=conflicts_with(agenda, agenda.events[query.event]) if query.event else (),
         close_url=query.but(event=None).querystring() or "?",
         clear_search_url=query.but(q="", event=None).querystring() or "?",
         title_for_tab=screen.title,
