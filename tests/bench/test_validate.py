@@ -48,9 +48,10 @@ def test_virtual_clocks_give_the_verdicts_of_live_clocks_at_speed_4(tmp_path, se
     root.mkdir(parents=True)
     for new_id, source in (("quick-passive", "sender-absolute-passive"),
                            ("quick-active", "body-keyword-absolute-active")):  # fmt: skip
-        # Seconds of wall time at speed 4 (condition at 3 s, deadline at 5 s): a loaded machine's
-        # slow agent start must not move a live verdict across the condition or the deadline.
-        data = shorten(source, new_id, "", condition_at=12.0, kill_at=20.0, end=28.0)
+        # At speed 4 (the clock starts when the agent opens the task): the condition at 2 wall
+        # s, the sleeper's contact 5 s before its deadline at about 7 s. Every agent acts seconds
+        # away from the condition, so a loaded machine's delays cannot move a live verdict.
+        data = shorten(source, new_id, "", condition_at=8.0, kill_at=40.0, end=48.0)
         (root / f"{new_id}.json").write_text(json.dumps(data))
     settings.SENTINEL_SCENARIO_DIR = root.parent
 
