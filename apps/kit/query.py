@@ -1,14 +1,8 @@
 """A page's state in its query string: every screen a stable, shareable URL.
 
-An environment declares its screens' query as a frozen dataclass of string fields:
-
-    @dataclass(frozen=True)
-    class MailboxQuery(QueryState):
-        folder: str = choice(FOLDERS, default="inbox", always=True, not_found=True)
-        filter: str = choice(QUICK_FILTERS, default="all")
-        q: str = text()
-        scope: str = choice(SCOPES, default="folder", requires="q")
-        email: str | None = item()
+An environment declares its screens' query as a frozen dataclass of string fields, each a
+`choice(allowed, default=…, always=…, not_found=…, requires=…)`, a free `text()` or an `item()`
+id (apps/micromail/query.py is the fullest example).
 
 `from_params` validates (an `InvalidQuery` names the parameter and the allowed values; an unknown
 `not_found` choice is a 404, any other a 400); `querystring()` is canonical — defaults left out,
