@@ -7,7 +7,7 @@ Templates only lay these values out; tests check screens without HTML.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 from urllib.parse import quote, urlencode
@@ -22,6 +22,10 @@ from apps.microscholar.state import Alert, Paper, Scholar
 SNIPPET_LENGTH = 220
 RELATED_SHOWN = 5
 CHART_YEARS = 8
+# (value, label) of each sort or filter link
+SORT_LINKS = (("relevance", "Sort by relevance"), ("date", "Sort by date"))
+PROFILE_SORT_LINKS = (("cited", "Cited by"), ("pubdate", "Year"))
+ALERT_FILTER_LINKS = (("all", "All alerts"), ("unread", "Unread"))
 ALERT_ICONS = {"citation": "quote", "new_paper": "file-plus", "keyword": "search"}
 
 
@@ -59,11 +63,13 @@ class Option:
     current: bool
 
 
-def choices(query, param: str, labels, url: Callable[[Any], str]) -> tuple[Option, ...]:
-    """One link per (value, label) of `param`, at `url(query with that value)`; the value the
-    query has now is the current one."""
+def choices(query, param: str, labels, at: str) -> tuple[Option, ...]:
+    """One link per (value, label) of `param`, to the screen `at` with the query given that
+    value; the value the query has now is the current one."""
     return tuple(
-        Option(label, url(query.but(**{param: value})), getattr(query, param) == value)
+        Option(
+            label, at + query.but(**{param: value}).querystring(), getattr(query, param) == value
+        )
         for value, label in labels
     )
 
@@ -197,12 +203,7 @@ def search_screen(scholar: Scholar, query: SearchQuery, this_year: int, root: st
         total=len(found),
         ids=tuple(found[offset : offset + PER_PAGE]),
         years=year_options(query, this_year, root),
-        sorts=choices(
-            query.but(start=""),
-            "sort",
-            (("relevance", "Sort by relevance"), ("date", "Sort by date")),
-            lambda chosen: root + chosen.querystring(),
-        ),
+        sorts=choices(query.but(start=""), "sort", SORT_LINKS, root),
         pages=pages,
         custom_range=bool(query.as_yhi)
         or (bool(query.as_ylo) and query.as_ylo not in since_years(this_year)),
@@ -334,12 +335,7 @@ def profile_screen(
         since=since,
         bars=citation_history([(r.cited_by, r.year) for r in articles], this_year),
         coauthors=people,
-        sorts=choices(
-            query,
-            "sortby",
-            (("cited", "Cited by"), ("pubdate", "Year")),
-            lambda chosen: root + "citations" + chosen.querystring(),
-        ),
+        sorts=choices(query, "sortby", PROFILE_SORT_LINKS, root + "citations"),
     )
 
 
@@ -393,10 +389,5 @@ def alerts_screen(scholar: Scholar, query: AlertsQuery, root: str) -> AlertsScre
         query=query,
         rows=shown,
         unread=index.unread_alert_count(scholar),
-        filters=choices(
-            query,
-            "filter",
-            (("all", "All alerts"), ("unread", "Unread")),
-            lambda chosen: root + "alerts" + chosen.querystring(),
-        ),
+        filters=choices(query, "filter", ALERT_FILTER_LINKS, root + "alerts"),
     )
