@@ -19,7 +19,7 @@ from pydantic import Field
 from apps.kit import social
 from apps.kit.arrivals import Stamp
 from apps.kit.deciding import checking, found, new_id, required_text
-from apps.kit.state import with_changed, with_items
+from apps.kit.state import setting, with_items
 from events.registry import Action, ImplicitAction, LoggedEvent, PageStep, Reducer
 from events.schemas import Payload
 
@@ -152,16 +152,6 @@ def post_rows(state: Any, now: float) -> list[PostRow]:
 
 class ConversationId(Payload):
     conversation_id: str = Field(description="id of a one-to-one thread (a conversation)")
-
-
-def setting(field: str, key: str, **changes: Any) -> Reducer:
-    """A reducer setting fields of the item's user-side record `state.<field>[payload[key]]`
-    (liked, saved, read, applied…); an id that is not there changes nothing."""
-
-    def reduce(state: Any, event: LoggedEvent) -> Any:
-        return with_changed(state, field, event.payload[key], **changes)
-
-    return reduce
 
 
 def post_flag(**changes: bool) -> Reducer:

@@ -22,7 +22,7 @@ from apps.kit import feeds
 from apps.kit.deciding import found, new_id
 from apps.kit.feeds import ConversationId
 from apps.kit.social import Comment, post_actions
-from apps.kit.state import with_changed, with_items
+from apps.kit.state import setting, with_changed, with_items
 from apps.microdin import catalog as records
 from apps.microdin.query import JobsQuery, MessagingQuery
 from apps.microdin.state import (
@@ -203,14 +203,14 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         "accept_connection": Action(
             ConnectionId,
             decide_answer,
-            feeds.setting("connection_states", "connection_id", status="accepted"),
+            setting("connection_states", "connection_id", status="accepted"),
             help="Accept a pending invitation.",
             page=invitations_page,
         ),
         "ignore_connection": Action(
             ConnectionId,
             decide_answer,
-            feeds.setting("connection_states", "connection_id", status="ignored"),
+            setting("connection_states", "connection_id", status="ignored"),
             help="Ignore (reject) a pending invitation.",
             page=invitations_page,
         ),
@@ -232,14 +232,14 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             page=feeds.profile_page("in/"),
         ),
         "mark_notification_read": on_notification(
-            feeds.setting("notification_states", "notification_id", is_read=True),
+            setting("notification_states", "notification_id", is_read=True),
             "Mark a notification read (what clicking it does).",
             notifications_page,
         ),
         "apply_job": Action(
             JobId,
             decide_apply,
-            feeds.setting("job_states", "job_id", is_applied=True),
+            setting("job_states", "job_id", is_applied=True),
             help="Apply to a job (there is no withdrawing).",
             page=job_page,
         ),
