@@ -131,13 +131,11 @@ def moving(scholar: Scholar, ids: Iterable[str], now: float) -> float | None:
 @per_state()
 def matching(scholar: Scholar, q: str, since: int | None, until: int | None, sort: str) -> tuple:
     """Ids for a search: relevance (the original's shingle score), or newest year first."""
-    ids = search.ranked(scholar.papers.values(), q)
-    ids = [
-        i
-        for i in ids
-        if (since is None or scholar.papers[i].year >= since)
-        and (until is None or scholar.papers[i].year <= until)
-    ]
+
+    def in_range(paper: Paper) -> bool:
+        return (since is None or paper.year >= since) and (until is None or paper.year <= until)
+
+    ids = search.ranked(filter(in_range, scholar.papers.values()), q)
     if sort == "date":
         order = {paper_id: n for n, paper_id in enumerate(index.newest_first(scholar, ids))}
         ids = sorted(ids, key=lambda i: (-scholar.papers[i].year, order[i]))

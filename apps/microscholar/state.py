@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import Any
 
 from apps.kit.state import CatalogState, with_items
 from apps.kit.streaming import counting, no_items, shown_count
@@ -79,8 +78,7 @@ class Scholar(CatalogState):
         return self.paper_states.get(paper_id, PaperState()).cited
 
 
-def empty_scholar(catalog: Any) -> Scholar:
-    return Scholar(catalog=catalog)
+empty_scholar = Scholar  # a catalog → the index before anything arrives
 
 
 # --- building new states (reducers only) ---------------------------------------------------------

@@ -57,6 +57,11 @@ def watch(page: Page, ids) -> None:
     page.changes_at(screens.moving(page.state, ids, page.now))
 
 
+def shown_rows(page: Page, ids) -> tuple[screens.Row, ...]:
+    watch(page, ids)
+    return screens.rows(page.state, ids, page.now, root_url(page))
+
+
 def shown_paper(page: Page, paper_id: str):
     return present(page.state.papers.get(paper_id), "paper")  # unknown, not indexed yet: alike
 
@@ -66,9 +71,7 @@ def shown_paper(page: Page, paper_id: str):
 def search(request: HttpRequest, page: Page) -> HttpResponse:
     """Home (recommended articles) without `q`; results with the filter column with it."""
     query = SearchQuery.from_params(request.GET).check()
-    root = root_url(page)
-    screen = screens.search_screen(page.state, query, this_year(page), root)
-    watch(page, screen.ids)
+    screen = screens.search_screen(page.state, query, this_year(page), root_url(page))
     return show(
         request,
         page,
@@ -77,22 +80,18 @@ def search(request: HttpRequest, page: Page) -> HttpResponse:
         query.querystring(),
         screen=screen,
         query=query,
-        rows=screens.rows(page.state, screen.ids, page.now, root),
+        rows=shown_rows(page, screen.ids),
     )
 
 
 def show_paper(request: HttpRequest, page: Page, paper_id: str, template: str, **context):
     """The paper's page (`template` "paper", or "cite" with the dialog open) and its related."""
     shown_paper(page, paper_id)
-    root = root_url(page)
-    related = screens.related(page.state, paper_id)
-    watch(page, (paper_id, *related))
-    paper = screens.row(page.state, paper_id, page.now, root, full=True)
-    related_rows = screens.rows(page.state, related, page.now, root)
+    watch(page, [paper_id])
+    paper = screens.row(page.state, paper_id, page.now, root_url(page), full=True)
+    related = shown_rows(page, screens.related(page.state, paper_id))
     back = f"papers/{paper_id}"
-    return show(
-        request, page, template, "paper", back, paper=paper, related=related_rows, **context
-    )
+    return show(request, page, template, "paper", back, paper=paper, related=related, **context)
 
 
 @require_GET
@@ -147,9 +146,7 @@ def profile(request: HttpRequest, page: Page) -> HttpResponse:
 @require_GET
 @run_page
 def library(request: HttpRequest, page: Page) -> HttpResponse:
-    ids = screens.library(page.state)
-    watch(page, ids)
-    rows = screens.rows(page.state, ids, page.now, root_url(page))
+    rows = shown_rows(page, screens.library(page.state))
     return show(request, page, "library", "library", "library", rows=rows)
 
 
