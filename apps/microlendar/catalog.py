@@ -3,7 +3,7 @@
 One table, `microlendar/events.jsonl`, holds events and tasks alike (`is_task` tells them apart),
 as upstream's does. A record: id, title, description, start_time / end_time (ISO), category
 (Work, Family, Personal…), is_task, is_completed, attendees (user ids), location, order. Our
-catalog may add `due_date` (YYYY-MM-DD) and `notes` to tasks; upstream's tasks have neither.
+catalog may add `due_date` (YYYY-MM-DD) to tasks; upstream's tasks have none.
 """
 
 from __future__ import annotations
@@ -77,7 +77,6 @@ def catalog_task(catalog: Any, task_id: str) -> tuple[Task, TaskState] | None:
         id=task_id,
         title=str(record.get("title") or "(No title)"),
         due=times.parse_iso(due)[0] if due and "T" in str(due) else _date_or_none(due),
-        notes=str(record.get("notes") or record.get("description") or ""),
     )
     return task, TaskState(completed=bool(record.get("is_completed", False)))
 

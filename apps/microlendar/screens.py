@@ -83,12 +83,8 @@ class MiniMonth:
 
 @dataclass(frozen=True)
 class Screen:
-    query: CalendarQuery
     view: str
-    shown: date
     title: str
-    first: date
-    last: date
     previous_url: str
     next_url: str
     today_url: str
@@ -260,12 +256,8 @@ def calendar_screen(agenda: Agenda, query: CalendarQuery, today: date) -> Screen
     first, last = visible_range(view, shown)
     events = shown_events(agenda, query, first, last)
     screen = Screen(
-        query=query,
         view=view,
-        shown=shown,
         title=period_title(view, first, last),
-        first=first,
-        last=last,
         previous_url=query.on(step(view, shown, -1), today).querystring(),
         next_url=query.on(step(view, shown, 1), today).querystring(),
         today_url=query.on(today, today).querystring() or "?",

@@ -86,7 +86,6 @@ class Task:
     id: str
     title: str
     due: date | None = None
-    notes: str = ""
     user_created: bool = False
 
 

@@ -22,7 +22,6 @@ from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, EVENT_FIELDS, existing_event
 from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
 from apps.microlendar.state import (
-    CALENDAR_COLORS,
     CALENDARS,
     Agenda,
     CalendarEvent,
@@ -52,7 +51,6 @@ def base_context(page: Page, query: CalendarQuery) -> dict:
     today = moment.date()
     shown = query.shown_date(today)
     return {
-        "agenda": agenda,
         "query": query,
         "moment": moment,
         "today": today,
@@ -149,7 +147,6 @@ def render_form(
         **base_context(page, back),
         "form": form,
         "error": error,
-        "colors": CALENDAR_COLORS,
         "cancel_url": back.querystring() or "?",
     }
     return render_screen(request, page, "microlendar/event_form.html", context, status=status)
