@@ -21,12 +21,7 @@ from apps.kit.rendering import redirect_after, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, EVENT_FIELDS, existing_event
 from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
-from apps.microlendar.state import (
-    CALENDARS,
-    Agenda,
-    CalendarEvent,
-    conflicts_with,
-)
+from apps.microlendar.state import CALENDARS, Agenda, CalendarEvent, conflicts_with
 from events.registry import ActionRejected
 
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
