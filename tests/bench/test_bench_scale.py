@@ -11,7 +11,7 @@ from django.core.management import call_command
 from sentinel_site.site_server import stop_process_group
 from tests.production.redis_server import REDIS_SERVER, RedisServer
 
-pytestmark = pytest.mark.django_db(transaction=True)
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
 LINE = re.compile(
     r"bench_scale: runs=3 rate=1 page_p95_ms=[\d.]+ lateness_p99_ms=(?:[\d.]+|nan) errors=0 "

@@ -14,7 +14,7 @@ from django.core.management import call_command
 
 from apps.bench.models import BenchmarkRun, TaskResult
 
-pytestmark = pytest.mark.django_db(transaction=True)
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
 
 def alive(pid: int) -> bool:

@@ -12,7 +12,7 @@ from django.core.management import call_command
 
 from tests.bench.conftest import shorten
 
-pytestmark = pytest.mark.django_db(transaction=True)
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
 
 def validate(*args: str) -> list[str]:

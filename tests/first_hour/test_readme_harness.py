@@ -12,7 +12,11 @@ import shlex
 import shutil
 import subprocess
 
+import pytest
+
 from tests.conftest import REPO
+
+pytestmark = pytest.mark.e2e
 
 TASK = "micromail-junk-relative-passive"
 

@@ -20,7 +20,7 @@ from apps.kit.live import last_live_seq
 from tests import control_api
 from tests.live.pushed import regions
 
-pytestmark = pytest.mark.django_db(transaction=True)
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
 SCENARIO = settings.BASE_DIR / "scenarios" / "micromail" / "sender-absolute-passive.json"
 WAIT_S = 20  # a simulated minute is 15 wall seconds at speed 4; the tests move closer to it

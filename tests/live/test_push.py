@@ -26,7 +26,7 @@ from events.projection import state_at
 from tests.live.pushed import regions
 from tests.micromail.cast import CAST, LATE_AT
 
-pytestmark = pytest.mark.django_db(transaction=True)
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
 REPORT = "Quarterly engineering report"
 WAIT_S = 10  # generous: two cores shared with other test runs

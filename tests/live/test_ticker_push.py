@@ -16,6 +16,8 @@ from websockets.sync.client import connect
 
 from tests import control_api
 
+pytestmark = pytest.mark.e2e
+
 SCENARIO = settings.BASE_DIR / "scenarios" / "micromail" / "sender-absolute-passive.json"
 FIRST_NEW = "base-36"  # the first new_email after the preload, brought forward below
 WAIT_S = 30
