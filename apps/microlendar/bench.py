@@ -1,8 +1,5 @@
-"""The MicroLendar pages worth timing (`manage.py bench_pages --env microlendar`), from the state.
-
-Every view on the day the calendar opens on, a search, the next month, an open event and the
-create form. Paths are relative to the environment root (`/r/<token>/microlendar/`).
-"""
+"""The MicroLendar pages worth timing (`manage.py bench_pages --env microlendar`), relative to
+the environment root (`/r/<token>/microlendar/`)."""
 
 from __future__ import annotations
 

@@ -1,9 +1,5 @@
-"""The MicroScholar pages worth timing (`manage.py bench_pages --env microscholar`).
-
-Paths relative to the environment root: home, a search (relevance, by date, a year filter, page
-two), a paper, its Cite dialog (the first time it is opened it cites), a profile, the library
-and the alerts.
-"""
+"""The MicroScholar pages worth timing (`manage.py bench_pages --env microscholar`), relative to
+the environment root. Opening the Cite dialog the first time cites the paper."""
 
 from __future__ import annotations
 

@@ -134,7 +134,7 @@ materialize = tables(
 
 
 def not_cited_yet(scholar: Scholar, paper_id: str) -> bool:
-    return scholar.has_paper(paper_id) and not scholar.is_cited(paper_id)
+    return paper_id in scholar.papers and not scholar.is_cited(paper_id)
 
 
 MICROSCHOLAR = Environment(

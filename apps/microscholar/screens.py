@@ -150,7 +150,6 @@ def recommended(scholar: Scholar) -> tuple[str, ...]:
 
 @dataclass(frozen=True)
 class SearchScreen:
-    query: SearchQuery
     total: int
     ids: tuple[str, ...]  # the ids of this page of results
     years: tuple[Option, ...]
@@ -197,7 +196,6 @@ def search_screen(scholar: Scholar, query: SearchQuery, this_year: int, root: st
     pages = pages if len(pages) > 1 else ()
     current = offset // PER_PAGE
     return SearchScreen(
-        query=query,
         total=len(found),
         ids=tuple(found[offset : offset + PER_PAGE]),
         years=year_options(query, this_year, root),
@@ -377,7 +375,7 @@ def alerts_screen(scholar: Scholar, query: AlertsQuery, root: str) -> AlertsScre
             scholar.alert_read[alert.id],
             ALERT_ICONS.get(alert.type, "bell"),
             paper_url(root, alert.related_paper_id)
-            if scholar.has_paper(alert.related_paper_id)
+            if alert.related_paper_id in scholar.papers
             else None,
         )
         for _, alert in newest

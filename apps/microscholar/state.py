@@ -68,9 +68,6 @@ class Scholar(CatalogState):
     alerts: Mapping[str, Alert] = no_items()  # arrival order
     alert_read: Mapping[str, bool] = no_items()
 
-    def has_paper(self, paper_id: str) -> bool:
-        return paper_id in self.papers
-
     def is_saved(self, paper_id: str) -> bool:
         return self.paper_states.get(paper_id, PaperState()).saved
 
