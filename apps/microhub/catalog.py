@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from apps.kit.arrivals import Stamp
+from apps.kit.records import Given, each, flag, inner, number, reader, text, text_or
 from apps.microhub.state import (
     ENVIRONMENT,
     Check,
@@ -66,10 +67,6 @@ def display_name(catalog: Any, username: str) -> str:
     return catalog.index(people).get(username, username)
 
 
-def persons(catalog: Any, usernames: Any) -> tuple[Person, ...]:
-    return tuple(Person(str(u), display_name(catalog, str(u))) for u in usernames or ())
-
-
 def repository_record(catalog: Any) -> Mapping[str, Any]:
     """The first repository of the catalog (the original shows only that one)."""
     return next(iter(table(catalog, "repository").values()), {})
@@ -87,22 +84,36 @@ def labels(catalog: Any) -> Mapping[str, Label]:
     }
 
 
-def dated(record: Mapping[str, Any], stamp: Stamp) -> float:
+# --- what a record reads with the catalog or the arrival's stamp (`Given`) -------------------
+
+
+def arrived(catalog: Any, record: Mapping[str, Any], stamp: Stamp) -> float:
     """When a row arrived: a preloaded one its age before the start (`stamp.at`), one arriving
     during the task at that moment."""
     return stamp.at - (int(record.get("order") or 0) + 1) * STEP_S if stamp.preloaded else stamp.at
 
 
-def _labels(catalog: Any, record: Mapping[str, Any]) -> tuple[Label, ...]:
+def name_of(key: str) -> Given:
+    """The display name of the person whose username is at `key`."""
+    return lambda catalog, record, stamp: display_name(catalog, str(record.get(key, "")))
+
+
+def people_at(key: str) -> Given:
+    return lambda catalog, record, stamp: tuple(
+        Person(str(u), display_name(catalog, str(u))) for u in record.get(key) or ()
+    )
+
+
+def labels_of(catalog: Any, record: Mapping[str, Any], stamp: Stamp) -> tuple[Label, ...]:
     known = catalog.index(labels)
     return tuple(known[i] for i in record.get("labelIds") or () if i in known)
 
 
-def _comments(catalog: Any, record: Mapping[str, Any], stamp: Stamp) -> tuple[Comment, ...]:
+def thread(catalog: Any, record: Mapping[str, Any], stamp: Stamp) -> tuple[Comment, ...]:
     """The catalog thread of a preloaded issue or pull request; one arriving now has none yet."""
     if not stamp.preloaded:
         return ()
-    opened_at = dated(record, stamp)
+    opened_at = arrived(catalog, record, stamp)
     return tuple(
         Comment(
             id=str(c.get("id", f"{record['id']}-c{k}")),
@@ -119,128 +130,90 @@ def _comments(catalog: Any, record: Mapping[str, Any], stamp: Stamp) -> tuple[Co
     )
 
 
-def _post(catalog: Any, record: Mapping[str, Any], stamp: Stamp, number: int | None):
-    """What an issue and a pull request read alike; `number` None keeps the catalog's."""
-    author = str(record.get("author", ""))
-    return {
-        "number": int(record.get("number") or 0) if number is None else number,
-        "title": str(record.get("title", "")),
-        "body": str(record.get("body") or ""),
-        "state": str(record.get("state") or "open"),
-        "author": author,
-        "author_name": display_name(catalog, author),
-        "opened_at": dated(record, stamp),
-        "labels": _labels(catalog, record),
-        "comments": _comments(catalog, record, stamp),
-    }
+# --- each record type's catalog fields ----------------------------------------------------------
 
+# What an issue and a pull request read alike. A preloaded one keeps its catalog number; the
+# environment numbers one filed during the task.
+POST = {
+    "number": number("number"),
+    "title": text("title"),
+    "body": text_or("body"),
+    "state": text_or("state", "open"),
+    "author": text("author"),
+}
+POSTED: dict[str, Given] = {
+    "author_name": name_of("author"),
+    "opened_at": arrived,
+    "labels": labels_of,
+    "comments": thread,
+}
+PULL_REQUEST = {
+    **POST,
+    "source": text("sourceBranch"),
+    "target": text("targetBranch", "main"),
+    "review_status": text_or("reviewStatus", "review-required"),
+    "checks": each("checks", Check, {"name": text("name"), "status": text("status")}),
+    "commits": number("commits"),
+    "additions": number("additions"),
+    "deletions": number("deletions"),
+    "files_changed": number("filesChanged"),
+}
+COMMIT = {
+    "sha": text("sha"),
+    "message": text("message"),
+    "author": text("author"),
+    "additions": number("additions"),
+    "deletions": number("deletions"),
+    "files": lambda r: (
+        tuple(map(str, r["filesChanged"])) if isinstance(r.get("filesChanged"), list) else ()
+    ),
+    "verified": flag("verified"),
+}
+FILE = {
+    "name": text("name"),
+    "path": text("path"),
+    "type": text_or("type", "file"),
+    "parent_id": lambda r: r.get("parentId"),
+    "content": text_or("content"),
+    "size": lambda r: int(r.get("size") or len(str(r.get("content") or "").encode())),
+    "language": text_or("language"),
+    "last_commit_sha": inner("lastCommit", "sha"),
+    "last_commit_message": inner("lastCommit", "message"),
+}
+STEP = {
+    "name": text("name"),
+    # a step shows its conclusion, or its status while it has none
+    "conclusion": lambda s: str(s.get("conclusion") or s.get("status") or ""),
+    "duration": number("duration"),
+}
+JOB = {
+    "name": text("name"),
+    "status": text("status"),
+    "conclusion": text_or("conclusion"),
+    "duration": number("duration"),
+    "steps": each("steps", Step, STEP),
+}
+RUN = {
+    "workflow_id": text("workflowId"),
+    "workflow_name": text("workflowName"),
+    "number": number("runNumber"),
+    "status": text_or("status", "completed"),
+    "conclusion": text_or("conclusion"),
+    "branch": text("branch"),
+    "commit_sha": inner("commit", "sha"),
+    "commit_message": inner("commit", "message"),
+    "actor": text("actor"),
+    "event": text("event"),
+    "duration": number("duration"),
+    "jobs": each("jobs", Job, JOB),
+}
 
-def catalog_issue(catalog: Any, issue_id: str, stamp: Stamp, number: int | None = None):
-    record = table(catalog, "issues").get(issue_id)
-    if record is None:
-        return None
-    assignees = persons(catalog, record.get("assignees"))
-    return Issue(id=issue_id, **_post(catalog, record, stamp, number), assignees=assignees)
-
-
-def catalog_pr(catalog: Any, pr_id: str, stamp: Stamp, number: int | None = None):
-    record = table(catalog, "prs").get(pr_id)
-    if record is None:
-        return None
-    return PullRequest(
-        id=pr_id,
-        **_post(catalog, record, stamp, number),
-        source=str(record.get("sourceBranch", "")),
-        target=str(record.get("targetBranch", "main")),
-        review_status=str(record.get("reviewStatus") or "review-required"),
-        reviewers=persons(catalog, record.get("reviewers")),
-        checks=tuple(
-            Check(str(c.get("name", "")), str(c.get("status", "")))
-            for c in record.get("checks") or ()
-        ),
-        commits=int(record.get("commits") or 0),
-        additions=int(record.get("additions") or 0),
-        deletions=int(record.get("deletions") or 0),
-        files_changed=int(record.get("filesChanged") or 0),
-    )
-
-
-def catalog_commit(catalog: Any, commit_id: str, stamp: Stamp) -> Commit | None:
-    record = table(catalog, "commits").get(commit_id)
-    if record is None:
-        return None
-    author = str(record.get("author", ""))
-    files = record.get("filesChanged")
-    return Commit(
-        id=commit_id,
-        sha=str(record.get("sha", "")),
-        message=str(record.get("message", "")),
-        author=author,
-        author_name=display_name(catalog, author),
-        at=dated(record, stamp),
-        additions=int(record.get("additions") or 0),
-        deletions=int(record.get("deletions") or 0),
-        files=tuple(str(f) for f in files) if isinstance(files, list) else (),
-        verified=bool(record.get("verified")),
-    )
-
-
-def catalog_file(catalog: Any, file_id: str) -> RepoFile | None:
-    record = table(catalog, "files").get(file_id)
-    if record is None:
-        return None
-    last = record.get("lastCommit") or {}
-    content = str(record.get("content") or "")
-    return RepoFile(
-        id=file_id,
-        name=str(record.get("name", "")),
-        path=str(record.get("path", "")),
-        type=str(record.get("type") or "file"),
-        parent_id=record.get("parentId"),
-        content=content,
-        size=int(record.get("size") or len(content.encode())),
-        language=str(record.get("language") or ""),
-        last_commit_sha=str(last.get("sha", "")),
-        last_commit_message=str(last.get("message", "")),
-    )
-
-
-def catalog_run(catalog: Any, run_id: str, stamp: Stamp) -> WorkflowRun | None:
-    record = table(catalog, "workflow-runs").get(run_id)
-    if record is None:
-        return None
-    actor = str(record.get("actor", ""))
-    commit = record.get("commit") or {}
-    return WorkflowRun(
-        id=run_id,
-        workflow_id=str(record.get("workflowId", "")),
-        workflow_name=str(record.get("workflowName", "")),
-        number=int(record.get("runNumber") or 0),
-        status=str(record.get("status") or "completed"),
-        conclusion=str(record.get("conclusion") or ""),
-        branch=str(record.get("branch", "")),
-        commit_sha=str(commit.get("sha", "")),
-        commit_message=str(commit.get("message", "")),
-        actor=actor,
-        actor_name=display_name(catalog, actor),
-        event=str(record.get("event", "")),
-        duration=int(record.get("duration") or 0),
-        at=dated(record, stamp),
-        jobs=tuple(
-            Job(
-                name=str(j.get("name", "")),
-                status=str(j.get("status", "")),
-                conclusion=str(j.get("conclusion") or ""),
-                duration=int(j.get("duration") or 0),
-                steps=tuple(
-                    Step(
-                        str(s.get("name", "")),
-                        str(s.get("conclusion") or s.get("status") or ""),
-                        int(s.get("duration") or 0),
-                    )
-                    for s in j.get("steps") or ()
-                ),
-            )
-            for j in record.get("jobs") or ()
-        ),
-    )
+issue = reader(ENVIRONMENT, "issues", Issue, POST, **POSTED, assignees=people_at("assignees"))
+pull_request = reader(
+    ENVIRONMENT, "prs", PullRequest, PULL_REQUEST, **POSTED, reviewers=people_at("reviewers")
+)
+commit = reader(ENVIRONMENT, "commits", Commit, COMMIT, author_name=name_of("author"), at=arrived)
+repo_file = reader(ENVIRONMENT, "files", RepoFile, FILE)
+workflow_run = reader(
+    ENVIRONMENT, "workflow-runs", WorkflowRun, RUN, actor_name=name_of("actor"), at=arrived
+)

@@ -66,27 +66,29 @@ def empty_hub(catalog: Any) -> Hub:
 def make_issue(hub: Hub, issue_id: str, stamp: Stamp) -> tuple[Any, IssueState] | None:
     """A preloaded issue keeps its catalog number; one filed during the task is numbered after
     every issue so far, so it sorts to the top (the original's rule)."""
-    number = None if stamp.preloaded else next_issue_number(hub)
-    issue = records.catalog_issue(hub.catalog, issue_id, stamp, number=number)
-    return None if issue is None else (issue, IssueState(state=issue.state))
+    issue = records.issue(hub, issue_id, stamp)
+    if issue is None:
+        return None
+    if not stamp.preloaded:
+        issue = replace(issue, number=next_issue_number(hub))
+    return issue, IssueState(state=issue.state)
 
 
 def make_pr(hub: Hub, pr_id: str, stamp: Stamp) -> tuple[PullRequest, str] | None:
     """Numbered after every issue and pull request so far when opened during the task."""
-    number = None if stamp.preloaded else next_pr_number(hub)
-    pr = records.catalog_pr(hub.catalog, pr_id, stamp, number=number)
+    pr = records.pull_request(hub, pr_id, stamp)
     if pr is None:
         return None
+    if not stamp.preloaded:
+        pr = replace(pr, number=next_pr_number(hub))
     return pr, "merged" if pr_id in hub.merged else pr.state
 
 
 deliver_issues = Delivery("issues", make_issue, states="issue_states")
 deliver_prs = Delivery("prs", make_pr, states="pr_states")
-deliver_commits = Delivery(
-    "commits", lambda hub, i, stamp: records.catalog_commit(hub.catalog, i, stamp)
-)
-deliver_runs = Delivery("runs", lambda hub, i, stamp: records.catalog_run(hub.catalog, i, stamp))
-deliver_files = Delivery("files", lambda hub, i, stamp: records.catalog_file(hub.catalog, i))
+deliver_commits = Delivery("commits", records.commit)
+deliver_runs = Delivery("runs", records.workflow_run)
+deliver_files = Delivery("files", records.repo_file)
 
 
 def push_commits(hub: Hub, ids: Iterable[str], at: float, *, preloaded: bool) -> Hub:
