@@ -46,16 +46,26 @@ IdList = list[str]
 
 def empty_hub(catalog: Any) -> Hub:
     """Before the preload: the catalog's repository with nothing in it yet."""
-    repo = records.repository_record(catalog)
     me = catalog.self_user or {}
-    return Hub(
+    hub = Hub(
         catalog=catalog,
         self_username=str(me.get("username") or "me"),
         self_name=str(me.get("name") or me.get("username") or "me"),
-        repo=MappingProxyType(dict(repo)),
+        repo=EMPTY,
+        stars=Waypoints(0.0),
+    )
+    return showing(hub, records.repository_record(catalog))
+
+
+def showing(hub: Hub, repo: Mapping[str, Any]) -> Hub:
+    """`hub` showing the repository record `repo`: its counters, plus the user's own fork and
+    watch."""
+    return replace(
+        hub,
+        repo=MappingProxyType(dict(repo)),  # a copy: the catalog stays as it is
         stars=Waypoints(float(repo.get("stars") or 0)),
-        forks=int(repo.get("forks") or 0),
-        watchers=int(repo.get("watchers") or 0),
+        forks=int(repo.get("forks") or 0) + (1 if hub.forked else 0),
+        watchers=int(repo.get("watchers") or 0) + (1 if hub.watched else 0),
         commit_total=int(repo.get("commits") or 0),
     )
 
@@ -155,12 +165,8 @@ INITIAL = {
 }
 
 
-def _present(rows: Mapping[str, Any], ids: Iterable[str]) -> dict[str, Any]:
-    return {i: rows[i] for i in ids if i in rows}
-
-
 def _preloaded_repo(hub: Hub, p: Mapping[str, Any]) -> Mapping[str, Any]:
-    repo = dict(records.repository_record(hub.catalog))  # a copy: the catalog stays as it is
+    repo = dict(records.repository_record(hub.catalog))
     for field, key in INITIAL.items():
         if p.get(field) is not None:
             repo[key] = p[field]
@@ -169,13 +175,13 @@ def _preloaded_repo(hub: Hub, p: Mapping[str, Any]) -> Mapping[str, Any]:
         branches = list(repo.get("branches") or [])
         if p["default_branch"] not in branches:
             repo["branches"] = [p["default_branch"], *branches]
-    return MappingProxyType(repo)
+    return repo
 
 
 def reduce_preload_repo(hub: Hub, event: LoggedEvent) -> Hub:
     """The repository as the task starts, in place of what an earlier preload loaded (the user's
     own issues stay); the core measures the baselines right after."""
-    p, catalog = event.payload, hub.catalog
+    p = event.payload
     # Rows are dated from the preload, older by the offset: delivered "at" that start.
     start = event.at - float(p.get("preload_age_offset_ms") or 0) / 1000.0
     own_states = {i: s for i, s in hub.issue_states.items() if i in hub.user_issues}
@@ -191,24 +197,13 @@ def reduce_preload_repo(hub: Hub, event: LoggedEvent) -> Hub:
     )
     for key, (table, deliver) in LOADED.items():
         hub = deliver(hub, _ids(hub, p, table, key), start, preloaded=True)
-    passed = {
-        table: MappingProxyType(_present(records.table(catalog, table), _ids(hub, p, table, key)))
-        for table, key in records.PASS_THROUGH.items()
-    }
-    repo = _preloaded_repo(hub, p)
-    stars = Waypoints(float(repo.get("stars") or 0)).with_points(
-        (at, value) for at, value in p.get("star_waypoints") or ()
-    )
-    return replace(
-        hub,
-        repo=repo,
-        stars=stars,
-        forks=int(repo.get("forks") or 0) + (1 if hub.forked else 0),
-        watchers=int(repo.get("watchers") or 0) + (1 if hub.watched else 0),
-        commit_total=int(repo.get("commits") or 0),
-        preloaded=True,
-        records=MappingProxyType(passed),
-    )
+    passed: dict[str, Mapping[str, Any]] = {}
+    for table, key in records.PASS_THROUGH.items():
+        rows, ids = records.table(hub.catalog, table), _ids(hub, p, table, key)
+        passed[table] = MappingProxyType({i: rows[i] for i in ids if i in rows})
+    hub = showing(hub, _preloaded_repo(hub, p))
+    stars = hub.stars.with_points((at, value) for at, value in p.get("star_waypoints") or ())
+    return replace(hub, stars=stars, preloaded=True, records=MappingProxyType(passed))
 
 
 # --- stars_waypoint -------------------------------------------------------------------------------
