@@ -24,9 +24,10 @@ def marking(
     page: Callable[[Any, dict], PageStep] | None = None,
 ) -> Callable[..., Action]:
     """`marks(help=…, **flags)`: an Action on `schema` checked by `decide` that sets `flags` on
-    `state.<field>[payload[key]]` (set, not toggled: a repeated request changes nothing)."""
+    `state.<field>[payload[key]]` (set, not toggled: a repeated request changes nothing), done on
+    `page` unless the action names its own."""
 
-    def marks(*, help: str = "", **flags: Any) -> Action:
+    def marks(*, help: str = "", page: Any = page, **flags: Any) -> Action:
         return Action(schema, decide, setting(field, key, **flags), help=help, page=page)
 
     return marks

@@ -127,11 +127,9 @@ def new_event_form(request: HttpRequest, today) -> EventForm:
         end = times.hhmm(min(times.parse_clock(start) + 60, 24 * 60 - 1))
     except times.BadTime:
         start, end = DEFAULT_START, "10:00"
-    if request.GET.get("kind") == "reminder":
-        return EventForm(
-            date=day, time=start, endTime=end, calendar="Personal", description="Reminder"
-        )
-    return EventForm(date=day, time=start, endTime=end)
+    reminder = request.GET.get("kind") == "reminder"
+    kind = {"calendar": "Personal", "description": "Reminder"} if reminder else {}
+    return EventForm(date=day, time=start, endTime=end, **kind)
 
 
 def render_form(

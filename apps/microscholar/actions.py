@@ -16,7 +16,6 @@ from types import MappingProxyType
 
 from apps.kit.deciding import checking, found
 from apps.kit.marking import marking
-from apps.kit.state import setting
 from apps.kit.streaming import id_payload
 from apps.microscholar.state import Paper, Scholar, with_alert_read
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
@@ -68,12 +67,10 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         "save": marks_paper(saved=True, help="Add a paper to My library."),
         "unsave": marks_paper(saved=False, help="Remove a paper from My library."),
-        "cite": Action(
-            PaperId,
-            decide_on_paper,
-            setting("paper_states", "paper_id", cited=True),
-            help="Open a paper's Cite dialog (formatted citations and export links).",
+        "cite": marks_paper(
+            cited=True,
             page=cite_page,
+            help="Open a paper's Cite dialog (formatted citations and export links).",
         ),
         "mark_alert_read": Action(
             AlertId,

@@ -119,12 +119,6 @@ def rows(scholar: Scholar, ids: Iterable[str], now: float, root: str) -> tuple[R
     return tuple(row(scholar, i, now, root) for i in ids)
 
 
-def moving(scholar: Scholar, ids: Iterable[str], now: float) -> float | None:
-    """When the first of these papers' shown citation counts next changes (None: never)."""
-    times = [t for i in ids if (t := scholar.papers[i].citations_change_at(now)) is not None]
-    return min(times, default=None)
-
-
 # --- search and the home page ---------------------------------------------------------------------
 
 

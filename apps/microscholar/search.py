@@ -22,15 +22,13 @@ def shingles(text: str, size: int = 3) -> frozenset[str]:
     return frozenset(padded[i : i + size] for i in range(len(padded) - size + 1))
 
 
-def containment(query: frozenset[str], document: frozenset[str]) -> float:
-    """The share of the query's shingles found in the document (0 for an empty query)."""
+def containment(query: frozenset[str], paper: Paper) -> float:
+    """The share of the query's shingles found in "title authors snippet source" (0 for an empty
+    query)."""
     if not query:
         return 0.0
+    document = shingles(f"{paper.title} {paper.authors} {paper.snippet} {paper.source}")
     return len(query & document) / len(query)
-
-
-def paper_shingles(paper: Paper) -> frozenset[str]:
-    return shingles(f"{paper.title} {paper.authors} {paper.snippet} {paper.source}")
 
 
 def ranked(papers: Iterable[Paper], query: str) -> list[str]:
@@ -39,5 +37,5 @@ def ranked(papers: Iterable[Paper], query: str) -> list[str]:
     if not query.strip():
         return [p.id for p in papers]
     wanted = shingles(query.strip())
-    scored = [(containment(wanted, paper_shingles(p)), n, p.id) for n, p in enumerate(papers)]
+    scored = [(containment(wanted, p), n, p.id) for n, p in enumerate(papers)]
     return [i for score, _, i in sorted(scored, key=lambda s: (-s[0], s[1])) if score >= MIN_SCORE]

@@ -54,7 +54,9 @@ def show(
 
 def watch(page: Page, ids) -> None:
     """The page changes when a shown "Cited by" count next ticks over."""
-    page.changes_at(screens.moving(page.state, ids, page.now))
+    papers = page.state.papers
+    changes = (papers[i].citations_change_at(page.now) for i in ids)
+    page.changes_at(min((t for t in changes if t is not None), default=None))
 
 
 def shown_rows(page: Page, ids) -> tuple[screens.Row, ...]:
