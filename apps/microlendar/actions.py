@@ -16,6 +16,7 @@ from urllib.parse import urlencode
 
 from pydantic import Field
 
+from apps.kit.marking import marking
 from apps.kit.state import setting, with_changed
 from apps.kit.streaming import id_payload
 from apps.microlendar import times
@@ -304,6 +305,10 @@ def task_list(*fields: str):
     return page
 
 
+# Deleting only marks an item deleted (its id stays taken; the evaluation tables keep its row).
+marks_event = marking(EventId, naming(existing_event, "event_id"), "event_states", "event_id")
+marks_task = marking(TaskId, naming(existing_task, "task_id"), "task_states", "task_id")
+
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         "view_event": Action(
@@ -334,12 +339,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Move an event to another date and start, keeping its length (form or drag).",
             page=details_form("date", "time"),
         ),
-        "delete_event": Action(
-            EventId,
-            naming(existing_event, "event_id"),
-            setting("event_states", "event_id", deleted=True),
-            page=details_form(),
-        ),
+        "delete_event": marks_event(deleted=True, page=details_form()),
         "create_task": Action(
             NewTask, decide_create_task, reduce_create_task, page=task_list("title", "dueDate")
         ),
@@ -350,11 +350,6 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Tick or untick a task.",
             page=task_list("task_id"),
         ),
-        "delete_task": Action(
-            TaskId,
-            naming(existing_task, "task_id"),
-            setting("task_states", "task_id", deleted=True),
-            page=task_list("task_id"),
-        ),
+        "delete_task": marks_task(deleted=True, page=task_list("task_id")),
     }
 )
