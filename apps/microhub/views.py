@@ -42,10 +42,9 @@ def repo_header(page: Page) -> dict:
     }
 
 
-def show(request: HttpRequest, page: Page, template: str, tab: str, **context) -> HttpResponse:
-    return render_screen(
-        request, page, f"microhub/{template}", {**repo_header(page), "tab": tab, **context}
-    )
+def show(page: Page, template: str, tab: str, **context) -> HttpResponse:
+    context = {**repo_header(page), "tab": tab, **context}
+    return render_screen(page.request, page, f"microhub/{template}", context)
 
 
 # --- code -----------------------------------------------------------------------------------------
@@ -61,7 +60,6 @@ def code(request: HttpRequest, page: Page, path: str = "") -> HttpResponse:
             raise Http404("no such folder")
     readme = screens.readme(hub, path)
     return show(
-        request,
         page,
         "code.html",
         "code",
@@ -89,7 +87,6 @@ def blob(request: HttpRequest, page: Page, path: str) -> HttpResponse:
         raise Http404("no such file")
     markdown = found.name.lower().endswith(".md")
     return show(
-        request,
         page,
         "blob.html",
         "code",
@@ -103,7 +100,7 @@ def blob(request: HttpRequest, page: Page, path: str) -> HttpResponse:
 @require_GET
 @run_page
 def commits(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(request, page, "commits.html", "code", history=screens.commit_history(page.state))
+    return show(page, "commits.html", "code", history=screens.commit_history(page.state))
 
 
 # --- issues ---------------------------------------------------------------------------------------
@@ -116,7 +113,6 @@ def issues(request: HttpRequest, page: Page) -> HttpResponse:
     hub = page.state
     open_count, closed_count = screens.search_counts(hub, query.q)
     return show(
-        request,
         page,
         "issues.html",
         "issues",
@@ -140,7 +136,7 @@ def new_issue(request: HttpRequest, page: Page) -> HttpResponse:
         )
         issue_id = event.payload["id"] if event else ""
         return redirect_to(page, f"issues/{issue_id}" if issue_id else "issues/")
-    return show(request, page, "new_issue.html", "issues")
+    return show(page, "new_issue.html", "issues")
 
 
 @require_GET
@@ -149,7 +145,6 @@ def issue(request: HttpRequest, page: Page, issue_id: str) -> HttpResponse:
     hub = page.state
     found = present(hub.issue(issue_id), "issue")  # unknown or not filed yet: alike
     return show(
-        request,
         page,
         "issue.html",
         "issues",
@@ -179,12 +174,7 @@ def issue_action(request: HttpRequest, page: Page, issue_id: str, verb: str) -> 
 def pulls(request: HttpRequest, page: Page) -> HttpResponse:
     query = PullsQuery.from_params(request.GET)
     return show(
-        request,
-        page,
-        "pulls.html",
-        "pulls",
-        query=query,
-        rows=screens.pr_rows(page.state, query.state),
+        page, "pulls.html", "pulls", query=query, rows=screens.pr_rows(page.state, query.state)
     )
 
 
@@ -194,7 +184,6 @@ def pull(request: HttpRequest, page: Page, pr_id: str) -> HttpResponse:
     hub = page.state
     pr = present(hub.prs.get(pr_id), "pull request")
     return show(
-        request,
         page,
         "pull.html",
         "pulls",
@@ -233,7 +222,6 @@ def actions(request: HttpRequest, page: Page) -> HttpResponse:
     query = ActionsQuery.from_params(request.GET)
     hub = page.state
     return show(
-        request,
         page,
         "actions.html",
         "actions",
@@ -247,7 +235,7 @@ def actions(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def run(request: HttpRequest, page: Page, run_id: str) -> HttpResponse:
     found = present(page.state.runs.get(run_id), "workflow run")
-    return show(request, page, "run.html", "actions", run=found)
+    return show(page, "run.html", "actions", run=found)
 
 
 # --- the repository's buttons, settings, the user's repositories and profiles -------------------
@@ -274,7 +262,7 @@ def settings(request: HttpRequest, page: Page) -> HttpResponse:
             del changes["visibility"]
         page.act("update_repository", changes)
         return redirect_after(request, page, "settings", "Repository settings saved")
-    return show(request, page, "settings.html", "settings")
+    return show(page, "settings.html", "settings")
 
 
 @require_http_methods(["GET", "POST"])
@@ -292,13 +280,13 @@ def new_repository(request: HttpRequest, page: Page) -> HttpResponse:
             },
         )
         return redirect_after(request, page, "repositories/", "Repository created")
-    return show(request, page, "new_repository.html", "")
+    return show(page, "new_repository.html", "")
 
 
 @require_GET
 @run_page
 def repositories(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(request, page, "repositories.html", "", repos=page.state.user_repos)
+    return show(page, "repositories.html", "", repos=page.state.user_repos)
 
 
 @require_http_methods(["GET", "POST"])
@@ -307,7 +295,7 @@ def profile(request: HttpRequest, page: Page, username: str) -> HttpResponse:
     hub = page.state
     person = next((u for u in hub.catalog.users.values() if u.get("username") == username), None)
     if person is None and username == hub.owner:
-        return show(request, page, "organization.html", "", org=screens.organization(hub))
+        return show(page, "organization.html", "", org=screens.organization(hub))
     if person is None:
         raise Http404("no such user")
     if request.method == "POST":
@@ -315,7 +303,6 @@ def profile(request: HttpRequest, page: Page, username: str) -> HttpResponse:
         page.act(verb, {"username": username})
         return redirect_to(page, f"users/{username}")
     return show(
-        request,
         page,
         "profile.html",
         "",
