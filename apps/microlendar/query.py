@@ -16,8 +16,6 @@ from apps.kit.query import InvalidQuery, QueryState, choice, item, text
 from apps.microlendar import times
 from apps.microlendar.state import CALENDARS
 
-__all__ = ["VIEWS", "CalendarQuery", "InvalidQuery"]
-
 VIEWS: tuple[str, ...] = ("day", "week", "month", "year", "schedule", "4days")
 VIEW_TITLES: Mapping[str, str] = {view: view.title() for view in VIEWS} | {"4days": "4 days"}
 

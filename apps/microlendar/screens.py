@@ -16,8 +16,6 @@ from apps.kit.derived import per_state
 from apps.microlendar import times
 from apps.microlendar.query import CalendarQuery
 from apps.microlendar.state import (
-    CALENDAR_COLORS,
-    CALENDARS,
     Agenda,
     CalendarEvent,
     chronological,
@@ -314,11 +312,3 @@ def task_rows(agenda: Agenda, today: date) -> tuple[TaskRow, ...]:
         for task, state in live_tasks(agenda)
     ]
     return tuple(sorted(rows, key=lambda r: r.completed))
-
-
-def calendar_links(query: CalendarQuery) -> tuple[tuple[str, str, bool, str], ...]:
-    """(name, color, shown, url toggling it) per calendar of "My calendars"."""
-    return tuple(
-        (name, CALENDAR_COLORS[name], name not in query.hidden, query.toggling(name))
-        for name in CALENDARS
-    )

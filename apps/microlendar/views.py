@@ -21,7 +21,7 @@ from apps.kit.rendering import redirect_after, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, EVENT_FIELDS, existing_event
 from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
-from apps.microlendar.state import CALENDARS, Agenda, CalendarEvent, conflicts_with
+from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda, CalendarEvent, conflicts_with
 from events.registry import ActionRejected
 
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
@@ -56,7 +56,11 @@ def base_context(page: Page, query: CalendarQuery) -> dict:
             (v, VIEW_TITLES[v], query.on(shown, today, view=v).querystring() or "?") for v in VIEWS
         ],
         "mini": screens.mini_month(agenda, query.but(q="", event=None), shown, today),
-        "calendars": screens.calendar_links(query),
+        # (name, color, shown, the screen with it toggled) per calendar of "My calendars"
+        "calendars": [
+            (name, CALENDAR_COLORS[name], name not in query.hidden, query.toggling(name))
+            for name in CALENDARS
+        ],
         "tasks": screens.task_rows(agenda, today),
         "back": query.querystring(),
         "calendar_choices": CALENDARS,
