@@ -16,8 +16,9 @@ from types import MappingProxyType
 
 from apps.kit.deciding import checking, found
 from apps.kit.marking import marking
+from apps.kit.state import with_items
 from apps.kit.streaming import id_payload
-from apps.microscholar.state import Paper, Scholar, with_alert_read
+from apps.microscholar.state import Paper, Scholar
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 
 PaperId = id_payload("PaperId", "paper_id", "id of an indexed paper")
@@ -38,7 +39,10 @@ def decide_on_alert(scholar: Scholar, payload: dict) -> dict:
 
 
 def reduce_mark_alert_read(scholar: Scholar, event: LoggedEvent) -> Scholar:
-    return with_alert_read(scholar, event.payload["alert_id"])
+    alert_id = event.payload["alert_id"]
+    if alert_id not in scholar.alerts or scholar.alert_read.get(alert_id):
+        return scholar
+    return with_items(scholar, "alert_read", [(alert_id, True)])
 
 
 # --- where a person does it (forms marked data-action="<action>" in the templates) -------------

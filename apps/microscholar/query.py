@@ -12,8 +12,6 @@ from dataclasses import dataclass
 
 from apps.kit.query import InvalidQuery, QueryState, choice, text
 
-__all__ = ["AlertsQuery", "InvalidQuery", "ProfileQuery", "SearchQuery", "whole_number"]
-
 SORTS = ("relevance", "date")
 PROFILE_SORTS = ("cited", "pubdate")
 ALERT_FILTERS = ("all", "unread")

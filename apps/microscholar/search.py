@@ -23,10 +23,7 @@ def shingles(text: str, size: int = 3) -> frozenset[str]:
 
 
 def containment(query: frozenset[str], paper: Paper) -> float:
-    """The share of the query's shingles found in "title authors snippet source" (0 for an empty
-    query)."""
-    if not query:
-        return 0.0
+    """The share of the (never empty) query's shingles found in "title authors snippet source"."""
     document = shingles(f"{paper.title} {paper.authors} {paper.snippet} {paper.source}")
     return len(query & document) / len(query)
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from apps.kit.state import CatalogState, with_items
+from apps.kit.state import CatalogState
 from apps.kit.streaming import counting, no_items, shown_count
 from apps.kit.waypoints import Waypoints
 
@@ -76,15 +76,6 @@ class Scholar(CatalogState):
 
 
 empty_scholar = Scholar  # a catalog → the index before anything arrives
-
-
-# --- building new states (reducers only) ---------------------------------------------------------
-
-
-def with_alert_read(scholar: Scholar, alert_id: str) -> Scholar:
-    if alert_id not in scholar.alerts or scholar.alert_read.get(alert_id):
-        return scholar
-    return with_items(scholar, "alert_read", [(alert_id, True)])
 
 
 # --- counts (baselines, badges) ------------------------------------------------------------------
