@@ -1,18 +1,23 @@
-"""Catalog records (plain JSON objects) read into frozen dataclasses from declared fields.
+"""Catalog records (plain JSON objects) read into frozen dataclasses whose fields declare them.
 
-An environment's catalog module declares once, per record type, which attribute comes from
-which catalog key and how it is converted; one generic `read` builds the value, and `reader`
+A record type declares once, on each field the catalog has, which key it comes from and how it
+is converted (`from_catalog(text("sha"))`); one generic `read` builds the value, and `reader`
 makes the `make(state, id, stamp)` of an `arrivals.Delivery` from a catalog table:
 
-    CHECK = {"name": text("name"), "status": text_or("status", "pending")}
-    checks = each("checks", Check, CHECK)              # a list of objects → tuple[Check]
-    commit = reader("microhub", "commits", Commit, COMMIT, at=arrived)
+    @dataclass(frozen=True)
+    class Check:
+        name: str = from_catalog(text("name"))
+        status: str = from_catalog(text_or("status", "pending"))
+
+    checks: tuple[Check, ...] = from_catalog(each("checks", Check), default=())
+    commit = reader("microhub", "commits", Commit, at=arrived)  # `at` computed, not read
 
 The converters never fail on a missing key: catalogs are hand-written and sparse.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
 
@@ -21,9 +26,20 @@ from apps.kit.arrivals import Stamp
 T = TypeVar("T")
 Record = Mapping[str, Any]
 Field = Callable[[Record], Any]  # a catalog record → one attribute's value
-Fields = Mapping[str, Field]  # attribute → how it is read
 # An attribute that needs more than its record: the catalog (display names…), the arrival.
 Given = Callable[[Any, Record, Stamp], Any]
+
+
+def from_catalog(get: Field, **options: Any) -> Any:
+    """A dataclass field read from a catalog record by `get`; `options` as for `field()`."""
+    return dataclasses.field(metadata={"catalog": get}, **options)
+
+
+def declared(kind: Any) -> Mapping[str, Field]:
+    """attribute → how it is read, for each field of `kind` declared `from_catalog`."""
+    return {
+        f.name: f.metadata["catalog"] for f in dataclasses.fields(kind) if "catalog" in f.metadata
+    }
 
 
 def text(key: str, default: str = "") -> Field:
@@ -36,9 +52,14 @@ def text_or(key: str, default: str = "") -> Field:
     return lambda record: str(record.get(key) or default)
 
 
-def number(key: str) -> Field:
+def integer(key: str) -> Field:
     """The value as an int; 0 when missing or empty."""
     return lambda record: int(record.get(key) or 0)
+
+
+def texts(key: str) -> Field:
+    """A list's items as texts; () when the value is not a list."""
+    return lambda record: tuple(map(str, v)) if isinstance(v := record.get(key), list) else ()
 
 
 def flag(key: str) -> Field:
@@ -50,18 +71,18 @@ def inner(key: str, inner_key: str) -> Field:
     return lambda record: str((record.get(key) or {}).get(inner_key, ""))
 
 
-def each(key: str, kind: Callable[..., T], fields: Fields) -> Field:
+def each(key: str, kind: type[T]) -> Field:
     """A tuple of `kind`, one read from each object of the list at `key`."""
-    return lambda record: tuple(read(kind, fields, item) for item in record.get(key) or ())
+    return lambda record: tuple(read(kind, item) for item in record.get(key) or ())
 
 
-def read(kind: Callable[..., T], fields: Fields, record: Record, **known: Any) -> T:
+def read(kind: type[T], record: Record, **known: Any) -> T:
     """A `kind` with every declared attribute read from `record`; `known` ones as given."""
-    return kind(**{name: get(record) for name, get in fields.items()}, **known)
+    return kind(**{name: get(record) for name, get in declared(kind).items()}, **known)
 
 
 def reader(
-    environment: str, table: str, kind: Callable[..., T], fields: Fields, **given: Given
+    environment: str, table: str, kind: type[T], **given: Given
 ) -> Callable[[Any, str, Stamp], T | None]:
     """`make(state, id, stamp)`: the `kind` read from row `id` of the catalog's `table` (its
     `id` the row's), the attributes in `given` computed from the catalog, row and stamp; None
@@ -73,6 +94,6 @@ def reader(
         if record is None:
             return None
         computed = {name: get(catalog, record, stamp) for name, get in given.items()}
-        return read(kind, fields, record, id=record_id, **computed)
+        return read(kind, record, id=record_id, **computed)
 
     return make

@@ -15,19 +15,16 @@ from collections.abc import Mapping
 from typing import Any
 
 from apps.kit.arrivals import Stamp
-from apps.kit.records import Given, each, flag, inner, number, reader, text, text_or
+from apps.kit.records import Given, reader
 from apps.microhub.state import (
     ENVIRONMENT,
-    Check,
     Comment,
     Commit,
     Issue,
-    Job,
     Label,
     Person,
     PullRequest,
     RepoFile,
-    Step,
     WorkflowRun,
 )
 
@@ -130,90 +127,20 @@ def thread(catalog: Any, record: Mapping[str, Any], stamp: Stamp) -> tuple[Comme
     )
 
 
-# --- each record type's catalog fields ----------------------------------------------------------
+# --- each record type, its catalog fields declared in state.py ------------------------------
 
-# What an issue and a pull request read alike. A preloaded one keeps its catalog number; the
-# environment numbers one filed during the task.
-POST = {
-    "number": number("number"),
-    "title": text("title"),
-    "body": text_or("body"),
-    "state": text_or("state", "open"),
-    "author": text("author"),
-}
+# What an issue and a pull request read with the catalog or the stamp.
 POSTED: dict[str, Given] = {
     "author_name": name_of("author"),
     "opened_at": arrived,
     "labels": labels_of,
     "comments": thread,
 }
-PULL_REQUEST = {
-    **POST,
-    "source": text("sourceBranch"),
-    "target": text("targetBranch", "main"),
-    "review_status": text_or("reviewStatus", "review-required"),
-    "checks": each("checks", Check, {"name": text("name"), "status": text("status")}),
-    "commits": number("commits"),
-    "additions": number("additions"),
-    "deletions": number("deletions"),
-    "files_changed": number("filesChanged"),
-}
-COMMIT = {
-    "sha": text("sha"),
-    "message": text("message"),
-    "author": text("author"),
-    "additions": number("additions"),
-    "deletions": number("deletions"),
-    "files": lambda r: (
-        tuple(map(str, r["filesChanged"])) if isinstance(r.get("filesChanged"), list) else ()
-    ),
-    "verified": flag("verified"),
-}
-FILE = {
-    "name": text("name"),
-    "path": text("path"),
-    "type": text_or("type", "file"),
-    "parent_id": lambda r: r.get("parentId"),
-    "content": text_or("content"),
-    "size": lambda r: int(r.get("size") or len(str(r.get("content") or "").encode())),
-    "language": text_or("language"),
-    "last_commit_sha": inner("lastCommit", "sha"),
-    "last_commit_message": inner("lastCommit", "message"),
-}
-STEP = {
-    "name": text("name"),
-    # a step shows its conclusion, or its status while it has none
-    "conclusion": lambda s: str(s.get("conclusion") or s.get("status") or ""),
-    "duration": number("duration"),
-}
-JOB = {
-    "name": text("name"),
-    "status": text("status"),
-    "conclusion": text_or("conclusion"),
-    "duration": number("duration"),
-    "steps": each("steps", Step, STEP),
-}
-RUN = {
-    "workflow_id": text("workflowId"),
-    "workflow_name": text("workflowName"),
-    "number": number("runNumber"),
-    "status": text_or("status", "completed"),
-    "conclusion": text_or("conclusion"),
-    "branch": text("branch"),
-    "commit_sha": inner("commit", "sha"),
-    "commit_message": inner("commit", "message"),
-    "actor": text("actor"),
-    "event": text("event"),
-    "duration": number("duration"),
-    "jobs": each("jobs", Job, JOB),
-}
 
-issue = reader(ENVIRONMENT, "issues", Issue, POST, **POSTED, assignees=people_at("assignees"))
-pull_request = reader(
-    ENVIRONMENT, "prs", PullRequest, PULL_REQUEST, **POSTED, reviewers=people_at("reviewers")
-)
-commit = reader(ENVIRONMENT, "commits", Commit, COMMIT, author_name=name_of("author"), at=arrived)
-repo_file = reader(ENVIRONMENT, "files", RepoFile, FILE)
+issue = reader(ENVIRONMENT, "issues", Issue, **POSTED, assignees=people_at("assignees"))
+pull_request = reader(ENVIRONMENT, "prs", PullRequest, **POSTED, reviewers=people_at("reviewers"))
+commit = reader(ENVIRONMENT, "commits", Commit, author_name=name_of("author"), at=arrived)
+repo_file = reader(ENVIRONMENT, "files", RepoFile)
 workflow_run = reader(
-    ENVIRONMENT, "workflow-runs", WorkflowRun, RUN, actor_name=name_of("actor"), at=arrived
+    ENVIRONMENT, "workflow-runs", WorkflowRun, actor_name=name_of("actor"), at=arrived
 )

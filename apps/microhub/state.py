@@ -5,6 +5,9 @@ a new `Hub`.
 The star count moves between events: it is the `stars` waypoint series read at `now`, plus the
 user's own star (`star_offset`), never an event of its own — `star_count(hub, now)` is the one
 function the page, the live push, the baselines and the evaluation tables all call.
+
+A record type read from the catalog declares on each field where the record has it
+(`from_catalog`, apps.kit.records); catalog.py computes the rest (display names, dates).
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from apps.kit.records import each, flag, from_catalog, inner, integer, text, text_or, texts
 from apps.kit.state import CatalogState, with_items
 from apps.kit.streaming import no_items
 from apps.kit.waypoints import Waypoints
@@ -55,12 +59,13 @@ class Post:
     """What an issue and a pull request share: a numbered, titled post and its discussion."""
 
     id: str
-    number: int
-    title: str
-    body: str
+    # A preloaded one keeps its catalog number; the environment numbers one filed during the task.
+    number: int = from_catalog(integer("number"))
+    title: str = from_catalog(text("title"))
+    body: str = from_catalog(text_or("body"))
     # As created (by the catalog or the user); the current one is in issue_states / pr_states.
-    state: str
-    author: str  # username
+    state: str = from_catalog(text_or("state", "open"))
+    author: str = from_catalog(text("author"))  # username
     author_name: str
     opened_at: float
     labels: tuple[Label, ...] = ()
@@ -81,49 +86,51 @@ class IssueState:
 
 @dataclass(frozen=True)
 class Check:
-    name: str
-    status: str  # success · failure · pending
+    name: str = from_catalog(text("name"))
+    status: str = from_catalog(text("status"))  # success · failure · pending
 
 
 @dataclass(frozen=True, kw_only=True)
 class PullRequest(Post):
-    source: str
-    target: str
-    review_status: str
+    source: str = from_catalog(text("sourceBranch"))
+    target: str = from_catalog(text("targetBranch", "main"))
+    review_status: str = from_catalog(text_or("reviewStatus", "review-required"))
     reviewers: tuple[Person, ...] = ()
-    checks: tuple[Check, ...] = ()
-    commits: int = 0
-    additions: int = 0
-    deletions: int = 0
-    files_changed: int = 0
+    checks: tuple[Check, ...] = from_catalog(each("checks", Check), default=())
+    commits: int = from_catalog(integer("commits"), default=0)
+    additions: int = from_catalog(integer("additions"), default=0)
+    deletions: int = from_catalog(integer("deletions"), default=0)
+    files_changed: int = from_catalog(integer("filesChanged"), default=0)
 
 
 @dataclass(frozen=True)
 class Commit:
     id: str
-    sha: str
-    message: str
-    author: str
+    sha: str = from_catalog(text("sha"))
+    message: str = from_catalog(text("message"))
+    author: str = from_catalog(text("author"))
     author_name: str
     at: float
-    additions: int = 0
-    deletions: int = 0
-    files: tuple[str, ...] = ()
-    verified: bool = False
+    additions: int = from_catalog(integer("additions"), default=0)
+    deletions: int = from_catalog(integer("deletions"), default=0)
+    files: tuple[str, ...] = from_catalog(texts("filesChanged"), default=())
+    verified: bool = from_catalog(flag("verified"), default=False)
 
 
 @dataclass(frozen=True)
 class RepoFile:
     id: str
-    name: str
-    path: str
-    type: str  # file · folder
-    parent_id: str | None
-    content: str = ""
-    size: int = 0
-    language: str = ""
-    last_commit_sha: str = ""
-    last_commit_message: str = ""
+    name: str = from_catalog(text("name"))
+    path: str = from_catalog(text("path"))
+    type: str = from_catalog(text_or("type", "file"))  # file · folder
+    parent_id: str | None = from_catalog(lambda r: r.get("parentId"))
+    content: str = from_catalog(text_or("content"), default="")
+    size: int = from_catalog(
+        lambda r: int(r.get("size") or len(str(r.get("content") or "").encode())), default=0
+    )
+    language: str = from_catalog(text_or("language"), default="")
+    last_commit_sha: str = from_catalog(inner("lastCommit", "sha"), default="")
+    last_commit_message: str = from_catalog(inner("lastCommit", "message"), default="")
 
     @property
     def is_folder(self) -> bool:
@@ -132,37 +139,39 @@ class RepoFile:
 
 @dataclass(frozen=True)
 class Step:
-    name: str
-    conclusion: str
-    duration: int
+    name: str = from_catalog(text("name"))
+    # its conclusion, or its status while it has none
+    conclusion: str = from_catalog(lambda s: str(s.get("conclusion") or s.get("status") or ""))
+    duration: int = from_catalog(integer("duration"))
 
 
 @dataclass(frozen=True)
 class Job:
-    name: str
-    status: str
-    conclusion: str
-    duration: int
-    steps: tuple[Step, ...] = ()
+    name: str = from_catalog(text("name"))
+    status: str = from_catalog(text("status"))
+    conclusion: str = from_catalog(text_or("conclusion"))
+    duration: int = from_catalog(integer("duration"))
+    steps: tuple[Step, ...] = from_catalog(each("steps", Step), default=())
 
 
 @dataclass(frozen=True)
 class WorkflowRun:
     id: str
-    workflow_id: str
-    workflow_name: str
-    number: int
-    status: str  # completed · in_progress · queued
-    conclusion: str  # success · failure · cancelled · "" while running
-    branch: str
-    commit_sha: str
-    commit_message: str
-    actor: str
+    workflow_id: str = from_catalog(text("workflowId"))
+    workflow_name: str = from_catalog(text("workflowName"))
+    number: int = from_catalog(integer("runNumber"))
+    status: str = from_catalog(text_or("status", "completed"))  # completed · in_progress · queued
+    # success · failure · cancelled · "" while running
+    conclusion: str = from_catalog(text_or("conclusion"))
+    branch: str = from_catalog(text("branch"))
+    commit_sha: str = from_catalog(inner("commit", "sha"))
+    commit_message: str = from_catalog(inner("commit", "message"))
+    actor: str = from_catalog(text("actor"))
     actor_name: str
-    event: str
-    duration: int
+    event: str = from_catalog(text("event"))
+    duration: int = from_catalog(integer("duration"))
     at: float
-    jobs: tuple[Job, ...] = ()
+    jobs: tuple[Job, ...] = from_catalog(each("jobs", Job), default=())
 
     @property
     def outcome(self) -> str:
