@@ -15,7 +15,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from apps.kit.arrivals import Stamp
-from apps.kit.records import Given, reader
+from apps.kit.records import Given, read, reader
 from apps.microhub.state import (
     ENVIRONMENT,
     Comment,
@@ -71,12 +71,7 @@ def repository_record(catalog: Any) -> Mapping[str, Any]:
 
 def labels(catalog: Any) -> Mapping[str, Label]:
     return {
-        label_id: Label(
-            id=label_id,
-            name=str(r.get("name", label_id)),
-            color=str(r.get("color") or "#ededed"),
-            description=str(r.get("description") or ""),
-        )
+        label_id: read(Label, r, id=label_id, name=str(r.get("name", label_id)))
         for label_id, r in table(catalog, "labels").items()
     }
 

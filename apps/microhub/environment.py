@@ -1,13 +1,9 @@
 """MicroHub's registration with the core: scenario events, baselines, evaluation tables.
 
-Scenario events (the original's, plus three of our own that the paper's MicroHub injects):
-- `preload_repo {issue_ids, pr_ids, commit_ids, run_ids, file_ids, …, star_waypoints,
-  initial_stars, initial_forks, initial_watchers, initial_commits, default_branch,
-  preload_age_offset_ms}` — the repository as the task starts; every id list defaults to ["*"].
-- `new_issue {issue_id}` — filed now, numbered after every issue so far (the original's rule).
-- `stars_waypoint {stars | delta}` — a point on the star curve at the event's own time: a step
-  there (it exists only once fired), then the ramp toward any later preloaded waypoint.
-- `new_pull_request {pr_id}`, `new_commit {commit_id}`, `new_workflow_run {run_id}` (ours).
+Scenario events: the original's `preload_repo` (every id list defaults to ["*"]), `new_issue`
+(numbered after every issue so far) and `stars_waypoint` (a point on the star curve at the
+event's own time: a step there, then the ramp toward any later preloaded waypoint); and three of
+our own that the paper's MicroHub injects: `new_pull_request`, `new_commit`, `new_workflow_run`.
 """
 
 from __future__ import annotations
@@ -34,7 +30,6 @@ from apps.microhub.state import (
     PullRequest,
     next_issue_number,
     next_pr_number,
-    self_comment_count,
     star_count,
 )
 from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, counted
@@ -281,7 +276,7 @@ BASELINES = MappingProxyType(
                 "issue_count": lambda hub: len(hub.issues),
                 "pr_count": lambda hub: len(hub.prs),
                 "commit_count": lambda hub: len(hub.commits),
-                "comment_count": self_comment_count,
+                "comment_count": lambda hub: len(hub.user_comments),
             }
         ),
     }

@@ -19,8 +19,6 @@ from apps.microhub.state import (
     PullRequest,
     RepoFile,
     WorkflowRun,
-    open_issue_count,
-    open_pr_count,
 )
 
 
@@ -44,11 +42,13 @@ class PostRow:
 
 @per_state()
 def counts(hub: Hub) -> Counts:
+    open_issues = sum(1 for i in hub.issue_states.values() if i.state == "open")
+    open_prs = sum(1 for pr_id in hub.prs if hub.pr_state(pr_id) == "open")
     return Counts(
-        open_issues=open_issue_count(hub),
-        closed_issues=len(hub.issue_states) - open_issue_count(hub),
-        open_prs=open_pr_count(hub),
-        closed_prs=len(hub.prs) - open_pr_count(hub),
+        open_issues=open_issues,
+        closed_issues=len(hub.issue_states) - open_issues,
+        open_prs=open_prs,
+        closed_prs=len(hub.prs) - open_prs,
         runs=len(hub.runs),
     )
 

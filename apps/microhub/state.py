@@ -38,8 +38,8 @@ class Person:
 class Label:
     id: str
     name: str
-    color: str
-    description: str = ""
+    color: str = from_catalog(text_or("color", "#ededed"))
+    description: str = from_catalog(text_or("description"), default="")
 
 
 @dataclass(frozen=True)
@@ -269,15 +269,3 @@ def next_issue_number(hub: Hub) -> int:
 def next_pr_number(hub: Hub) -> int:
     """Pull requests share numbers with issues: one more than every issue and pull request."""
     return max([next_issue_number(hub), *(pr.number + 1 for pr in hub.prs.values())])
-
-
-def open_issue_count(hub: Hub) -> int:
-    return sum(1 for i in hub.issue_states.values() if i.state == "open")
-
-
-def open_pr_count(hub: Hub) -> int:
-    return sum(1 for pr_id in hub.prs if hub.pr_state(pr_id) == "open")
-
-
-def self_comment_count(hub: Hub) -> int:
-    return len(hub.user_comments)
