@@ -1,7 +1,13 @@
-"""What every environment's `Action.decide` needs: a fresh id, a required text, an existing item.
+"""What every environment's actions need: a fresh id, a required text, an existing item — and
+the two kinds of action declared whole (`marking`: set flags on one item; `opening`: what a page
+does by being opened).
 
 decide() is where an action is refused (`ActionRejected`, whose status the API answers with) and
 where anything the log must remember is chosen. These helpers read the state and never change it.
+
+    marks = marking(PaperId, decide_on_paper, "paper_states", "paper_id", page=paper_page)
+    ACTIONS = {"save": marks(saved=True, help="Add a paper to My library."), …}
+    implicit_actions=(opening("mailbox", "email", "open_email", "email_id", applies=unread),)
 """
 
 from __future__ import annotations
@@ -10,9 +16,12 @@ import uuid
 from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
 
-from events.registry import ActionRejected
+from apps.kit.state import setting
+from events.registry import Action, ActionRejected, ImplicitAction, PageStep
+from events.schemas import Payload
 
 Item = TypeVar("Item")
+S = TypeVar("S")
 
 
 def new_id(prefix: str) -> str:
@@ -47,3 +56,33 @@ def checking(field: str, key: str, what: str, where: str) -> Callable[[Any, dict
         return payload
 
     return decide
+
+
+def marking(
+    schema: type[Payload],
+    decide: Callable[..., dict],
+    field: str,
+    key: str,
+    *,
+    page: Callable[[Any, dict], PageStep] | None = None,
+) -> Callable[..., Action]:
+    """`marks(help=…, **flags)`: an Action on `schema` checked by `decide` that sets `flags` on
+    `state.<field>[payload[key]]` (set, not toggled: a repeated request changes nothing), done on
+    `page` unless the action names its own."""
+
+    def marks(*, help: str = "", page: Any = page, **flags: Any) -> Action:
+        return Action(schema, decide, setting(field, key, **flags), help=help, page=page)
+
+    return marks
+
+
+def opening(
+    page: str, param: str, action: str, field: str, *, applies: Callable[[S, str], bool]
+) -> ImplicitAction[S]:
+    """Opening the page named `page` with `param=<id>` performs `action {field: id}`, when
+    `applies(state, id)` (so that reloading the page changes nothing)."""
+
+    def payload(item_id: str) -> dict[str, Any]:
+        return {field: item_id}
+
+    return ImplicitAction(page=page, param=param, action=action, payload=payload, applies=applies)

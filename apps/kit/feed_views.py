@@ -10,7 +10,7 @@ it belongs to and the navigation's badges; a screen view only says what its scre
     @PAGES.form
     def read_all_activity(request, page): …   # a form posts here: act, then redirect
 
-The buttons under a post are in `post_actions`.
+The buttons under a post: `act_on_post`.
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from typing import Any
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
+from apps.kit.item_actions import act_on_item
 from apps.kit.pages import Page, run_page
 from apps.kit.rendering import redirect_to, render_screen
 
@@ -89,3 +90,14 @@ def open_thread(page: Page, user_id: str, thread: Callable[[str], str], inbox: s
     if event is None:
         return redirect_to(page, inbox)
     return redirect_to(page, thread(event.payload["conversation_id"]))
+
+
+# The one post action with a form field: the comment's text.
+POST_FORMS = {"comment_post": ("text",)}
+
+
+def act_on_post(
+    request: HttpRequest, page: Page, post_id: str, action: str, notices: Mapping[str, str]
+) -> str:
+    """A post's button or its comment form (`act_on_item` on the post); returns the toast."""
+    return act_on_item(request, page, action, notices, "post_id", post_id, POST_FORMS)

@@ -20,6 +20,7 @@ from apps.kit import social
 from apps.kit.arrivals import Stamp
 from apps.kit.deciding import checking, found, new_id, required_text
 from apps.kit.state import setting, with_items
+from apps.kit.tables import Table
 from events.registry import Action, ImplicitAction, LoggedEvent, PageStep, Reducer
 from events.schemas import Payload
 
@@ -250,3 +251,19 @@ def opening(
     item changes nothing."""
     field = key or param
     return ImplicitAction(page, param, action, lambda value: {field: value}, applies)
+
+
+def posts_table(text: tuple[str, str], last: tuple[str, str]) -> Table:
+    """`posts`: id, author, the post's text (`text`: its column and getter), its likes as shown
+    now, and the one column the site adds last (`last`)."""
+    return Table(
+        "posts",
+        post_rows,
+        {
+            "id TEXT PRIMARY KEY": "post.id",
+            "authorId TEXT": "post.author.id",
+            text[0]: text[1],
+            "likes INTEGER": "likes",
+            last[0]: last[1],
+        },
+    )

@@ -2,7 +2,7 @@
 the pictures and comments of posts as the catalog gives them, and the decision on a new comment.
 
 Only the logic that is the same in both lives here; each app keeps its own post, its own person
-and where it stores the self user's comments. The post buttons' view helper is in post_actions.
+and where it stores the self user's comments. The post buttons' view step is `feed_views.act_on_post`.
 """
 
 from __future__ import annotations

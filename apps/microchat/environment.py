@@ -9,7 +9,7 @@ from typing import Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
-from apps.kit.opening import opening
+from apps.kit.deciding import opening
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.microchat import state as chats
 from apps.microchat.actions import ACTIONS

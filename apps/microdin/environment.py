@@ -18,8 +18,7 @@ from dataclasses import replace
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.feed_tables import posts_table
-from apps.kit.feeds import opening
+from apps.kit.feeds import opening, posts_table
 from apps.kit.tables import KEY, Table, tables
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state

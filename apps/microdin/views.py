@@ -11,9 +11,8 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 
 from apps.kit import feed_views
-from apps.kit.feed_views import FeedPages, open_thread, shown
+from apps.kit.feed_views import FeedPages, act_on_post, open_thread, shown
 from apps.kit.pages import Page
-from apps.kit.post_actions import act_on_post
 from apps.kit.rendering import back_field, came_from, redirect_after, redirect_to
 from apps.microdin import screens
 from apps.microdin.query import JobsQuery, MessagingQuery, NotificationsQuery, SearchQuery

@@ -18,8 +18,7 @@ from typing import NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.feed_tables import posts_table
-from apps.kit.feeds import opening
+from apps.kit.feeds import opening, posts_table
 from apps.kit.social import Comment
 from apps.kit.state import with_changed, with_items
 from apps.kit.tables import KEY, VALUE, Keyed, Table, tables

@@ -10,10 +10,9 @@ from __future__ import annotations
 from django.http import Http404, HttpRequest, HttpResponse
 
 from apps.kit import feed_views
-from apps.kit.feed_views import FeedPages, open_thread, shown
+from apps.kit.feed_views import FeedPages, act_on_post, open_thread, shown
 from apps.kit.feeds import thread_with
 from apps.kit.pages import Page, one_of
-from apps.kit.post_actions import act_on_post
 from apps.kit.rendering import came_from, redirect_after, redirect_to
 from apps.microgram import screens
 from apps.microgram.query import ExploreQuery, FeedQuery, ProfileQuery, SearchQuery

@@ -16,7 +16,7 @@ from urllib.parse import urlencode
 
 from pydantic import Field
 
-from apps.kit.marking import marking
+from apps.kit.deciding import marking
 from apps.kit.state import setting, with_changed
 from apps.kit.streaming import id_payload
 from apps.microlendar import times

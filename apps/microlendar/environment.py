@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.opening import opening
+from apps.kit.deciding import opening
 from apps.kit.tables import Rows, Table, named, tables
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times

@@ -4,7 +4,7 @@ and `new_email`), baselines, evaluation tables."""
 from __future__ import annotations
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
-from apps.kit.opening import opening
+from apps.kit.deciding import opening
 from apps.kit.tables import KEY, Table, named, tables
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS

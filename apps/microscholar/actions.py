@@ -14,8 +14,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from types import MappingProxyType
 
-from apps.kit.deciding import checking, found
-from apps.kit.marking import marking
+from apps.kit.deciding import checking, found, marking
 from apps.kit.state import with_items
 from apps.kit.streaming import id_payload
 from apps.microscholar.state import Paper, Scholar

@@ -18,7 +18,7 @@ import json
 from collections.abc import Iterable
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.opening import opening
+from apps.kit.deciding import opening
 from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, named, tables
