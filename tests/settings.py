@@ -39,8 +39,15 @@ os.environ.setdefault("SENTINEL_SCENARIO_DIR", os.environ["SENTINEL_TEST_OUR_SCE
 # Parallel test processes (pytest-xdist: gw0, gw1, …) each get their own Redis database, so their
 # channel layers and Celery queues never cross: run 1 of one process is not run 1 of another.
 # Their SQL databases are already their own (the test database's name carries the process id).
+# Done once, in the test process: servers and workers it starts inherit the URL as rewritten
+# (and the worker's name), and must not move it again.
 _worker = os.environ.get("PYTEST_XDIST_WORKER", "")
-if _worker.startswith("gw") and os.environ.get("REDIS_URL"):
+if (
+    _worker.startswith("gw")
+    and os.environ.get("REDIS_URL")
+    and not os.environ.get("SENTINEL_TEST_REDIS_OWN")
+):
+    os.environ["SENTINEL_TEST_REDIS_OWN"] = "1"
     from urllib.parse import urlsplit, urlunsplit
 
     _url = urlsplit(os.environ["REDIS_URL"])
