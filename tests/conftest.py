@@ -48,6 +48,40 @@ def fresh_projection_cache():
     clear_cache()
 
 
+def _contents(root: Path) -> dict[Path, bytes]:
+    return {path: path.read_bytes() for path in root.rglob("*") if path.is_file()}
+
+
+_SHARED_COPY = _contents(OUR_SCENARIOS)
+
+
+@pytest.fixture(autouse=True)
+def shared_scenarios_untouched():
+    """Fail the test that wrote into the session's shared copy of scenarios/ (an admin save
+    through a server started before `own_scenarios`, say), and put the copy back: otherwise
+    every later test in every process plays the edited file and fails far from the cause."""
+    yield
+    now = _contents(OUR_SCENARIOS)
+    if now == _SHARED_COPY:
+        return
+    touched = sorted(str(p.relative_to(OUR_SCENARIOS)) for p in now.keys() ^ _SHARED_COPY.keys())
+    touched += sorted(
+        str(p.relative_to(OUR_SCENARIOS))
+        for p in now.keys() & _SHARED_COPY.keys()
+        if now[p] != _SHARED_COPY[p]
+    )
+    for path in now.keys() - _SHARED_COPY.keys():
+        path.unlink()
+    for path, content in _SHARED_COPY.items():
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(content)
+    pytest.fail(
+        f"this test wrote into the shared scenario copy {OUR_SCENARIOS} ({', '.join(touched)}); "
+        "a test that edits scenarios asks for own_scenarios before live_site",
+        pytrace=False,
+    )
+
+
 @pytest.fixture
 def tally_spec():
     def make(**kwargs) -> dict:

@@ -25,13 +25,14 @@ def inbox_scenario(own_scenarios, live_site):
     call_command("loadscenarios", str(OUR_SCENARIOS), stdout=io.StringIO(), stderr=io.StringIO())
     scenario = Scenario.objects.get(path="micromail/inbox-relative-passive.json")
     # cc-03, the fifth new inbox mail, at 173.64 s
-    return scenario.pk, scenario.timeline.get(position=8).time, scenario.timeline.count()
+    trigger_time = scenario.timeline.get(position=8).time
+    return live_site, scenario.pk, trigger_time, scenario.timeline.count()
 
 
-def test_an_author_moves_the_trigger_event_and_the_dry_run_flags_it(
-    live_site, inbox_scenario, browser
-):
-    pk, trigger_time, event_count = inbox_scenario
+def test_an_author_moves_the_trigger_event_and_the_dry_run_flags_it(inbox_scenario, browser):
+    # The server comes from inbox_scenario, started after own_scenarios: a server started first
+    # would write the edit into the copy every other test of the session plays.
+    live_site, pk, trigger_time, event_count = inbox_scenario
     page = browser.new_page()
     page.set_default_timeout(TIMEOUT_MS)
     page.goto(f"{live_site}/admin/login/")
