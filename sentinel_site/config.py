@@ -38,6 +38,17 @@ def env_bool(name: str, default: bool = False) -> bool:
     raise ConfigError(f"{name}={raw!r} is not a boolean; allowed: 1/0, true/false, yes/no, on/off")
 
 
+def env_int(name: str, default: int, *, minimum: int = 0) -> int:
+    raw = env_str(name, str(default))
+    try:
+        value = int(raw)
+    except ValueError:
+        raise ConfigError(f"{name}={raw!r} is not a whole number") from None
+    if value < minimum:
+        raise ConfigError(f"{name}={value} is too small; the least allowed is {minimum}")
+    return value
+
+
 def env_dir(name: str, default: Path, *, base: Path) -> Path:
     """A directory that must exist (relative paths are taken from the project root)."""
     raw = env_str(name)

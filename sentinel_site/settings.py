@@ -11,6 +11,7 @@ from sentinel_site.config import (
     env_bool,
     env_choice,
     env_dir,
+    env_int,
     env_str,
     env_url,
 )
@@ -21,6 +22,9 @@ VAR_DIR = BASE_DIR / "var"
 SECRET_KEY = env_str("SENTINEL_SECRET_KEY", "dev-insecure-change-me-for-any-public-deployment")
 DEBUG = env_bool("SENTINEL_DEBUG", False)
 ALLOWED_HOSTS = [h for h in env_str("SENTINEL_ALLOWED_HOSTS", "*").split(",") if h]
+# The largest request body accepted, refused before it is read (sentinel_site/body_limit.py)
+# and again by every JSON door (apps/control/parsers.py). 2.5 MB is Django's own default.
+DATA_UPLOAD_MAX_MEMORY_SIZE = env_int("SENTINEL_MAX_BODY_BYTES", 2_621_440, minimum=1024)
 CSRF_TRUSTED_ORIGINS = [o for o in env_str("SENTINEL_CSRF_TRUSTED_ORIGINS").split(",") if o]
 
 INSTALLED_APPS = [
