@@ -21,13 +21,12 @@ except ConfigError as exc:  # one clear line, no traceback
     print(f"configuration error: {exc}", file=sys.stderr)
     raise SystemExit(2) from None
 
-from channels.routing import ProtocolTypeRouter, URLRouter
-from channels.security.websocket import AllowedHostsOriginValidator
+from channels.routing import ProtocolTypeRouter
 from django.conf import settings
 from django.contrib.staticfiles.handlers import ASGIStaticFilesHandler
 
 from events.ticker import ticker
-from sentinel_site.routing import websocket_urlpatterns
+from sentinel_site.routing import websocket_application
 
 # Everything imported so far lives as long as the server: keep the cyclic collector from
 # walking it on every full collection (those walks were the long tail of push latency).
@@ -38,7 +37,7 @@ router = ProtocolTypeRouter(
         # htmx and the live client are our own static files: served here, so the one Daphne
         # process of the embedded shape needs no separate file server and no CDN.
         "http": ASGIStaticFilesHandler(django_http),
-        "websocket": AllowedHostsOriginValidator(URLRouter(websocket_urlpatterns)),
+        "websocket": websocket_application(),
     }
 )
 

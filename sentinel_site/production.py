@@ -47,6 +47,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from sentinel_site.exposure import announcement, control_token_for
+
 REPO = Path(__file__).resolve().parent.parent
 TICKERS = ("process", "celery")
 REFRESH_S = 0.2  # the ticker process notices a started clock within this (a query each time)
@@ -331,6 +333,10 @@ def main(argv: list[str] | None = None) -> int:
             sys.stdout.write(shape.supervisord_conf())
             return 0
         env = shape_environment(shape)
+        token = control_token_for(shape.host, env)
+        if token:  # beyond loopback, never without one
+            env["SENTINEL_CONTROL_TOKEN"] = token
+            print(announcement(shape.host, token), flush=True)
         os.environ.update(env)
         import django
         from django.core.management import call_command

@@ -21,7 +21,11 @@ VAR_DIR = BASE_DIR / "var"
 
 SECRET_KEY = env_str("SENTINEL_SECRET_KEY", "dev-insecure-change-me-for-any-public-deployment")
 DEBUG = env_bool("SENTINEL_DEBUG", False)
-ALLOWED_HOSTS = [h for h in env_str("SENTINEL_ALLOWED_HOSTS", "*").split(",") if h]
+# The loopback names only, unless widened: a foreign Host header (DNS rebinding: a web page whose
+# name resolves to 127.0.0.1) is refused before it can read anything.
+ALLOWED_HOSTS = [
+    h for h in env_str("SENTINEL_ALLOWED_HOSTS", "localhost,127.0.0.1,[::1]").split(",") if h
+]
 # The largest request body accepted, refused before it is read (sentinel_site/body_limit.py)
 # and again by every JSON door (apps/control/parsers.py). 2.5 MB is Django's own default.
 DATA_UPLOAD_MAX_MEMORY_SIZE = env_int("SENTINEL_MAX_BODY_BYTES", 2_621_440, minimum=1024)
@@ -148,12 +152,15 @@ STATICFILES_DIRS = [BASE_DIR / "static"] if (BASE_DIR / "static").is_dir() else 
 REST_FRAMEWORK = {
     "DEFAULT_SCHEMA_CLASS": "drf_spectacular.openapi.AutoSchema",
     "DEFAULT_AUTHENTICATION_CLASSES": [],
-    "DEFAULT_PERMISSION_CLASSES": ["apps.control.auth.ControlTokenPermission"],
+    "DEFAULT_PERMISSION_CLASSES": [
+        "apps.control.auth.SameOriginPermission",
+        "apps.control.auth.ControlTokenPermission",
+    ],
     "EXCEPTION_HANDLER": "apps.control.errors.exception_handler",
     "DEFAULT_PARSER_CLASSES": [
-        "apps.control.parsers.StrictJSONParser",  # the door: size, UTF-8, depth, text, numbers
-        "rest_framework.parsers.FormParser",
-        "rest_framework.parsers.MultiPartParser",
+        # JSON only, through the door (size, UTF-8, depth, text, numbers): no form or multipart
+        # body, which any web page could post here without its visitor knowing.
+        "apps.control.parsers.StrictJSONParser",
     ],
     "UNAUTHENTICATED_USER": None,
 }

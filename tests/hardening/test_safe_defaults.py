@@ -1,0 +1,128 @@
+"""The default configuration is closed to other web pages: a page on another site cannot drive
+the control API through its visitor's browser (a cross-site form post created and closed runs),
+and a foreign Host header (DNS rebinding) is refused before anything is read."""
+
+from __future__ import annotations
+
+import pytest
+from asgiref.sync import async_to_sync
+from channels.testing import WebsocketCommunicator
+from rest_framework.test import APIClient
+
+from apps.kit.links import live_path
+from events import lifecycle
+from events.models import ClockMode, Run
+
+pytestmark = pytest.mark.django_db
+
+EVIL = "https://evil.example"
+
+
+@pytest.fixture
+def api():
+    return APIClient()
+
+
+def test_a_cross_site_form_post_creates_no_run(api):
+    response = api.post(
+        "/api/runs/", {"scenario": "micromail-inbox-relative-passive"}, HTTP_ORIGIN=EVIL
+    )
+    assert response.status_code == 403
+    assert "cross-site request refused" in response.json()["detail"]
+    assert not Run.objects.exists()
+
+
+def test_a_cross_site_json_post_closes_no_run(api, tally_spec):
+    run = lifecycle.create_run(tally_spec(), clock_mode=ClockMode.VIRTUAL)
+    response = api.post(f"/api/runs/{run.pk}/close/", {}, format="json", HTTP_ORIGIN=EVIL)
+    assert response.status_code == 403
+    run.refresh_from_db()
+    assert run.closed_at is None
+
+
+def test_the_api_answers_its_own_pages_and_clients_that_are_not_browsers(api, tally_spec):
+    run = lifecycle.create_run(tally_spec(), clock_mode=ClockMode.VIRTUAL)
+    own = api.post(
+        f"/api/runs/{run.pk}/advance/", {"time": 5}, format="json", HTTP_ORIGIN="http://testserver"
+    )
+    assert own.status_code == 200
+    assert api.post(f"/api/runs/{run.pk}/close/", {}, format="json").status_code == 200
+
+
+def test_reading_is_not_refused_by_origin(api):
+    # Reads change nothing; what protects them is the Host check below and the control token.
+    assert api.get("/api/runs/", HTTP_ORIGIN=EVIL).status_code == 200
+
+
+def test_the_api_takes_json_bodies_only(api, tally_spec):
+    run = lifecycle.create_run(tally_spec(), clock_mode=ClockMode.VIRTUAL)
+    response = api.post(f"/api/runs/{run.pk}/advance/", {"time": 5}, format="multipart")
+    assert response.status_code == 415
+    assert "multipart/form-data" in response.json()["detail"]
+
+
+def test_a_foreign_host_name_is_refused(api):
+    # A page at evil.example whose name was made to resolve to 127.0.0.1 asks with its own name.
+    assert api.get("/api/runs/", HTTP_HOST="evil.example").status_code == 400
+    assert api.get("/api/runs/", HTTP_HOST="127.0.0.1:8000").status_code == 200
+    assert api.get("/api/runs/", HTTP_HOST="localhost").status_code == 200
+
+
+@pytest.mark.django_db(transaction=True)
+@pytest.mark.parametrize(
+    "origin,accepted",
+    [(None, True), ("http://127.0.0.1:8000", True), (EVIL, False)],
+)
+def test_a_live_socket_from_another_site_is_refused(tally_spec, settings, origin, accepted):
+    settings.CHANNEL_LAYERS = {"default": {"BACKEND": "channels.layers.InMemoryChannelLayer"}}
+    from channels.layers import channel_layers
+
+    channel_layers.backends.clear()
+    run = lifecycle.create_run(tally_spec(), clock_mode=ClockMode.LIVE)
+    headers = [(b"origin", origin.encode())] if origin else []
+
+    async def connect() -> bool:
+        from sentinel_site.asgi import router
+
+        socket = WebsocketCommunicator(router, live_path(run), headers=headers)
+        connected, _ = await socket.connect(timeout=10)
+        await socket.disconnect()
+        return connected
+
+    try:
+        assert async_to_sync(connect)() is accepted
+    finally:
+        channel_layers.backends.clear()
+
+
+def exposure(host: str, **env: str):
+    import os
+    import subprocess
+    import sys
+
+    clean = {k: v for k, v in os.environ.items() if k != "SENTINEL_CONTROL_TOKEN"}
+    return subprocess.run(
+        [sys.executable, "-m", "sentinel_site.exposure", host],
+        env={**clean, **env},
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+
+
+@pytest.mark.parametrize("host", ["0.0.0.0", "192.168.1.20", "bench.example.org", "::"])
+def test_a_server_listening_beyond_loopback_gets_a_control_token(host):
+    started = exposure(host)
+    token = started.stdout.removeprefix("export SENTINEL_CONTROL_TOKEN=").strip()
+    assert len(token) >= 32
+    assert f"Authorization: Bearer {token}" in started.stderr
+    assert exposure(host).stdout != started.stdout  # fresh for every start
+
+
+@pytest.mark.parametrize("host", ["127.0.0.1", "localhost", "::1", "[::1]", "127.0.0.2"])
+def test_a_loopback_server_keeps_the_open_default(host):
+    assert exposure(host).stdout == ""
+
+
+def test_a_configured_token_is_kept():
+    assert exposure("0.0.0.0", SENTINEL_CONTROL_TOKEN="chosen").stdout == ""
