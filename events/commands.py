@@ -66,6 +66,15 @@ def perform_action(
     return Acted(event, folded_after(run, folded, event, performed.state))
 
 
+# A viewed URL is kept to this many characters. The agent chooses its URLs, and a query string
+# of 15 KB on every GET grew its own run's log (and every export and replay of it) without bound.
+VIEW_PATH_LIMIT = 2048
+
+
 def record_view(run: Run, path: str, *, at: float, **details: Any) -> Event:
-    """Log a page view at simulated time `at` (cheap; used for replay and activity metrics)."""
+    """Log a page view at simulated time `at` (cheap; used for replay and activity metrics).
+    A path longer than VIEW_PATH_LIMIT is cut there; the entry says how long it was."""
+    if len(path) > VIEW_PATH_LIMIT:
+        details = {**details, "path_length": len(path)}
+        path = path[:VIEW_PATH_LIMIT]
     return append_event(run, EventKind.VIEW, "page", {"path": path, **details}, at=at)
