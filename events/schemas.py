@@ -212,17 +212,28 @@ def _first_problem(schema: type[Payload], payload: dict, errors: list[ErrorDetai
     field = _path(loc)
     if len(loc) < len(error["loc"]):
         # The walk stopped at a union of several types: Pydantic tried each of them.
-        return f"payload field '{field}' must be {describe(annotation)}, got {_at(payload, loc)!r}"
+        return f"payload field '{field}' must be {describe(annotation)}, got {_shown(_at(payload, loc))}"
     if kind == "missing":
         return f"payload field '{field}' is required ({describe(annotation)})"
     value = error["input"]
     if kind == "literal_error":
         choices = get_args(_inner(annotation))
         allowed = ", ".join(map(str, choices)) if choices else error["ctx"]["expected"]
-        return f"payload field '{field}' is {value!r}; allowed: {allowed}"
+        return f"payload field '{field}' is {_shown(value)}; allowed: {allowed}"
     if kind.endswith("_type") or kind in _WRONG_TYPE:
-        return f"payload field '{field}' must be {describe(annotation)}, got {value!r}"
-    return f"payload field '{field}' {_sensible(error['msg'])}, got {value!r}"
+        return f"payload field '{field}' must be {describe(annotation)}, got {_shown(value)}"
+    return f"payload field '{field}' {_sensible(error['msg'])}, got {_shown(value)}"
+
+
+SHOWN_CHARS = 80  # of a refused value, in its error: an oversized one is not sent back whole
+
+
+def _shown(value: Any) -> str:
+    text = repr(value)
+    if len(text) <= SHOWN_CHARS:
+        return text
+    size = f"{len(value)} items" if isinstance(value, list | dict) else f"{len(text)} characters"
+    return f"{text[:SHOWN_CHARS]}… ({size})"
 
 
 def _unknown_fields(schema: type[Payload], parent: tuple, errors: list[ErrorDetails]) -> str:

@@ -19,6 +19,7 @@ from pydantic import Field
 from apps.kit import social
 from apps.kit.arrivals import Stamp
 from apps.kit.deciding import checking, found, new_id, required_text
+from apps.kit.fields import ItemId
 from apps.kit.state import setting, with_items
 from apps.kit.tables import Table
 from events.registry import Action, ImplicitAction, LoggedEvent, PageStep, Reducer
@@ -152,7 +153,7 @@ def post_rows(state: Any, now: float) -> list[PostRow]:
 
 
 class ConversationId(Payload):
-    conversation_id: str = Field(description="id of a one-to-one thread (a conversation)")
+    conversation_id: ItemId = Field(description="id of a one-to-one thread (a conversation)")
 
 
 def post_flag(**changes: bool) -> Reducer:

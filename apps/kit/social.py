@@ -14,6 +14,7 @@ from typing import Any, Generic, TypeVar
 from pydantic import Field
 
 from apps.kit.deciding import checking, found, new_id, required_text
+from apps.kit.fields import ItemId, Text
 from apps.media.pictures import SUBJECTS
 from events.registry import Action, PageStep, Reducer
 from events.schemas import Payload
@@ -23,11 +24,11 @@ FALLBACK_SUBJECT = "abstract"  # for a subject no scene is drawn for
 
 
 class PostId(Payload):
-    post_id: str = Field(description="id of a post in the feed")
+    post_id: ItemId = Field(description="id of a post in the feed")
 
 
 class CommentOnPost(PostId):
-    text: str = Field(description="the comment")
+    text: Text = Field(description="the comment")
 
 
 @dataclass(frozen=True)

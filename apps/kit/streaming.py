@@ -21,6 +21,7 @@ from typing import Any, Generic, TypeVar
 from django.http import Http404
 from pydantic import Field, create_model
 
+from apps.kit.fields import ItemId
 from apps.kit.state import EMPTY
 from apps.kit.waypoints import Waypoints
 from events.registry import ActionRejected
@@ -118,7 +119,7 @@ def bounded_text(
 
 def id_payload(name: str, field: str, description: str) -> type[Payload]:
     """The payload of an action on one item: `{<field>: id}` (e.g. `TrackId {track_id}`)."""
-    fields: dict[str, Any] = {field: (str, Field(description=description))}
+    fields: dict[str, Any] = {field: (ItemId, Field(description=description))}
     return create_model(name, __base__=Payload, **fields)
 
 

@@ -14,6 +14,7 @@ from typing import Literal
 from pydantic import Field
 
 from apps.kit.deciding import checking, found, new_id
+from apps.kit.fields import ItemId, Text
 from apps.kit.state import setting, with_changed, without
 from apps.kit.streaming import id_payload
 from apps.microchat.query import ChatQuery
@@ -42,12 +43,12 @@ class React(MessageId):
 
 
 class Send(ConversationId):
-    content: str
-    reply_to: str | None = Field(None, description="id of the message this answers")
+    content: Text
+    reply_to: ItemId | None = Field(None, description="id of the message this answers")
 
 
 class Edit(MessageId):
-    content: str
+    content: Text
 
 
 IN_WORKSPACE = ("conversation", "in this workspace")

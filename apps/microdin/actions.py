@@ -21,6 +21,7 @@ from pydantic import Field
 from apps.kit import feeds
 from apps.kit.deciding import found, new_id
 from apps.kit.feeds import ConversationId
+from apps.kit.fields import ItemId, Line, Text
 from apps.kit.social import Comment, post_actions
 from apps.kit.state import setting, with_changed, with_items
 from apps.microdin import catalog as records
@@ -41,30 +42,30 @@ WHERE = "on this network"  # ends the 404 for an id that is not (yet) on the net
 
 
 class ConnectionId(Payload):
-    connection_id: str = Field(description="id of a connection request")
+    connection_id: ItemId = Field(description="id of a connection request")
 
 
 class SendMessage(ConversationId):
-    content: str = Field(description="the message")
+    content: Text = Field(description="the message")
 
 
 class StartConversation(Payload):
-    user_id: str = Field(description="the person to write to")
+    user_id: ItemId = Field(description="the person to write to")
 
 
 class NotificationId(Payload):
-    notification_id: str = Field(description="id of a notification")
+    notification_id: ItemId = Field(description="id of a notification")
 
 
 class JobId(Payload):
-    job_id: str = Field(description="id of a job posting")
+    job_id: ItemId = Field(description="id of a job posting")
 
 
 class AddProfileSection(Payload):
     type: Literal[SECTION_TYPES]
-    title: str = ""
-    subtitle: str = ""
-    content: str = ""
+    title: Line = ""
+    subtitle: Line = ""
+    content: Text = ""
 
 
 # --- posts -----------------------------------------------------------------------------------

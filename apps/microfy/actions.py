@@ -18,6 +18,7 @@ from types import MappingProxyType
 from pydantic import Field
 
 from apps.kit.deciding import checking
+from apps.kit.fields import ItemId, Line, Text
 from apps.kit.state import setting, with_changed, with_items
 from apps.kit.streaming import bounded_text, id_payload, numbered_id
 from apps.microfy import screens
@@ -33,13 +34,13 @@ ArtistId = id_payload("ArtistId", "artist_id", "id of an artist shown in the ses
 
 
 class CreatePlaylist(Payload):
-    name: str = Field(description="the new playlist's name (required)")
-    description: str | None = Field(None, description="optional description")
+    name: Line = Field(description="the new playlist's name (required)")
+    description: Text | None = Field(None, description="optional description")
 
 
 class AddToPlaylist(Payload):
-    playlist_id: str = Field(description="id of a playlist the user created")
-    track_id: str = Field(description="id of a track in the session")
+    playlist_id: ItemId = Field(description="id of a playlist the user created")
+    track_id: ItemId = Field(description="id of a track in the session")
 
 
 decide_on_track = checking("tracks", "track_id", "track", "in this session")

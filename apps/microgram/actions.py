@@ -22,6 +22,7 @@ from pydantic import Field
 from apps.kit import feeds
 from apps.kit.deciding import found, new_id
 from apps.kit.feeds import ConversationId
+from apps.kit.fields import ItemId, Text
 from apps.kit.social import PostId, post_actions
 from apps.kit.state import with_items
 from apps.microgram.catalog import person
@@ -40,24 +41,24 @@ WHERE = "on MicroGram"  # ends the 404 for an id that is not (yet) on MicroGram
 
 
 class StoryId(Payload):
-    story_id: str = Field(description="id of a story in the story bar")
+    story_id: ItemId = Field(description="id of a story in the story bar")
 
 
 class SendMessage(ConversationId):
-    text: str = Field(description="the message")
+    text: Text = Field(description="the message")
 
 
 class SharePost(PostId):
-    conversation_id: str = Field(description="the DM thread to send it to")
-    text: str = Field("", description="an optional note")
+    conversation_id: ItemId = Field(description="the DM thread to send it to")
+    text: Text = Field("", description="an optional note")
 
 
 class UserId(Payload):
-    user_id: str = Field(description="id of a MicroGram member")
+    user_id: ItemId = Field(description="id of a MicroGram member")
 
 
 class ActivityId(Payload):
-    activity_id: str = Field(description="id of an activity item")
+    activity_id: ItemId = Field(description="id of an activity item")
 
 
 class Nothing(Payload):

@@ -12,6 +12,7 @@ from typing import Literal
 from pydantic import Field
 
 from apps.kit.deciding import checking, found, new_id
+from apps.kit.fields import ItemId
 from apps.kit.state import with_items
 from apps.microhood import state as account
 from apps.microhood.catalog import watch_row
@@ -22,7 +23,7 @@ from events.schemas import Payload
 
 
 class Symbol(Payload):
-    symbol: str = Field(description="a listed symbol, e.g. MRDN")
+    symbol: ItemId = Field(description="a listed symbol, e.g. MRDN")
 
 
 class PlaceOrder(Symbol):
@@ -33,7 +34,7 @@ class PlaceOrder(Symbol):
 
 
 class CancelOrder(Payload):
-    order_id: str = Field(description="id of a resting limit order")
+    order_id: ItemId = Field(description="id of a resting limit order")
 
 
 def listed(hood: Hood, symbol: str) -> Stock:

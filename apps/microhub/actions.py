@@ -20,6 +20,7 @@ from typing import Any, Literal
 from pydantic import Field
 
 from apps.kit.deciding import found, required_text
+from apps.kit.fields import ItemId, Line, Text
 from apps.kit.state import with_items
 from apps.microhub.state import (
     MERGE_STRATEGIES,
@@ -38,24 +39,24 @@ REPO_NAME = re.compile(r"[A-Za-z0-9._-]{1,100}")
 
 
 class IssueId(Payload):
-    issue_id: str = Field(description="id of an issue in the repository (e.g. i14)")
+    issue_id: ItemId = Field(description="id of an issue in the repository (e.g. i14)")
 
 
 class PrId(Payload):
-    pr_id: str = Field(description="id of a pull request (e.g. pr3)")
+    pr_id: ItemId = Field(description="id of a pull request (e.g. pr3)")
 
 
 class NewIssue(Payload):
-    title: str
-    body: str = ""
+    title: Line
+    body: Text = ""
 
 
 class IssueComment(IssueId):
-    body: str
+    body: Text
 
 
 class PrComment(PrId):
-    body: str
+    body: Text
 
 
 class Merge(PrId):
@@ -67,21 +68,21 @@ class NoFields(Payload):
 
 
 class NewRepository(Payload):
-    name: str
-    description: str = ""
+    name: Line
+    description: Text = ""
     visibility: Literal[VISIBILITIES] = "public"
     add_readme: bool = False
     add_gitignore: bool = False
 
 
 class RepositorySettings(Payload):
-    name: str | None = None
-    description: str | None = None
+    name: Line | None = None
+    description: Text | None = None
     visibility: Literal[VISIBILITIES] | None = None
 
 
 class Username(Payload):
-    username: str
+    username: ItemId
 
 
 # --- checks ----------------------------------------------------------------------------------------

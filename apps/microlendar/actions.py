@@ -17,6 +17,7 @@ from urllib.parse import urlencode
 from pydantic import Field
 
 from apps.kit.deciding import marking
+from apps.kit.fields import ItemId, Line, Moment, Text
 from apps.kit.state import setting, with_changed
 from apps.kit.streaming import id_payload
 from apps.microlendar import times
@@ -56,40 +57,40 @@ EventId = id_payload("EventId", "event_id", "id of an event on the calendar")
 class EventDetails(Payload):
     """A new event; upstream's field names (times "HH:MM", calendar Work/Family/Personal/Tasks)."""
 
-    title: str
-    date: str = Field(description="YYYY-MM-DD")
-    time: str | None = Field(None, description="start, HH:MM (default 09:00)")
-    endTime: str | None = Field(None, description="end, HH:MM (default an hour after the start)")
+    title: Line
+    date: Moment = Field(description="YYYY-MM-DD")
+    time: Moment | None = Field(None, description="start, HH:MM (default 09:00)")
+    endTime: Moment | None = Field(None, description="end, HH:MM (default an hour after the start)")
     calendar: Literal[CALENDARS] | None = None
-    description: str | None = None
-    location: str | None = None
+    description: Text | None = None
+    location: Line | None = None
 
 
 class EventChanges(Payload):
     """An edit: any of the fields; null is the same as leaving a field out."""
 
-    event_id: str
-    title: str | None = None
-    date: str | None = Field(None, description="YYYY-MM-DD")
-    time: str | None = Field(None, description="HH:MM")
-    endTime: str | None = Field(None, description="HH:MM")
+    event_id: ItemId
+    title: Line | None = None
+    date: Moment | None = Field(None, description="YYYY-MM-DD")
+    time: Moment | None = Field(None, description="HH:MM")
+    endTime: Moment | None = Field(None, description="HH:MM")
     calendar: Literal[CALENDARS] | None = None
-    description: str | None = None
-    location: str | None = None
+    description: Text | None = None
+    location: Line | None = None
 
 
 class Reschedule(Payload):
     """Move an event (the form or a drag and drop): new date, optionally a new start; the
     duration is kept."""
 
-    event_id: str
-    date: str = Field(description="YYYY-MM-DD")
-    time: str | None = Field(None, description="new start, HH:MM (default: unchanged)")
+    event_id: ItemId
+    date: Moment = Field(description="YYYY-MM-DD")
+    time: Moment | None = Field(None, description="new start, HH:MM (default: unchanged)")
 
 
 class NewTask(Payload):
-    title: str
-    dueDate: str | None = Field(None, description="YYYY-MM-DD")
+    title: Line
+    dueDate: Moment | None = Field(None, description="YYYY-MM-DD")
 
 
 TaskId = id_payload("TaskId", "task_id", "id of a task in the list")

@@ -20,6 +20,7 @@ from urllib.parse import urlencode
 from pydantic import Field
 
 from apps.kit.deciding import checking, found, new_id
+from apps.kit.fields import ItemId, ItemIds, Line, Lines, Text
 from apps.kit.state import setting, with_changed, with_items, without
 from apps.kit.streaming import id_payload
 from apps.micromail.query import MailboxQuery
@@ -83,15 +84,15 @@ def reduce_delete(mail: Mail, event: LoggedEvent) -> Mail:
 class Compose(Payload):
     """A message to send or a draft to save; null is the same as leaving a field out."""
 
-    to: list[str] | None = Field(None, description="addresses")
-    cc: list[str] | None = Field(None, description="addresses")
-    bcc: list[str] | None = Field(None, description="addresses")
-    subject: str | None = None
-    body: str | None = None
-    attachments: list[str] | None = Field(
+    to: Lines | None = Field(None, description="addresses")
+    cc: Lines | None = Field(None, description="addresses")
+    bcc: Lines | None = Field(None, description="addresses")
+    subject: Line | None = None
+    body: Text | None = None
+    attachments: ItemIds | None = Field(
         None, description="ids of documents attached to mail in the mailbox"
     )
-    draft_id: str | None = Field(None, description="the draft this replaces")
+    draft_id: ItemId | None = Field(None, description="the draft this replaces")
 
 
 def address_list(payload: dict, name: str, *, check: bool) -> list[str]:

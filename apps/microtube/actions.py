@@ -17,6 +17,7 @@ from urllib.parse import quote
 from pydantic import Field
 
 from apps.kit.deciding import checking
+from apps.kit.fields import ItemId, Line, Text
 from apps.kit.state import setting, with_changed, with_items
 from apps.kit.streaming import bounded_text, id_payload, numbered_id
 from apps.microtube.query import WatchQuery
@@ -34,16 +35,16 @@ NotificationId = id_payload("NotificationId", "notification_id", "id of a notifi
 
 
 class PostComment(VideoId):
-    content: str = Field(description="the comment text")
+    content: Text = Field(description="the comment text")
 
 
 class CreatePlaylist(Payload):
-    name: str = Field(description="the new playlist's title")
-    video_id: str | None = Field(None, description="a video to put in it straight away")
+    name: Line = Field(description="the new playlist's title")
+    video_id: ItemId | None = Field(None, description="a video to put in it straight away")
 
 
 class AddToPlaylist(VideoId):
-    playlist_id: str = Field(description="id of one of the user's playlists")
+    playlist_id: ItemId = Field(description="id of one of the user's playlists")
 
 
 # A 404 for an id the site does not show: unknown and not yet arrived look the same.
