@@ -19,9 +19,9 @@ def unbounded(schema: dict[str, Any], where: str = "") -> list[str]:
     """The parts of a JSON schema that take a text or a list of any size."""
     found = []
     for option in schema.get("anyOf", [schema]):
-        if option.get("type") == "string" and "maxLength" not in option and "enum" not in option:
-            if "const" not in option:
-                found.append(where or "(payload)")
+        choices = "enum" in option or "const" in option  # a Literal: bounded by its choices
+        if option.get("type") == "string" and "maxLength" not in option and not choices:
+            found.append(where or "(payload)")
         if option.get("type") == "array":
             if "maxItems" not in option:
                 found.append(f"{where}[]")
