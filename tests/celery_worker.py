@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import contextlib
-import os
 import shutil
 import subprocess
 import sys
@@ -13,7 +12,7 @@ from pathlib import Path
 
 from django.conf import settings
 
-from sentinel_site.site_server import current_database_url, stop_process_group
+from sentinel_site.site_server import child_environment, stop_process_group
 
 REPO = settings.BASE_DIR
 
@@ -36,12 +35,9 @@ def wait_until_ready(process: subprocess.Popen) -> None:
 
 @contextlib.contextmanager
 def celery_worker():
-    env = dict(
-        os.environ,
-        DATABASE_URL=current_database_url(),
-        SENTINEL_TICKER="celery",
-        DJANGO_SETTINGS_MODULE=settings.SETTINGS_MODULE,
-    )  # tests.settings: with tally
+    # As a test's server sees it: the test database, tests.settings (with tally), and the
+    # scenario folder the test set (own_scenarios) — so the worker fires what the pages show.
+    env = child_environment(extra_env={"SENTINEL_TICKER": "celery"})
     (REPO / "var").mkdir(exist_ok=True)
     log = open(REPO / "var" / "celery-test.log", "ab")  # noqa: SIM115 - the worker's, till it exits
     # Beat's schedule of its own: workers of parallel test processes never share one.
