@@ -8,6 +8,7 @@ from rest_framework import status as http
 from rest_framework.decorators import action
 from rest_framework.response import Response
 
+from apps.control.pagination import NewestFirst
 from apps.control.parsers import request_data
 from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
 from apps.scenarios.library import get_scenario, library
@@ -19,6 +20,7 @@ from events.models import EVENT_FIELDS, Event, Run
 class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.GenericViewSet):
     queryset = Run.objects.all()
     serializer_class = RunSerializer
+    pagination_class = NewestFirst
 
     def get_queryset(self):
         runs = super().get_queryset()

@@ -126,3 +126,36 @@ def test_a_loopback_server_keeps_the_open_default(host):
 
 def test_a_configured_token_is_kept():
     assert exposure("0.0.0.0", SENTINEL_CONTROL_TOKEN="chosen").stdout == ""
+
+
+def test_the_run_list_comes_a_page_at_a_time_newest_first(api, tally_spec):
+    made = [lifecycle.create_run(tally_spec(), clock_mode=ClockMode.VIRTUAL).pk for _ in range(5)]
+    first = api.get("/api/runs/?limit=2")
+    assert [row["id"] for row in first.json()] == made[::-1][:2]
+    seen = [row["id"] for row in first.json()]
+    url = first["Link"]
+    while url:
+        page = api.get(url.split(">")[0].strip("<"))
+        seen += [row["id"] for row in page.json()]
+        url = page.get("Link")
+    assert seen == made[::-1]
+    assert "Link" not in api.get("/api/runs/").headers  # five fit in the default page
+
+
+@pytest.mark.parametrize("query", ["limit=0", "limit=abc", "limit=5000", "before=-1"])
+def test_a_bad_page_request_names_the_parameter(api, query):
+    response = api.get(f"/api/runs/?{query}")
+    assert response.status_code == 400
+    assert query.split("=")[0] in response.json()["detail"]
+
+
+def test_with_a_control_token_the_home_page_lists_runs_to_admins_only(
+    client, admin_client, settings, tally_spec
+):
+    settings.SENTINEL_CONTROL_TOKEN = "secret"
+    run = lifecycle.create_run(tally_spec(), clock_mode=ClockMode.VIRTUAL)
+    public = client.get("/").content.decode()
+    assert 'id="runs"' not in public and "log in" in public
+    assert 'id="runs"' in admin_client.get("/").content.decode()
+    settings.SENTINEL_CONTROL_TOKEN = ""
+    assert f"/admin/events/run/{run.pk}/change/" in client.get("/").content.decode()
