@@ -8,6 +8,7 @@ from celery import shared_task
 
 from events.clock import wall_now
 from events.models import Run, RunStatus
+from events.retention import purge_if_due
 from events.scheduler import fire_due, fired_through, live_runs, next_wake
 
 HORIZON_S = 2.0  # schedule precise wake-ups for what falls due before the next heartbeat+
@@ -44,3 +45,9 @@ def heartbeat() -> None:
         if at is not None and at <= now:  # None: not started (the in-process ticker skips it too)
             next_index = fire_due(run, next_index=next_index).next_index
         _schedule(run, next_index)
+
+
+@shared_task(name="events.purge_runs", ignore_result=True)
+def purge_runs() -> None:
+    """Beat calls this daily: old runs go (events.retention)."""
+    purge_if_due()

@@ -22,6 +22,7 @@ from django.db import close_old_connections
 
 from events.clock import wall_now
 from events.models import Run, RunStatus
+from events.retention import purge_if_due
 from events.scheduler import fire_due, fired_through, live_runs, next_wake
 
 log = logging.getLogger(__name__)
@@ -44,6 +45,7 @@ class Schedule:
         self.refreshed_at = -math.inf
 
     def refresh(self, wall: float) -> None:
+        purge_if_due()  # once a day: old runs go (events.retention)
         current = {run.pk: run for run in live_runs()}
         for pk in list(self.runs):
             if pk not in current:

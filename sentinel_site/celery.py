@@ -43,5 +43,6 @@ app.conf.beat_schedule = {
         # Heartbeats queued while no worker ran are stale: one current heartbeat does their job.
         "options": {"expires": 2 * HEARTBEAT_S},
     },
+    "sentinel-purge-runs": {"task": "events.purge_runs", "schedule": 3600.0},  # acts once a day
 }
 app.autodiscover_tasks(["events"])

@@ -130,6 +130,8 @@ CELERY_TASK_IGNORE_RESULT = True
 # Beat's schedule file is runtime state, not source: under var/ with the SQLite database.
 CELERY_BEAT_SCHEDULE_FILENAME = str(VAR_DIR / "celerybeat-schedule")
 
+# Runs older than this many days are deleted by the ticker once a day (events/retention.py).
+SENTINEL_RUN_RETENTION_DAYS = env_int("SENTINEL_RUN_RETENTION_DAYS", 30)
 SENTINEL_CONTROL_TOKEN = env_str("SENTINEL_CONTROL_TOKEN")
 # The upstream flat endpoints (/init, /redirect, /contact, …) drive one shared default slot that
 # any caller can reach; off, only a run's own URLs touch a run (apps/control/slot.py).
