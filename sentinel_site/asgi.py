@@ -12,10 +12,10 @@ try:
     import django
 
     django.setup(set_prefix=False)  # as get_asgi_application(): ASGI sets it per request
-    from sentinel_site import body_limit
+    from sentinel_site import request_limits
     from sentinel_site.http_handler import django_http_application
 
-    body_limit.install()  # bodies over the limit are refused at the socket, before reading
+    request_limits.install()  # bodies, headers, idle and per-client connections, at the socket
     django_http = django_http_application()
 except ConfigError as exc:  # one clear line, no traceback
     print(f"configuration error: {exc}", file=sys.stderr)
