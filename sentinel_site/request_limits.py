@@ -30,6 +30,7 @@ from collections import Counter
 
 from daphne import http_protocol
 from django.conf import settings
+from twisted.protocols import policies
 
 from apps.control.parsers import body_limit
 
@@ -85,6 +86,14 @@ class LimitedWebRequest(http_protocol.WebRequest):
             return
         super().handleContentChunk(data)
 
+    def process(self):
+        upgrade = (self.requestHeaders.getRawHeaders(b"upgrade") or [b""])[0]
+        if upgrade.lower() == b"websocket":
+            # The socket becomes the websocket's, which Daphne pings and times out itself; the
+            # HTTP channel, no longer read, would otherwise cut it after its idle timeout.
+            self.channel.setTimeout(None)
+        return super().process()
+
     def requestReceived(self, command, path, version):
         if self._refused:
             return  # answered already: the application never sees this request
@@ -118,32 +127,49 @@ class LimitedWebRequest(http_protocol.WebRequest):
 
 
 class LimitedHTTPFactory(http_protocol.HTTPFactory):
-    """Daphne's connection factory: a cap on open connections per client address, and an idle
-    timeout instead of Twisted's twelve hours."""
+    """Daphne's HTTP factory with an idle timeout instead of Twisted's twelve hours."""
 
-    def __init__(self, server):
-        super().__init__(server)
+    def buildProtocol(self, addr):
+        protocol = super().buildProtocol(addr)
+        if protocol is not None:
+            protocol.timeOut = settings.SENTINEL_IDLE_TIMEOUT_S
+        return protocol
+
+
+class ConnectionsPerClient(policies.WrappingFactory):
+    """At most SENTINEL_MAX_CONNECTIONS_PER_CLIENT open connections per client address.
+
+    A wrapper around the HTTP factory, so a connection is counted until its socket closes even
+    after it became a websocket: Daphne hands a wrapped connection's socket to the websocket
+    protocol through the wrapper (as it does under TLS), and the close still comes through it."""
+
+    def __init__(self, wrapped):
+        super().__init__(wrapped)
         self.open_from: Counter[str] = Counter()
+        self.client_of: dict[object, str] = {}
 
     def buildProtocol(self, addr):
         host = getattr(addr, "host", "")
         if self.open_from[host] >= settings.SENTINEL_MAX_CONNECTIONS_PER_CLIENT:
             return None  # Twisted closes the connection at once
         protocol = super().buildProtocol(addr)
-        if protocol is None:
-            return None
-        protocol.timeOut = settings.SENTINEL_IDLE_TIMEOUT_S
-        self.open_from[host] += 1
-        lost = protocol.connectionLost
+        if protocol is not None:
+            self.open_from[host] += 1
+            self.client_of[protocol] = host
+        return protocol
 
-        def connection_lost(reason, lost=lost):
+    def unregisterProtocol(self, protocol):
+        super().unregisterProtocol(protocol)
+        host = self.client_of.pop(protocol, None)
+        if host is not None:
             self.open_from[host] -= 1
             if self.open_from[host] <= 0:
                 del self.open_from[host]
-            lost(reason)
 
-        protocol.connectionLost = connection_lost
-        return protocol
+
+def http_factory(server) -> ConnectionsPerClient:
+    """What Daphne's server listens with (it calls `HTTPFactory(server)`)."""
+    return ConnectionsPerClient(LimitedHTTPFactory(server))
 
 
 def install() -> None:
@@ -154,4 +180,4 @@ def install() -> None:
     if daphne_server is None:
         return
     http_protocol.WebRequest = LimitedWebRequest  # what HTTPFactory.buildProtocol looks up
-    daphne_server.HTTPFactory = LimitedHTTPFactory  # what Server.run builds
+    daphne_server.HTTPFactory = http_factory  # what Server.run listens with

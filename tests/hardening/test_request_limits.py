@@ -7,28 +7,35 @@
 
 from __future__ import annotations
 
+import contextlib
+import json
 import socket
 import time
 from urllib.parse import urlsplit
 
 import httpx
 import pytest
+from websockets.sync.client import connect as ws_connect
 
+from apps.kit.links import environment_root
+from apps.scenarios.library import get_scenario
+from events import lifecycle
 from sentinel_site.site_server import site_server
 
 pytestmark = [pytest.mark.django_db(transaction=True)]
 
 LIMIT = 65_536
 CONNECTIONS = 6
+IDLE_S = 4
 ANSWER_S = 30  # a ceiling, not a wait: the answer comes as soon as the server refuses
 
 
 @pytest.fixture(scope="module")
-def small_limit_site(django_db_blocker):
+def small_limit_site(django_db_setup, django_db_blocker):
     limits = {
         "SENTINEL_MAX_BODY_BYTES": str(LIMIT),
         "SENTINEL_HEADER_DEADLINE_S": "1",
-        "SENTINEL_IDLE_TIMEOUT_S": "4",
+        "SENTINEL_IDLE_TIMEOUT_S": str(IDLE_S),
         "SENTINEL_MAX_CONNECTIONS_PER_CLIENT": str(CONNECTIONS),
     }
     with django_db_blocker.unblock(), site_server(extra_env=limits) as base_url:
@@ -143,3 +150,28 @@ def test_connections_from_one_address_are_capped(small_limit_site):
                 return
         time.sleep(0.05)
     raise AssertionError("no connection was accepted after the held ones closed")
+
+
+def test_a_websocket_outlives_the_idle_timeout_and_counts_until_it_closes(small_limit_site):
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    live = f"ws://{urlsplit(small_limit_site).netloc}/r/{run.token}/live"
+    page = f"{environment_root(run)}/?folder=inbox"
+    with contextlib.ExitStack() as held:
+        sockets = [
+            held.enter_context(ws_connect(live, open_timeout=ANSWER_S)) for _ in range(CONNECTIONS)
+        ]
+        with connect(small_limit_site) as extra:
+            assert unanswered(extra)  # websockets count: the address is at its cap
+        # Past the idle timeout (4 s here) the sockets still answer: Daphne pings them, the
+        # HTTP channel they came from no longer times them out.
+        time.sleep(IDLE_S + 1)
+        for sock in sockets:
+            sock.send(json.dumps({"url": page, "seq": 0}))
+            assert json.loads(sock.recv(timeout=ANSWER_S))["type"] == "regions"
+    deadline = time.monotonic() + ANSWER_S
+    while time.monotonic() < deadline:  # the closes free the address's connections
+        with connect(small_limit_site) as again:
+            if not unanswered(again):
+                return
+        time.sleep(0.05)
+    raise AssertionError("closed websockets still count against their address")
