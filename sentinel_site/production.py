@@ -21,12 +21,16 @@ Choices, and why:
   socket stays open while a process restarts (connections wait in the backlog), and no proxy
   is needed on one machine. Daphne has no SO_REUSEPORT option, and separate ports would need a
   proxy in front just to share load.
+- Every child starts through `sentinel_site.orphan_guard` (the kernel's parent-death signal),
+  so none outlives supervisord, and a new start stops what an older one of the same checkout
+  left (`stop_stale`).
 - The ticker runs in its own process, never inside a Daphne process: there it shared an event
   loop and a GIL with page rendering, so entries fired as late as the busiest page (finding
   11). The default ticker process is the embedded ticker's own loop (`events.ticker`) with
   nothing else to do; it needs only the database, so a Redis outage cannot delay a timeline
   (pages just miss pushes meanwhile and poll). No one wakes it when a clock starts, so it
-  re-reads the live runs every REFRESH_S instead of every second.
+  re-reads the live runs every REFRESH_S instead of every second. Two run, both firing
+  (idempotent), so a ticker that dies costs no lateness while supervisord restarts it.
 - `--ticker celery` keeps the Celery backend for those who run Celery anyway: beat is its own
   program, not `worker --beat`, so killing the worker cannot leave an orphaned beat (finding
   10); broker retries are configured in `sentinel_site/celery.py`; whatever still dies is
@@ -39,6 +43,7 @@ import argparse
 import contextlib
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -53,6 +58,7 @@ REPO = Path(__file__).resolve().parent.parent
 TICKERS = ("process", "celery")
 REFRESH_S = 0.2  # the ticker process notices a started clock within this (a query each time)
 WORKER_THREADS = 4  # fire_run tasks are short database writes; threads wait on the database
+TICKERS_RUNNING = 2  # under `--ticker process`: one keeps firing while the other restarts
 START_RETRIES = 1000  # with supervisord's growing back-off: a broker down for an hour is waited out
 
 
@@ -85,7 +91,8 @@ class Shape:
     def programs(self) -> list[str]:
         """Names supervisorctl reports for this shape."""
         web = [f"web:web-{n}" for n in range(self.processes)]
-        return web + (["ticker"] if self.ticker == "process" else ["worker", "beat"])
+        tickers = [f"ticker:ticker-{n}" for n in range(TICKERS_RUNNING)]
+        return web + (tickers if self.ticker == "process" else ["worker", "beat"])
 
     @property
     def environment(self) -> dict[str, str]:
@@ -103,6 +110,7 @@ class Shape:
     def supervisord_conf(self) -> str:
         """The supervisord configuration of this shape (`--print-config` shows it)."""
         run, logs, py = self.run_dir, self.log_dir, self.python
+        guard = f"{py} -m sentinel_site.orphan_guard"  # each child exits when supervisord dies
         common = (
             f"directory={REPO}\n"
             "autorestart=true\n"
@@ -133,21 +141,25 @@ class Shape:
             "\n[fcgi-program:web]\n"
             f"socket=tcp://{self.host}:{self.port}\n"
             "socket_backlog=1024\n"
-            f"command={py} -m daphne --fd 0 --access-log /dev/null "
+            f"command={guard} {py} -m daphne --fd 0 --access-log /dev/null "
             "sentinel_site.asgi:application\n"
             f"numprocs={self.processes}\n"
             "process_name=web-%(process_num)d\n"
             f"stdout_logfile={logs}/web-%(process_num)d.log\n"
             f"{common}"
-            f"{self._ticker_programs(py, run, logs, common)}"
+            f"{self._ticker_programs(f'{guard} {py}', run, logs, common)}"
         )
 
     def _ticker_programs(self, py: str, run: Path, logs: Path, common: str) -> str:
         if self.ticker == "process":
+            # Two, both firing: firing is idempotent, so while one restarts the other keeps the
+            # timelines on time (a single restarted ticker left entries up to ≈10 s late).
             return (
                 "\n[program:ticker]\n"
                 f"command={py} -m sentinel_site.production ticker\n"
-                f"stdout_logfile={logs}/ticker.log\n"
+                f"numprocs={TICKERS_RUNNING}\n"
+                "process_name=ticker-%(process_num)d\n"
+                f"stdout_logfile={logs}/ticker-%(process_num)d.log\n"
                 f"{common}"
             )
         return (
@@ -180,6 +192,91 @@ def supervisord_executable() -> str:
     if which is None:
         raise ProductionError("supervisord is not installed; pip install 'supervisor>=4.2,<5'")
     return which
+
+
+# What the shape's own processes run (their command lines), to find those a previous start left.
+OWN_COMMANDS = (
+    ("-m", "daphne", "--fd", "0", "sentinel_site.asgi:application"),
+    ("-m", "sentinel_site.production", "ticker"),
+    ("-m", "celery", "-A", "sentinel_site"),
+)
+
+
+def _command_line(pid: int) -> list[str]:
+    try:
+        raw = Path(f"/proc/{pid}/cmdline").read_bytes()
+    except OSError:
+        return []
+    return [part.decode(errors="replace") for part in raw.split(b"\0") if part]
+
+
+def _parent(pid: int) -> int:
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return 0
+    return int(stat.rsplit(")", 1)[1].split()[1])  # the field after the state
+
+
+def _is_supervisord(words: list[str]) -> bool:
+    return any(Path(word).name == "supervisord" for word in words[:2])
+
+
+def _is_ours(pid: int, shape: Shape) -> bool:
+    """A process a previous start of this shape left: supervisord with this shape's
+    configuration, or a program of this checkout's shape that no other supervisord owns (a
+    set started elsewhere from this checkout, a test's or a benchmark's, is left alone)."""
+    words = _command_line(pid)
+    if not words or pid == os.getpid():
+        return False
+    if _is_supervisord(words):
+        return str(shape.conf_path) in words
+    try:
+        if Path(f"/proc/{pid}/cwd").resolve() != REPO:
+            return False
+    except OSError:
+        return False
+    line = " ".join(words)
+    if not any(" ".join(command) in line for command in OWN_COMMANDS):
+        return False
+    owner = _command_line(_parent(pid))
+    return not _is_supervisord(owner) or str(shape.conf_path) in owner
+
+
+def stale_processes(shape: Shape) -> list[int]:
+    """This shape's supervisord (from its pidfile) and any of its programs left running."""
+    found = []
+    pidfile = shape.run_dir / "supervisord.pid"
+    if pidfile.is_file():
+        with contextlib.suppress(ValueError):
+            pid = int(pidfile.read_text().strip())
+            if _is_ours(pid, shape):
+                found.append(pid)
+    for entry in Path("/proc").iterdir():
+        if (
+            entry.name.isdigit()
+            and int(entry.name) not in found
+            and _is_ours(int(entry.name), shape)
+        ):
+            found.append(int(entry.name))
+    return found
+
+
+def stop_stale(shape: Shape, *, grace_s: float = 15.0) -> list[int]:
+    """Stop what a previous start of this shape left holding its pidfile and port (its own
+    processes only: nothing else on the machine is touched); the pids stopped."""
+    stale = stale_processes(shape)
+    for pid in stale:
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(pid, signal.SIGTERM)
+    deadline = time.monotonic() + grace_s
+    while time.monotonic() < deadline and any(_command_line(pid) for pid in stale):
+        time.sleep(0.1)
+    for pid in stale:
+        if _command_line(pid):
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+    return stale
 
 
 def shape_environment(shape: Shape, base: dict[str, str] | None = None) -> dict[str, str]:
@@ -343,6 +440,9 @@ def main(argv: list[str] | None = None) -> int:
 
         django.setup()
         call_command("migrate", interactive=False, verbosity=0)
+        stopped = stop_stale(shape)
+        if stopped:
+            print(f"production: stopped {len(stopped)} processes a previous start left", flush=True)
         conf = shape.write()
     except ProductionError as exc:
         print(f"production: {exc}", file=sys.stderr)

@@ -79,7 +79,7 @@ def test_timelines_fire_through_and_after_a_redis_outage(production, redis_serve
 
 def test_killed_processes_are_restarted_and_beat_is_never_orphaned(production):
     before = all_running(production)
-    ticker = "ticker" if production.shape.ticker == "process" else "worker"
+    ticker = "ticker:ticker-0" if production.shape.ticker == "process" else "worker"
     killed = (ticker, "web:web-0")
     for name in killed:
         os.kill(before[name][1], signal.SIGKILL)
@@ -102,3 +102,24 @@ def test_killed_processes_are_restarted_and_beat_is_never_orphaned(production):
 
     run, count = start_live_run(production, every=2.0, until=12.0)
     fired_by_the_ticker(run, count)
+
+
+def test_a_standby_ticker_keeps_timelines_firing_while_the_other_is_down(production):
+    if production.shape.ticker != "process":
+        pytest.skip("the standby is the ticker process's (Celery's worker is restarted instead)")
+    all_running(production)
+    production.ctl("stop", "ticker:ticker-0")  # down, and not restarted until told
+    try:
+        run, count = start_live_run(production, every=1.0, until=8.0)
+        fired_by_the_ticker(run, count)  # only ticker-1 was there to fire them
+    finally:
+        production.ctl("start", "ticker:ticker-0")
+    all_running(production)
+
+
+def test_a_new_start_elsewhere_never_stops_a_running_set(production, tmp_path):
+    from sentinel_site.production import Shape, stop_stale
+
+    running = set(production.pids())
+    assert not running & set(stop_stale(Shape(run_dir=tmp_path / "other"), grace_s=0))
+    assert production.pids() and set(production.pids()) == running
