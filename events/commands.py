@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
+from django.conf import settings
+
 from events.clock import sim_now, wall_now
 from events.models import Event, EventKind, Run
 from events.notifications import log_grew
@@ -59,6 +61,12 @@ def perform_action(
     wall = wall_now() if wall is None else wall
     if folded is None:
         folded = current_folded(run, wall=wall)
+    if not has_room(run, folded):
+        raise ActionRejected(
+            f"this run's log is full: its agent has used its {agent_budget():,} entries "
+            "(actions and page views; SENTINEL_AGENT_LOG_BUDGET)",
+            status=429,
+        )
     at = sim_now(run, wall)
     performed = environment.perform(folded.state, name, payload, at)
     event = append_event(run, EventKind.ACTION, name, performed.payload, at=at)
@@ -69,6 +77,17 @@ def perform_action(
 # A viewed URL is kept to this many characters. The agent chooses its URLs, and a query string
 # of 15 KB on every GET grew its own run's log (and every export and replay of it) without bound.
 VIEW_PATH_LIMIT = 2048
+
+
+def agent_budget() -> int:
+    return int(getattr(settings, "SENTINEL_AGENT_LOG_BUDGET", 20_000))
+
+
+def has_room(run: Run, folded: Folded) -> bool:
+    """Whether the agent may add to the run's log: its actions and page views are bounded (an
+    agent looping on one request grew its run's log, its exports and replays without bound),
+    over and above the scenario's own timeline."""
+    return folded.seq < len(run.timeline) + agent_budget()
 
 
 def record_view(run: Run, path: str, *, at: float, **details: Any) -> Event:

@@ -134,6 +134,8 @@ CELERY_TASK_IGNORE_RESULT = True
 # Beat's schedule file is runtime state, not source: under var/ with the SQLite database.
 CELERY_BEAT_SCHEDULE_FILENAME = str(VAR_DIR / "celerybeat-schedule")
 
+# Entries an agent may add to its run's log (actions and page views; events/commands.py).
+SENTINEL_AGENT_LOG_BUDGET = env_int("SENTINEL_AGENT_LOG_BUDGET", 20_000, minimum=1)
 # Runs older than this many days are deleted by the ticker once a day (events/retention.py).
 SENTINEL_RUN_RETENTION_DAYS = env_int("SENTINEL_RUN_RETENTION_DAYS", 30)
 SENTINEL_CONTROL_TOKEN = env_str("SENTINEL_CONTROL_TOKEN")

@@ -23,7 +23,7 @@ from apps.kit import links, request_attrs
 from apps.kit.live import renderable
 from apps.kit.query import InvalidQuery
 from events.clock import sim_now, wall_now
-from events.commands import current_folded, perform_action, record_view
+from events.commands import current_folded, has_room, perform_action, record_view
 from events.models import Event, Run
 from events.projection import Folded, past_view, state_at
 from events.registry import ActionRejected, Environment, get_environment
@@ -199,7 +199,7 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
         )
         request_attrs.set_page(request, page)  # what a live render reads back (apps.kit.live)
         try:
-            if request.method == "GET" and not live:
+            if request.method == "GET" and not live and has_room(run, folded):
                 viewed = record_view(
                     run,
                     request.get_full_path(),

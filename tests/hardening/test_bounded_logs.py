@@ -30,3 +30,18 @@ def test_an_ordinary_url_is_logged_whole():
     assert Client().get(url).status_code == 200
     view = Event.objects.filter(run=run, kind=EventKind.VIEW).latest("seq")
     assert view.payload["path"] == url and "path_length" not in view.payload
+
+
+def test_an_agent_that_has_used_its_log_budget_is_refused_and_its_views_go_unlogged(settings):
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    logged = Event.objects.filter(run=run).count()  # the preload
+    settings.SENTINEL_AGENT_LOG_BUDGET = logged - len(run.timeline) + 2  # two more entries
+    client = Client()
+    inbox = f"{environment_root(run)}/?folder=inbox"
+    assert client.get(inbox).status_code == 200  # logged: one left
+    act = {"action": "mark_read", "payload": {"email_id": "base-04"}}
+    assert client.post(f"/r/{run.token}/actions", act, "application/json").status_code == 201
+    refused = client.post(f"/r/{run.token}/actions", act, "application/json")
+    assert refused.status_code == 429 and "SENTINEL_AGENT_LOG_BUDGET" in refused.json()["detail"]
+    assert client.get(inbox).status_code == 200  # the page still shows
+    assert Event.objects.filter(run=run).count() == logged + 2
