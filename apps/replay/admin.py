@@ -9,9 +9,11 @@ behind the admin site, so it is staff-only; nothing is reachable from a run's /r
 from __future__ import annotations
 
 import json
+from urllib.parse import urlencode
 
 from django.contrib import admin, messages
 from django.core.exceptions import PermissionDenied
+from django.core.paginator import Paginator
 from django.shortcuts import get_object_or_404
 from django.template.response import TemplateResponse
 from django.urls import path, reverse
@@ -22,18 +24,7 @@ from apps.replay.records import latest_verdict, record_verdict, replay
 from apps.replay.timetravel import environment_path, render_site_at, site_url
 from events.models import Event, EventKind, Run
 
-
-class EventInline(admin.TabularInline):
-    model = Event
-    fields = ("seq", "at", "kind", "type", "payload", "timeline_index", "lateness_ms")
-    readonly_fields = fields
-    extra = 0
-    can_delete = False
-    show_change_link = False
-    max_num = 0
-
-    def has_add_permission(self, request, obj=None):
-        return False
+TIMELINE_PAGE = 500  # entries per page of a run's timeline: a huge run renders as fast as a small
 
 
 class VerdictInline(admin.TabularInline):
@@ -73,8 +64,17 @@ class RunAdmin(admin.ModelAdmin):
     )
     list_filter = ("status", "environment", "clock_mode")
     search_fields = ("scenario_id", "token")
-    readonly_fields = ("token", "catalog_dir", "catalog_hash", "created_at", "timeline_link")
-    inlines = [VerdictInline, EventInline]
+    readonly_fields = (
+        "token",
+        "catalog_dir",
+        "catalog_hash",
+        "created_at",
+        "log_size",
+        "timeline_link",
+    )
+    # The log is not inlined here: a run of 100,000 entries took minutes to render. Its
+    # timeline page shows it a page at a time.
+    inlines = [VerdictInline]
     actions = ["record_verdicts", "replay_runs"]
 
     def get_queryset(self, request):
@@ -86,6 +86,12 @@ class RunAdmin(admin.ModelAdmin):
         if recorded is None:
             return "—"
         return "pass" if recorded.success else "fail"
+
+    @admin.display(description="log")
+    def log_size(self, run: Run) -> str:
+        if run.pk is None:
+            return "—"
+        return f"{Event.objects.filter(run_id=run.pk).count():,} entries"
 
     @admin.display(description="timeline")
     def timeline_link(self, run: Run) -> str:
@@ -150,9 +156,11 @@ class RunAdmin(admin.ModelAdmin):
         kinds = [k for k in request.GET.getlist("kind") if k in EventKind.values] or list(
             EventKind.values
         )
+        log = Event.objects.filter(run_id=run.pk, kind__in=kinds).order_by("seq")
+        page = Paginator(log, TIMELINE_PAGE).get_page(request.GET.get("page"))
         rows = []
-        for event in Event.objects.filter(run_id=run.pk, kind__in=kinds).order_by("seq"):
-            page = (
+        for event in page.object_list:
+            viewed = (
                 environment_path(run, event.payload.get("path", ""))
                 if event.kind == EventKind.VIEW
                 else ""
@@ -161,7 +169,7 @@ class RunAdmin(admin.ModelAdmin):
                 {
                     "event": event,
                     "payload": json.dumps(event.payload, ensure_ascii=False)[:300],
-                    "site_url": site_url(run, event.seq, page),
+                    "site_url": site_url(run, event.seq, viewed),
                 }
             )
         context = {
@@ -171,6 +179,8 @@ class RunAdmin(admin.ModelAdmin):
             "original": run,
             "run": run,
             "rows": rows,
+            "page": page,
+            "kind_query": urlencode([("kind", kind) for kind in kinds]),
             "kinds": [(k, k in kinds) for k in EventKind.values],
             "verdict": latest_verdict(run),
             "condition_at": run.condition_at,

@@ -45,3 +45,39 @@ def test_an_agent_that_has_used_its_log_budget_is_refused_and_its_views_go_unlog
     assert refused.status_code == 429 and "SENTINEL_AGENT_LOG_BUDGET" in refused.json()["detail"]
     assert client.get(inbox).status_code == 200  # the page still shows
     assert Event.objects.filter(run=run).count() == logged + 2
+
+
+def huge_log(run, entries: int) -> None:
+    """`entries` page views appended to the run's log at once (as an agent looping would)."""
+    first = Event.objects.filter(run=run).count() + 1
+    Event.objects.bulk_create(
+        Event(
+            run=run,
+            seq=seq,
+            at=1.0,
+            kind=EventKind.VIEW,
+            type="page",
+            payload={"path": "/viewed-again-and-again"},
+            recorded_at=0.0,
+        )
+        for seq in range(first, first + entries)
+    )
+
+
+def test_a_huge_run_renders_in_the_admin_a_page_at_a_time(
+    admin_client, django_assert_max_num_queries
+):
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    huge_log(run, 1_200)
+    total = Event.objects.filter(run=run).count()
+    change = admin_client.get(f"/admin/events/run/{run.pk}/change/").content.decode()
+    assert f"{total:,} entries" in change and "viewed-again-and-again" not in change
+    timeline = f"/admin/events/run/{run.pk}/timeline/"
+    with django_assert_max_num_queries(20):  # as for a small run: no query per entry
+        first = admin_client.get(timeline).content.decode()
+    assert first.count('class="time-travel"') == 500
+    assert f"entries 1–500 of {total}" in first and "page=2" in first
+    last = admin_client.get(f"{timeline}?page=3").content.decode()
+    assert last.count('class="time-travel"') == total - 1000
+    only_actions = admin_client.get(f"{timeline}?kind=action").content.decode()
+    assert "timeline-pages" not in only_actions  # one page: no pager
