@@ -290,6 +290,11 @@ BROKEN_SCENARIOS = [
     ),
     ("events-missing", _drop("events"), ["events", "required"]),
     ("events-not-list", _set("events", {"time": 0}), ["events", "list"]),
+    (
+        "events-too-many",
+        _set("events", [{"time": 1, "type": "ping", "payload": {"n": 1}}] * 20_001),
+        ["events", "20,001 entries", "at most 20,000"],
+    ),
     ("event-not-object", _set("events.1", "ping"), ["events[1]", "object"]),
     (
         "event-time-missing",

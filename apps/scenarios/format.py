@@ -136,6 +136,11 @@ def _payload(value: Any, schema, where: str, source: str) -> dict:
 # --- sections ----------------------------------------------------------------------------------
 
 
+# Ours and the original's hold at most a few hundred; a timeline is also what the ticker fires,
+# so one of unbounded size was a way for one tenant to hold up every other run's events.
+MAX_TIMELINE_ENTRIES = 20_000
+
+
 def _events(data: dict, environment: str, source: str) -> tuple[dict[str, Any], ...]:
     raw = _require(data, "events", source, "a list of {time, type, payload}")
     return parse_timeline(raw, environment, source=source)
@@ -149,6 +154,8 @@ def parse_timeline(
     must be sorted by time; `sort=True` sorts instead (stable), as upstream's /init does."""
     if not isinstance(raw, list):
         _fail(source, "events", f"must be a list, got {type(raw).__name__}")
+    if len(raw) > MAX_TIMELINE_ENTRIES:
+        _fail(source, "events", f"holds {len(raw):,} entries; at most {MAX_TIMELINE_ENTRIES:,}")
     env = _registered(environment)
     events: list[dict[str, Any]] = []
     for i, item in enumerate(raw):
