@@ -49,6 +49,16 @@ def env_int(name: str, default: int, *, minimum: int = 0) -> int:
     return value
 
 
+def env_rate(name: str, default: str) -> str:
+    """A rate as "<count>/<second|minute|hour|day>" (or its first letter, as DRF reads it), or
+    "off"."""
+    value = env_str(name, default).lower()
+    count, _, period = value.partition("/")
+    if value == "off" or (count.isdigit() and int(count) > 0 and period[:1] in ("s", "m", "h", "d")):
+        return value
+    raise ConfigError(f"{name}={value!r} is not a rate; write e.g. 1000/min, 20/s, or off")
+
+
 def env_dir(name: str, default: Path, *, base: Path) -> Path:
     """A directory that must exist (relative paths are taken from the project root)."""
     raw = env_str(name)

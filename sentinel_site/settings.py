@@ -12,6 +12,7 @@ from sentinel_site.config import (
     env_choice,
     env_dir,
     env_int,
+    env_rate,
     env_str,
     env_url,
 )
@@ -134,6 +135,8 @@ CELERY_TASK_IGNORE_RESULT = True
 # Beat's schedule file is runtime state, not source: under var/ with the SQLite database.
 CELERY_BEAT_SCHEDULE_FILENAME = str(VAR_DIR / "celerybeat-schedule")
 
+# Runs one client address may create ("<n>/<sec|min|hour|day>" or "off"; apps/control/throttling.py).
+SENTINEL_RUN_CREATION_RATE = env_rate("SENTINEL_RUN_CREATION_RATE", "1000/min")
 # Entries an agent may add to its run's log (actions and page views; events/commands.py).
 SENTINEL_AGENT_LOG_BUDGET = env_int("SENTINEL_AGENT_LOG_BUDGET", 20_000, minimum=1)
 # Runs older than this many days are deleted by the ticker once a day (events/retention.py).

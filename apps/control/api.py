@@ -10,6 +10,7 @@ from rest_framework.response import Response
 
 from apps.control.pagination import NewestFirst
 from apps.control.parsers import request_data
+from apps.control.throttling import RunCreationThrottle, refusal
 from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
 from apps.scenarios.library import get_scenario, library
 from events import lifecycle
@@ -21,6 +22,12 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
     queryset = Run.objects.all()
     serializer_class = RunSerializer
     pagination_class = NewestFirst
+
+    def get_throttles(self):
+        return [RunCreationThrottle()] if self.action == "create" else []
+
+    def throttled(self, request, wait):
+        raise refusal(wait)
 
     def get_queryset(self):
         runs = super().get_queryset()

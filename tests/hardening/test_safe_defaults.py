@@ -159,3 +159,21 @@ def test_with_a_control_token_the_home_page_lists_runs_to_admins_only(
     assert 'id="runs"' in admin_client.get("/").content.decode()
     settings.SENTINEL_CONTROL_TOKEN = ""
     assert f"/admin/events/run/{run.pk}/change/" in client.get("/").content.decode()
+
+
+def test_run_creation_is_rate_limited_per_client_unless_it_holds_the_token(api, settings):
+    from django.core.cache import cache
+
+    cache.clear()  # the throttle's history: this test's alone
+    settings.SENTINEL_RUN_CREATION_RATE = "2/min"
+    body = {"scenario": "micromail-inbox-relative-passive"}
+    assert [api.post("/api/runs/", body, format="json").status_code for _ in range(2)] == [201] * 2
+    refused = api.post("/api/runs/", body, format="json")
+    assert refused.status_code == 429
+    assert "SENTINEL_RUN_CREATION_RATE" in refused.json()["detail"]
+    other = APIClient(REMOTE_ADDR="10.1.2.3")  # another address has its own count
+    assert other.post("/api/runs/", body, format="json").status_code == 201
+    settings.SENTINEL_CONTROL_TOKEN = "secret"
+    api.credentials(HTTP_AUTHORIZATION="Bearer secret")
+    assert api.post("/api/runs/", body, format="json").status_code == 201
+    cache.clear()
