@@ -54,7 +54,9 @@ def env_rate(name: str, default: str) -> str:
     "off"."""
     value = env_str(name, default).lower()
     count, _, period = value.partition("/")
-    if value == "off" or (count.isdigit() and int(count) > 0 and period[:1] in ("s", "m", "h", "d")):
+    if value == "off" or (
+        count.isdigit() and int(count) > 0 and period[:1] in ("s", "m", "h", "d")
+    ):
         return value
     raise ConfigError(f"{name}={value!r} is not a rate; write e.g. 1000/min, 20/s, or off")
 

@@ -10,8 +10,8 @@ from rest_framework.response import Response
 
 from apps.control.pagination import NewestFirst
 from apps.control.parsers import request_data
-from apps.control.throttling import RunCreationThrottle, refusal
 from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
+from apps.control.throttling import RunCreationThrottle, refusal
 from apps.scenarios.library import get_scenario, library
 from events import lifecycle
 from events.evaluation import evaluate
