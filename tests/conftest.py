@@ -37,6 +37,18 @@ def pytest_configure(config):
         database["CONN_MAX_AGE"] = 0
 
 
+SLOW_MARKERS = ("e2e", "browser")
+
+
+def pytest_collection_modifyitems(items):
+    """Tests that drive real browsers and subprocesses first, in their random order (this runs
+    after pytest-randomly's shuffle), then the rest in theirs. Most of their time is spent
+    waiting on wall time (a clock at speed 4, a server's start), so begun early they overlap
+    the quick tests in the other processes; drawn last, one minute-long test would be the only
+    thing left running at the end while the other processes sat idle."""
+    items.sort(key=lambda item: not any(item.get_closest_marker(m) for m in SLOW_MARKERS))
+
+
 @pytest.fixture(scope="session")
 def tally_environment():
     """The test-only `tally` environment (installed by tests/settings.py)."""
