@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
+import urllib.request
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -32,6 +35,18 @@ def pytest_configure(config):
     # PostgreSQL a connection left open in one of them would block dropping the test database.
     for database in settings.DATABASES.values():
         database["CONN_MAX_AGE"] = 0
+
+
+SLOW_MARKERS = ("e2e", "browser")
+
+
+def pytest_collection_modifyitems(items):
+    """Tests that drive real browsers and subprocesses first, in their random order (this runs
+    after pytest-randomly's shuffle), then the rest in theirs. Most of their time is spent
+    waiting on wall time (a clock at speed 4, a server's start), so begun early they overlap
+    the quick tests in the other processes; drawn last, one minute-long test would be the only
+    thing left running at the end while the other processes sat idle."""
+    items.sort(key=lambda item: not any(item.get_closest_marker(m) for m in SLOW_MARKERS))
 
 
 @pytest.fixture(scope="session")
@@ -151,15 +166,71 @@ def own_scenarios(settings, tmp_path) -> Path:
     return root
 
 
+class KeptSiteServer:
+    """This test process's site server, kept from one `live_site` test to the next while they
+    would start it the same way (its environment: database, settings module, scenario and
+    catalog folders, every variable). Starting Daphne costs seconds; a test that changes what
+    the server is started with (`own_scenarios`, a variable it sets) gets a new one, which is
+    kept in turn."""
+
+    # Set by pytest for each phase of each test: never a reason for another server.
+    VOLATILE = frozenset({"PYTEST_CURRENT_TEST"})
+
+    def __init__(self) -> None:
+        self.key: tuple | None = None
+        self.base_url = ""
+        self._running: contextlib.ExitStack | None = None
+
+    def serving(self) -> str:
+        """The base URL of a server started as this test would start it, with no memory of
+        earlier tests (tests/server_urls.py)."""
+        from sentinel_site.site_server import child_environment, site_server
+        from tests.server_urls import FORGET_PATH
+
+        key = tuple(
+            sorted((k, v) for k, v in child_environment().items() if k not in self.VOLATILE)
+        )
+        if key != self.key:
+            self.stop()
+            running = contextlib.ExitStack()
+            self.base_url = running.enter_context(
+                site_server(
+                    extra_env={"SENTINEL_TEST_SHARED_SERVER": "1"},
+                    log_path=settings.BASE_DIR / "var" / "live-site.log",
+                )
+            )
+            self._running, self.key = running, key
+        forgetting = urllib.request.Request(f"{self.base_url}/{FORGET_PATH}", method="POST")
+        with urllib.request.urlopen(forgetting, timeout=30) as answer:
+            assert answer.status == 204, f"the server did not forget earlier tests: {answer.status}"
+        return self.base_url
+
+    def stop(self) -> None:
+        if self._running is not None:
+            self._running.close()
+        self._running, self.key = None, None
+
+
+@pytest.fixture(scope="session")
+def kept_site_server(django_db_setup) -> Iterator[KeptSiteServer]:
+    """Stopped before the test database is dropped (PostgreSQL refuses while it is connected)."""
+    kept = KeptSiteServer()
+    try:
+        yield kept
+    finally:
+        kept.stop()
+
+
 @pytest.fixture
-def live_site(transactional_db, site_ticker):
+def live_site(transactional_db, site_ticker, kept_site_server):
     """Base URL of a real Daphne server (HTTP + websockets) serving the test database, with the
     configured ticker behind it, as in production: on the Celery leg a page would otherwise see
-    a scenario event only when something reads the run (its next clock-driven push)."""
-    from sentinel_site.site_server import site_server
+    a scenario event only when something reads the run (its next clock-driven push).
 
-    with site_server(log_path=settings.BASE_DIR / "var" / "live-site.log") as base_url:
-        yield base_url
+    The server outlives the test (`KeptSiteServer`): the database it serves is emptied after
+    each test all the same (transactional), and what its process remembers is forgotten before
+    the next one."""
+    return kept_site_server.serving()
 
 
 @pytest.fixture

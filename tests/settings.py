@@ -58,3 +58,8 @@ if (
 from sentinel_site.settings import *  # noqa: E402, F403
 
 INSTALLED_APPS = [*INSTALLED_APPS, "apps.tally"]  # noqa: F405
+
+# A site server the suite keeps between tests (`live_site`, tests/conftest.py) also answers
+# tests/server_urls.py's URL, which makes it forget what earlier tests left in its memory.
+if os.environ.get("SENTINEL_TEST_SHARED_SERVER") == "1":
+    ROOT_URLCONF = "tests.server_urls"

@@ -1,5 +1,5 @@
-"""Fixtures for the reference agent: a scripted model server, a small static site to act on,
-and the agent's browser.
+"""Fixtures for the reference agent: a scripted model server and a small static site to act on
+(test_tools.py opens it in the agent's browser).
 
 The static site is a real HTTP server with a shop page (a button that writes a line, a search
 field, a colour select, a link to a second page) and a contact form shaped like the real one
@@ -14,7 +14,7 @@ import threading
 import urllib.parse
 import urllib.request
 from collections.abc import Iterator
-from contextlib import ExitStack
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
@@ -22,7 +22,6 @@ from typing import Any
 
 import pytest
 
-from apps.browser_agent.browser import Browser
 from apps.browser_agent.scripted_model import parse_script, scripted_model_server
 
 REPO = Path(__file__).resolve().parents[2]
@@ -91,8 +90,8 @@ def _handler(site: StaticSite) -> type[BaseHTTPRequestHandler]:
     return Handler
 
 
-@pytest.fixture
-def static_site() -> Iterator[StaticSite]:
+@contextmanager
+def serving_static_site() -> Iterator[StaticSite]:
     site = StaticSite("")
     server = ThreadingHTTPServer(("127.0.0.1", 0), _handler(site))
     server.daemon_threads = True
@@ -101,10 +100,18 @@ def static_site() -> Iterator[StaticSite]:
         target=server.serve_forever, kwargs={"poll_interval": 0.05}, daemon=True
     )
     thread.start()
-    yield site
-    server.shutdown()
-    server.server_close()
-    thread.join(timeout=5)
+    try:
+        yield site
+    finally:
+        server.shutdown()
+        server.server_close()
+        thread.join(timeout=5)
+
+
+@pytest.fixture
+def static_site() -> Iterator[StaticSite]:
+    with serving_static_site() as site:
+        yield site
 
 
 @pytest.fixture
@@ -116,9 +123,3 @@ def scripted_model() -> Iterator:
             return stack.enter_context(scripted_model_server(parse_script(script)))
 
         yield start
-
-
-@pytest.fixture
-def agent_browser(static_site) -> Iterator[Browser]:
-    with Browser.launch(contact_url=static_site.contact_url) as browser:
-        yield browser

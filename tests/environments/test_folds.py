@@ -32,8 +32,15 @@ from events.projection import (
     logged_events,
 )
 from events.registry import EMPTY, ActionRejected, LoggedEvent, environment_names, get_environment
+from tests.environments import folds
 from tests.environments.cases import our_cases, params
-from tests.environments.folds import FoldMismatch, assert_same, assert_same_fold
+from tests.environments.folds import (
+    FoldMismatch,
+    assert_same,
+    assert_same_fold,
+    canonical,
+    surely_same,
+)
 
 pytestmark = pytest.mark.django_db
 
@@ -143,3 +150,31 @@ def test_two_deliveries_in_another_order_are_caught_where_equality_misses_them()
     assert select(first, folder="inbox") != select(swapped, folder="inbox")
     with pytest.raises(FoldMismatch, match="the same keys in another order"):
         assert_same(first, swapped, what="the mailbox")
+
+
+@pytest.mark.parametrize(
+    ("expected", "actual"),
+    [
+        ({"a": 1, "b": 2}, {"b": 2, "a": 1}),  # the same keys in another order
+        ({"a": 1}, {"a": 1.0}),  # equal, yet another type
+        ([1, True], [1, 1]),
+        ({1, 2}, {1.0, 2}),
+        ({"x"}, {"y"}),
+        ((1, 2), [1, 2]),
+    ],
+)
+def test_the_fast_comparison_never_calls_different_folds_the_same(expected, actual):
+    assert canonical(expected) != canonical(actual)
+    assert not surely_same(expected, actual)
+    with pytest.raises(FoldMismatch):
+        assert_same(expected, actual, what="the value")
+
+
+def test_the_fast_comparison_sees_two_equal_folds_without_canonical_forms(monkeypatch):
+    empty = MICROMAIL.initial_state(load_catalog(settings.SENTINEL_CATALOG_DIR))
+    first, _ = MICROMAIL.fold(empty, deliveries("base-44", "base-45"))
+    again, _ = MICROMAIL.fold(empty, deliveries("base-44", "base-45"))
+    assert first is not again and canonical(first) == canonical(again)
+    assert surely_same(first, again)
+    monkeypatch.setattr(folds, "canonical", None)  # the slow path is not taken
+    assert_same(first, again, what="the mailbox")
