@@ -21,6 +21,7 @@ import openai
 from playwright.sync_api import Error as PlaywrightError
 
 from apps.browser_agent.browser import CHROMIUM, Browser, first_line
+from apps.browser_agent.fast_forward import RunClock, post_json
 from apps.browser_agent.loop import DEFAULT_MAX_STEPS, AgentLoop, Task, WallBudget
 from apps.browser_agent.model import COSTS_FILE, ChatModel, CostLedger, make_client
 from apps.browser_agent.tools import WAIT_KINDS, TaskClock, Toolbox
@@ -61,6 +62,11 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--api-key-env", default="OPENAI_API_KEY", help="variable holding the key")
     p.add_argument("--task-url", required=True)
     p.add_argument("--contact-url", required=True)
+    p.add_argument(
+        "--wait-url",
+        help="a fast-forward run's wait URL: sleep and wait_for skip the run's clock through it "
+        "instead of waiting in wall time (README, Fast-forward)",
+    )
     prompt = p.add_mutually_exclusive_group(required=True)
     prompt.add_argument("--prompt", help="the task's prompt")
     prompt.add_argument("--prompt-file", type=Path, help="a file holding the task's prompt")
@@ -120,7 +126,11 @@ def main(argv: list[str] | None = None) -> int:
                 model,
                 kind=args.kind,
                 contact_url=task.contact_url,
-                clock=TaskClock(args.speed_factor),
+                clock=(
+                    RunClock(post_json(args.wait_url), browser)
+                    if args.wait_url
+                    else TaskClock(args.speed_factor)
+                ),
                 wall_left=wall.left,
             )
             loop = AgentLoop(

@@ -8,6 +8,10 @@ Time is the task's: with `--speed-factor F` the scenario plays F times faster th
 clock, so the agent's clock does too — `sleep(60)` and a 60 s timeout last 60/F wall seconds,
 the same stretch of the scenario at any speed, and wait_for's intervals scale with them. A wait
 never outlasts the wall-clock budget.
+
+On a fast-forward run (`--wait-url`) the clock is the run's own (fast_forward.RunClock): a sleep
+is one skip and wait_for skips from one moment worth a look to the next, so waiting costs no
+wall time and the wall-clock budget does not cap it.
 """
 
 from __future__ import annotations
@@ -26,6 +30,7 @@ from playwright.sync_api import Error as PlaywrightError
 
 from apps.browser_agent import waiting
 from apps.browser_agent.browser import Browser, BrowserError, first_line
+from apps.browser_agent.fast_forward import KILL_AT, RunClock, WaitFailed
 from apps.browser_agent.model import ChatModel
 
 WaitKind = Literal["sleep", "wait_for"]
@@ -203,7 +208,7 @@ class Toolbox:
         *,
         kind: WaitKind,
         contact_url: str,
-        clock: TaskClock,
+        clock: TaskClock | RunClock,
         wall_left: Callable[[], float | None],
     ) -> None:
         self.browser = browser
@@ -231,6 +236,8 @@ class Toolbox:
             return ToolResult(f"error: {error}")
         except PlaywrightError as error:  # e.g. the page navigated while wait_for read it
             return ToolResult(f"error: {first_line(error)}")
+        except WaitFailed as error:  # the run refused a skip (e.g. over): the model reads why
+            return ToolResult(f"error: {error}")
 
     # One method per tool, named after it; arguments as the schema names them.
 
@@ -259,6 +266,9 @@ class Toolbox:
         asked = _seconds("seconds", seconds)
         granted = self._within_wall_budget(asked)
         self.clock.sleep(granted)
+        if isinstance(self.clock, RunClock) and self.clock.last.get("why") == KILL_AT:
+            slept = self.clock.last["sim_time"] - self.clock.last["from"]
+            return ToolResult(f"slept {slept:.0f} of {asked:g} s: the task's time is up")
         if granted < asked:
             return ToolResult(f"slept {granted:.0f} of {asked:g} s: the time budget is spent")
         return ToolResult(f"slept {asked:g} s")
@@ -289,7 +299,7 @@ class Toolbox:
 
     def _within_wall_budget(self, task_seconds: float) -> float:
         left = self.wall_left()
-        if left is None:
+        if left is None or isinstance(self.clock, RunClock):  # a skip costs no wall time
             return task_seconds
         return max(0.0, min(task_seconds, left * self.clock.speed_factor))
 
