@@ -47,9 +47,14 @@ def test_a_sleep_answers_the_new_time_and_what_fired(api, agent):
     assert answer["why"] == "slept"
     assert answer["sim_time"] == pytest.approx(answer["from"] + 35)
     assert [fired["at"] for fired in answer["fired"]] == [10.0, 30.0]
-    assert answer["seq"] == Event.objects.filter(run_id=run["id"]).exclude(
-        kind__in=(EventKind.VIEW, EventKind.LIFECYCLE)
-    ).order_by("-seq").values_list("seq", flat=True).first()
+    assert (
+        answer["seq"]
+        == Event.objects.filter(run_id=run["id"])
+        .exclude(kind__in=(EventKind.VIEW, EventKind.LIFECYCLE))
+        .order_by("-seq")
+        .values_list("seq", flat=True)
+        .first()
+    )
     assert answer["run_status"] == "running_auto"
     # The agent's pages show the new moment: the third ping is on the tally page.
     assert api.get(f"/api/runs/{run['id']}/").json()["sim_time"] >= answer["sim_time"]
