@@ -29,9 +29,20 @@ def test_the_readme_fast_forward_example_answers_as_shown(live_site):
         timeout=120,
     )
     assert done.returncode == 0, done.stderr
-    change, sleep = (json.loads(line) for line in done.stdout.splitlines() if line.strip())
+    change, sleep = answers(done.stdout)
     assert (change["sim_time"], change["why"]) == (41.27, "change")
     assert change["fired"] == [{"at": 41.27, "type": "new_email"}]
     assert sleep["why"] == "slept" and sleep["sim_time"] == pytest.approx(sleep["from"] + 60)
     assert sleep["fired"] == [{"at": 97.83, "type": "new_email"}]
     assert sleep["seq"] > change["seq"] and sleep["run_status"] == "running_auto"
+
+
+def answers(output: str) -> list[dict]:
+    """The JSON objects curl printed one after the other (without newlines between them)."""
+    decoder, found, at = json.JSONDecoder(), [], 0
+    while at < len(output.rstrip()):
+        value, at = decoder.raw_decode(output, at)
+        found.append(value)
+        while at < len(output) and output[at].isspace():
+            at += 1
+    return found
