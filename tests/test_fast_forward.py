@@ -246,3 +246,24 @@ def _command(call_command, io, *args: str) -> str:
     out = io.StringIO()
     call_command(*args, stdout=out, stderr=io.StringIO())
     return out.getvalue()
+
+
+@pytest.mark.django_db
+def test_time_travel_shows_the_skip_and_the_world_just_before_and_after_it(
+    pings_spec, admin_client
+):
+    run = fast_forward_run(pings_spec, wall=wall_now())
+    skip(run, Wait(seconds=25.0))  # passes the pings at 10 and 20 s
+    timeline = admin_client.get(f"/admin/events/run/{run.pk}/timeline/").content.decode()
+    assert "<td>skip</td>" in timeline and "&quot;why&quot;: &quot;slept&quot;" in timeline
+    the_skip = Event.objects.get(run=run, type=SKIP)
+    before = admin_client.get(f"/admin/events/run/{run.pk}/at/{the_skip.seq}/site/")
+    after = admin_client.get(f"/admin/events/run/{run.pk}/at/{the_skip.seq + 2}/site/")
+    assert before.status_code == after.status_code == 200
+    assert tally_of(before.content.decode()) == 1 and tally_of(after.content.decode()) == 3
+
+
+def tally_of(html: str) -> int:
+    import re
+
+    return int(re.search(r'<output id="total">(\d+)</output>', html).group(1))
