@@ -50,6 +50,12 @@ def _positive(kind: type[int] | type[float]) -> Callable[[str], float]:
     return parse
 
 
+def _http_url(text: str) -> str:
+    if not text.startswith(("http://", "https://")):
+        raise argparse.ArgumentTypeError(f"must be an http:// or https:// URL, got {text!r}")
+    return text
+
+
 def parser() -> argparse.ArgumentParser:
     p = OneLineParser(prog=f"python -m apps.{PROGRAM}", description=__doc__.splitlines()[0])
     p.add_argument("--kind", required=True, choices=WAIT_KINDS, help="the waiting tool")
@@ -64,6 +70,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--contact-url", required=True)
     p.add_argument(
         "--wait-url",
+        type=_http_url,
         help="a fast-forward run's wait URL: sleep and wait_for skip the run's clock through it "
         "instead of waiting in wall time (README, Fast-forward)",
     )
