@@ -128,16 +128,16 @@ def main(argv: list[str] | None = None) -> int:
     transcript = Transcript(args.task_dir, started=started)
     try:
         with Browser.launch(contact_url=task.contact_url) as browser:
+            clock: TaskClock | RunClock = TaskClock(args.speed_factor)
+            if args.wait_url:
+                clock = RunClock(post_json(args.wait_url), browser)
+                wall.skipped = clock.skipped_wall  # a skip spends the budget as the wait would
             toolbox = Toolbox(
                 browser,
                 model,
                 kind=args.kind,
                 contact_url=task.contact_url,
-                clock=(
-                    RunClock(post_json(args.wait_url), browser)
-                    if args.wait_url
-                    else TaskClock(args.speed_factor)
-                ),
+                clock=clock,
                 wall_left=wall.left,
             )
             loop = AgentLoop(

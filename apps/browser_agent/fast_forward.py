@@ -74,6 +74,7 @@ class RunClock:
         self.speed_factor = 1.0
         self._read: tuple[float, float] | None = None  # (simulated seconds, monotonic) answered
         self.last: dict[str, Any] = {}  # the last answer of the wait URL
+        self.skipped = 0.0  # simulated seconds this agent's waits skipped
 
     def now(self) -> float:
         if self._read is None:
@@ -96,9 +97,14 @@ class RunClock:
             answer = self._wait({"seconds": max(0.0, at - now)})
         return answer["why"] != KILL_AT
 
+    def skipped_wall(self) -> float:
+        """The skips so far, in wall seconds at the run's speed (what waiting would have taken)."""
+        return self.skipped / self.speed_factor
+
     def _wait(self, body: dict[str, Any]) -> dict[str, Any]:
         answer = self.last = self.post(body)
         self.speed_factor = float(answer.get("speed_factor") or 1.0)
+        self.skipped += float(answer["sim_time"]) - float(answer["from"])
         self._read = (float(answer["sim_time"]), self.monotonic())
         if answer["sim_time"] > answer["from"]:
             self.page.catch_up(int(answer["seq"]), float(answer["sim_time"]))

@@ -11,7 +11,8 @@ never outlasts the wall-clock budget.
 
 On a fast-forward run (`--wait-url`) the clock is the run's own (fast_forward.RunClock): a sleep
 is one skip and wait_for skips from one moment worth a look to the next, so waiting costs no
-wall time and the wall-clock budget does not cap it.
+wall time; what it skips counts against the wall-clock budget as if waited (loop.WallBudget),
+so a wait is capped where it would be on a live clock.
 """
 
 from __future__ import annotations
@@ -299,7 +300,7 @@ class Toolbox:
 
     def _within_wall_budget(self, task_seconds: float) -> float:
         left = self.wall_left()
-        if left is None or isinstance(self.clock, RunClock):  # a skip costs no wall time
+        if left is None:
             return task_seconds
         return max(0.0, min(task_seconds, left * self.clock.speed_factor))
 
