@@ -1,5 +1,13 @@
 """The simulated clock of a run, on the authored time scale.
 
+One formula for every running clock (live and fast_forward):
+
+    sim = (wall − started_at) × speed_factor + skipped,  clamped to [0, event_timeline_end]
+
+`skipped` is the sum of the skips the agent's declared waits made (events.fastforward); a live
+run never skips, so for it the formula is the plain live clock. A virtual clock (and any run
+not running) reads its stored `sim_time`.
+
 Read the clock once per operation (`now = sim_now(run, wall)`) and derive every comparison
 from that value. Only the functions at the edge (views, ticker) read the wall clock.
 """
@@ -10,6 +18,10 @@ import time
 
 from events.models import ClockMode, Run, RunStatus
 
+TICKING = (ClockMode.LIVE, ClockMode.FAST_FORWARD)  # clocks that move with the wall once started
+# The fields of a run its clock reads that change while it lives (speed and mode never do).
+CLOCK_FIELDS = ("status", "started_at", "sim_time", "skipped")
+
 
 def wall_now() -> float:
     return time.time()
@@ -18,13 +30,15 @@ def wall_now() -> float:
 def sim_now(run: Run, wall: float) -> float:
     """Simulated seconds of `run` at wall time `wall`, clamped to the timeline end."""
     if run.status == RunStatus.RUNNING_AUTO and run.started_at is not None:
-        return min(max(0.0, (wall - run.started_at) * run.speed_factor), run.event_timeline_end)
+        elapsed = (wall - run.started_at) * run.speed_factor + run.skipped
+        return min(max(0.0, elapsed), run.event_timeline_end)
     # ready, running_manual (virtual clock) and completed (frozen) all read the stored value.
     return run.sim_time
 
 
 def wall_due(run: Run, sim_seconds: float) -> float | None:
-    """The wall time at which `sim_seconds` happens on a live clock (None if not started)."""
-    if run.started_at is None or run.clock_mode != ClockMode.LIVE:
+    """The wall time at which `sim_seconds` happens on a ticking clock if nobody skips before
+    then (None if not started)."""
+    if run.started_at is None or run.clock_mode not in TICKING:
         return None
-    return run.started_at + sim_seconds / run.speed_factor
+    return run.started_at + (sim_seconds - run.skipped) / run.speed_factor

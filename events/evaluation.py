@@ -12,8 +12,9 @@ from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from typing import Any
 
+from events.clock import TICKING
 from events.lifecycle import CONTACT_GET, CONTACT_POST, complete
-from events.models import ClockMode, Event, EventKind, Run
+from events.models import Event, EventKind, Run
 from events.projection import folded_state
 from events.registry import Environment, get_environment
 from events.sandbox import is_truthy, run_eval_sql, shown, write_session_meta
@@ -43,7 +44,7 @@ def contacts_of(run: Run) -> Contacts:
     first_get = next((r for r in rows if r[2] == CONTACT_GET), None)
     first_post = next((r for r in rows if r[2] == CONTACT_POST), None)
 
-    ticking = run.clock_mode == ClockMode.LIVE and run.started_at is not None
+    ticking = run.clock_mode in TICKING and run.started_at is not None
 
     def moment(row) -> float | None:
         # The first contact froze the clock, so a later visit is logged at the frozen time;

@@ -76,7 +76,7 @@ def start_clock(run: Run, *, wall: float | None = None) -> Run:
     wall = wall_now() if wall is None else wall
     run.refresh_from_db()
     # Continue from where manual advances left the clock (upstream restarted from 0).
-    started_at = wall - run.sim_time / run.speed_factor
+    started_at = wall - (run.sim_time - run.skipped) / run.speed_factor
     if not Run.objects.filter(pk=run.pk, status__in=CLOCK_STARTABLE, closed_at__isnull=True).update(
         status=RunStatus.RUNNING_AUTO, started_at=started_at
     ):

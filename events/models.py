@@ -40,6 +40,8 @@ class RunStatus(models.TextChoices):
 class ClockMode(models.TextChoices):
     LIVE = "live"  # sim = (wall − started_at) × speed_factor once started
     VIRTUAL = "virtual"  # moved only by advance
+    # Live, plus skips: the agent's declared waits jump the clock ahead (events.fastforward).
+    FAST_FORWARD = "fast_forward"
 
 
 class RunQuerySet(models.QuerySet):
@@ -88,6 +90,9 @@ class Run(models.Model):
     )
     sim_time = models.FloatField(
         default=0.0, help_text="virtual clock value; the frozen time once completed"
+    )
+    skipped = models.FloatField(
+        default=0.0, help_text="simulated seconds skipped by the agent's waits (fast_forward)"
     )
     catalog_dir = models.CharField(max_length=500)
     catalog_hash = models.CharField(max_length=64)

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 from django.db.models import Max
 
-from events.clock import sim_now, wall_due, wall_now
+from events.clock import CLOCK_FIELDS, sim_now, wall_due, wall_now
 from events.models import Event, EventKind, Run, RunStatus
 from events.notifications import log_grew
 from events.store import TimelineEntryAlreadyFired, append_event
@@ -64,14 +64,13 @@ def fired_through(run: Run) -> int:
 
 
 def next_wake(run: Run, next_index: int) -> float | None:
-    """Wall time at which a live run next needs firing: its next entry or its timeline end."""
-    if run.started_at is None:
-        return None
+    """Wall time at which a running run next needs firing: its next entry or its timeline end
+    (None: not started). A skip makes it sooner, so a skip wakes the ticker to read it again."""
     timeline = run.timeline
     due_sim = run.event_timeline_end
     if next_index < len(timeline):
         due_sim = min(due_sim, timeline[next_index]["time"])
-    return run.started_at + due_sim / run.speed_factor
+    return wall_due(run, due_sim)
 
 
 def fire_due(
@@ -90,18 +89,35 @@ def fire_due(
     entries, which is why callers only ever take it from `fired_through() + 1` or a previous
     `FireResult.next_index`.
     """
-    result = FireResult()
     if reload:
-        run.refresh_from_db(fields=["status", "started_at", "sim_time", "closed_at"])
+        run.refresh_from_db(fields=[*CLOCK_FIELDS, "closed_at"])
     if run.closed_at is not None:
-        return result
+        return FireResult()
     wall = wall_now() if wall is None else wall
     now = sim_now(run, wall)
+    result = fire_through(run, now, next_index=next_index)
+    if run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:
+        # The live clock ran out: the run completes at the end of its timeline. Conditional
+        # write so only one caller performs the transition.
+        Run.objects.filter(pk=run.pk, status=RunStatus.RUNNING_AUTO).update(
+            status=RunStatus.COMPLETED, sim_time=run.event_timeline_end
+        )
+        run.refresh_from_db(fields=["status", "sim_time"])
+    return result
+
+
+def fire_through(
+    run: Run, upto: float, *, next_index: int | None = None, on_time: bool = True
+) -> FireResult:
+    """Fire every unfired timeline entry scheduled at or before simulated second `upto`, in
+    order, each at its own time. `on_time=False` for entries a skip brought (events.fastforward):
+    they were never due on a wall clock, so they carry no lateness."""
+    result = FireResult()
     timeline = run.timeline
     index = _first_unfired(run) if next_index is None else next_index
-    while index < len(timeline) and timeline[index]["time"] <= now:
+    while index < len(timeline) and timeline[index]["time"] <= upto:
         entry = timeline[index]
-        due = wall_due(run, entry["time"])
+        due = wall_due(run, entry["time"]) if on_time else None
         recorded = wall_now()
         try:
             event = append_event(
@@ -123,11 +139,4 @@ def fire_due(
     _remember_next_unfired(run, index)
     if result.fired:
         log_grew(run.pk, result.fired[-1].seq)  # open pages of this run get pushed
-    if run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:
-        # The live clock ran out: the run completes at the end of its timeline. Conditional
-        # write so only one caller performs the transition.
-        Run.objects.filter(pk=run.pk, status=RunStatus.RUNNING_AUTO).update(
-            status=RunStatus.COMPLETED, sim_time=run.event_timeline_end
-        )
-        run.refresh_from_db(fields=["status", "sim_time"])
     return result

@@ -2,12 +2,14 @@
 
 Upstream keys: `server_url`, `frontend_url`, `speed_factor`, `agent_subprocess` (a list: raw
 substring substitution, no shell; a string: `shlex.quote`d substitution, run with a shell).
-Ours: `parallel`, `prices`, `reaction_window`, `grace`, `control_token`, `http_timeout`, and
+Ours: `parallel`, `prices`, `reaction_window`, `grace`, `control_token`, `http_timeout`,
+`clock` (`live`, or `fast_forward`: the agent's declared waits skip the run's clock), and
 `agent` — one of the built-in reference agents (`apps.browser_agent`) instead of
 `agent_subprocess`: `{kind: wait_for | sleep, model, base_url, api_key_env, max_steps,
 max_tokens, max_wall}`.
 Placeholders: __TASK_URL__, __TASK_PROMPT__, __BASE_DIR__, __CONTACT_URL__, and ours:
-__PYTHON__ (the project's Python, with its packages) and __TASK_DIR__ (the task's result folder).
+__PYTHON__ (the project's Python, with its packages), __TASK_DIR__ (the task's result folder)
+and __WAIT_URL__ (the run's wait URL: skips its clock on a fast_forward run).
 The agent runs in its task's result folder, as upstream's did (agents write `costs.json` there);
 an argument of a list command naming a file beside the config file (`my_agent.py`) is given
 as that file's absolute path, so the README's `["python", "my_agent.py", ...]` finds it.
@@ -38,7 +40,10 @@ KNOWN_KEYS = (
     "http_timeout",
     "api_url",
     "agent",
+    "clock",
 )
+# Clocks a benchmark's runs can play on; the command line spells fast_forward fast-forward too.
+BENCH_CLOCKS = ("live", "fast_forward")
 REFERENCE_KINDS = ("wait_for", "sleep")
 REFERENCE_KEYS = ("kind", "model", "base_url", "api_key_env", "max_steps", "max_tokens", "max_wall")
 DEFAULT_GRACE = 90.0  # wall seconds an agent gets to exit once its run is completed (upstream)
@@ -93,6 +98,7 @@ class BenchConfig:
     grace: float = DEFAULT_GRACE
     control_token: str = ""
     http_timeout: float = 30.0
+    clock: str = "live"  # one of BENCH_CLOCKS
     raw: dict[str, Any] = field(default_factory=dict)
     # The config file's folder, where relative agent files are found (None: no config file).
     folder: Path | None = None
@@ -166,6 +172,14 @@ def _url(data: dict, key: str, source: str) -> str | None:
     if not isinstance(value, str) or not value.startswith(("http://", "https://")):
         raise ConfigError(f"{source}: {key}: must be an http:// or https:// URL, got {value!r}")
     return value.rstrip("/")
+
+
+def bench_clock(value: Any, where: str) -> str:
+    """`live` or `fast_forward` (also spelled fast-forward); ConfigError naming `where` else."""
+    clock = value.replace("-", "_") if isinstance(value, str) else value
+    if clock not in BENCH_CLOCKS:
+        raise ConfigError(f"{where}: must be one of {', '.join(BENCH_CLOCKS)}, got {value!r}")
+    return clock
 
 
 def _prices(data: dict, source: str) -> dict[str, Price]:
@@ -277,6 +291,7 @@ def parse_config(data: Any, *, source: str = "config", require_agent: bool = Tru
         grace=_positive(data, "grace", DEFAULT_GRACE, source),
         control_token=token,
         http_timeout=_positive(data, "http_timeout", 30.0, source),
+        clock=bench_clock(data.get("clock", "live"), f"{source}: clock"),
         raw=dict(data),
     )
 

@@ -308,12 +308,25 @@ def aligned(header: list[str], lines: list[list[str]]) -> list[str]:
     return [joined(header), "-+-".join("-" * w for w in widths), *(joined(x) for x in lines)]
 
 
+def clocks(rows: list[Row]) -> str:
+    """The clocks the tasks ran on ("live", or e.g. "fast_forward 18, live 2"); results written
+    before fast-forward existed ran live."""
+    counts: dict[str, int] = {}
+    for row in rows:
+        clock = str(row.result.get("clock") or "live")
+        counts[clock] = counts.get(clock, 0) + 1
+    if len(counts) <= 1:
+        return next(iter(counts), "live")
+    return ", ".join(f"{clock} {n}" for clock, n in sorted(counts.items()))
+
+
 def render_table(rows: list[Row], errors: list[str] | None = None) -> str:
     out = aligned(list(COLUMNS), [[_cell(v) for v in row_values(r)] for r in rows])
     s = summarise(rows)
     out += [
         "",
         f"Total Tasks: {s.total}",
+        f"Clock: {clocks(rows)}",
         f"Task Success Rate: {s.rates['overall']}",
         f"Reaction Time: {_avg_median(s.reaction, 's')}",
         f"Prompt Tokens: {_avg_median(s.prompt_tokens)}",
@@ -520,7 +533,8 @@ def tool_calls_table(summaries: Summaries) -> TableCells:
 def render_comparison(sets: list[ResultSet], window: float) -> str:
     """The console comparison: one row per result set in every table."""
     summaries = [(rs, summarise(rs.rows, window)) for rs in sets]
-    out = [f"Comparing {len(sets)} result sets: {', '.join(rs.name for rs in sets)}", ""]
+    named = ", ".join(f"{rs.name} (clock: {clocks(rs.rows)})" for rs in sets)
+    out = [f"Comparing {len(sets)} result sets: {named}", ""]
     out.append(
         f"Success by category (timely = passed with reaction time <= {window:g} s; "
         "a passed no-op is timely)"

@@ -20,6 +20,7 @@ from apps.bench.grading import (
     GROUPS,
     ResultSet,
     Row,
+    clocks,
     cost_table,
     mean,
     median,
@@ -505,7 +506,10 @@ def render_comparison_report(
         ],
     )
     plots = [comparison_success_plot(sets, window), cost_box_plot(sets)]
-    legend = " ".join(f"{_swatch(i)}{escape(rs.name)}" for i, rs in enumerate(sets))
+    legend = " ".join(
+        f"{_swatch(i)}{escape(rs.name)} (clock: {escape(clocks(rs.rows))})"
+        for i, rs in enumerate(sets)
+    )
     return (
         '<!doctype html>\n<html lang="en"><head><meta charset="utf-8">'
         f"<title>Benchmark comparison: {escape(names)}</title><style>{STYLE}</style></head><body>"

@@ -146,7 +146,8 @@ class Harness:
     agent: str | None = None  # a control agent instead of the config's agent_subprocess
     retry_errors: bool = False
     # "virtual": runs on a virtual clock that the (scripted control) agent jumps through
-    # /advance instead of waiting; "live": the clock moves with the wall, as for a real agent.
+    # /advance instead of waiting; "live": the clock moves with the wall, as for a real agent;
+    # "fast_forward": live, and the agent's declared waits (its wait URL) skip ahead.
     clock: str = "live"
     stopping: threading.Event = field(default_factory=threading.Event)
     _live: set = field(default_factory=set)
@@ -233,6 +234,7 @@ class Harness:
         values = {
             "__TASK_URL__": run["task_url"],
             "__CONTACT_URL__": run["contact_url"],
+            "__WAIT_URL__": run["wait_url"],
             "__TASK_PROMPT__": prompt,
             "__BASE_DIR__": str(self.base_dir),
             "__TASK_DIR__": str(task.folder.resolve()),
@@ -256,6 +258,8 @@ class Harness:
         agent = self.config.reference_agent
         argv = [sys.executable, "-m", "apps.browser_agent", *agent.arguments()]
         argv += ["--task-url", run["task_url"], "--contact-url", run["contact_url"]]
+        if self.clock == "fast_forward":
+            argv += ["--wait-url", run["wait_url"]]
         argv += ["--prompt-file", str((task.folder / "prompt.txt").resolve())]
         # Not the speed factor: like the paper's agents, it knows only its URLs and prompt and
         # lives in wall time, so a faster scenario leaves it less time to notice.
@@ -348,6 +352,7 @@ class Harness:
             "environment": task.environment,
             "category": task.category,
             "speed_factor": sf,
+            "clock": self.clock,
             "deadline_s": limit,
             "agent_exit_code": process.returncode,
             "agent_killed": killed,
@@ -362,18 +367,22 @@ class Harness:
         """Wait for the agent or its deadline; True when it had to be killed."""
         deadline = launched + limit
         # A virtual clock never starts; its agent moves it, so the limit is a wall-time guard
-        # counted from launch.
+        # counted from launch. A fast-forward clock is read all along: every skip brings the
+        # deadline (the same simulated moment as on a live clock) sooner in wall time.
         started = self.clock == "virtual"
         next_poll = launched
         while process.poll() is None:
             now = time.monotonic()
             if self.stopping.is_set():
                 return True
-            if not started and now >= next_poll:
+            if (not started or self.clock == "fast_forward") and now >= next_poll:
                 next_poll = now + START_POLL_S
                 with contextlib.suppress(HarnessError, KeyError, TypeError):
                     info = self.client.run(run_id, retries=1)
-                    if info["status"] != "ready":
+                    # (A frozen clock, once completed, no longer moves the deadline.)
+                    if info["status"] != "ready" and not (
+                        started and info["status"] != "running_auto"
+                    ):
                         started = True
                         deadline = (
                             time.monotonic() - float(info["sim_time"]) / self.speed_factor + limit

@@ -21,6 +21,7 @@ import openai
 from playwright.sync_api import Error as PlaywrightError
 
 from apps.browser_agent.browser import CHROMIUM, Browser, first_line
+from apps.browser_agent.fast_forward import RunClock, post_json
 from apps.browser_agent.loop import DEFAULT_MAX_STEPS, AgentLoop, Task, WallBudget
 from apps.browser_agent.model import COSTS_FILE, ChatModel, CostLedger, make_client
 from apps.browser_agent.tools import WAIT_KINDS, TaskClock, Toolbox
@@ -49,6 +50,12 @@ def _positive(kind: type[int] | type[float]) -> Callable[[str], float]:
     return parse
 
 
+def _http_url(text: str) -> str:
+    if not text.startswith(("http://", "https://")):
+        raise argparse.ArgumentTypeError(f"must be an http:// or https:// URL, got {text!r}")
+    return text
+
+
 def parser() -> argparse.ArgumentParser:
     p = OneLineParser(prog=f"python -m apps.{PROGRAM}", description=__doc__.splitlines()[0])
     p.add_argument("--kind", required=True, choices=WAIT_KINDS, help="the waiting tool")
@@ -61,6 +68,12 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--api-key-env", default="OPENAI_API_KEY", help="variable holding the key")
     p.add_argument("--task-url", required=True)
     p.add_argument("--contact-url", required=True)
+    p.add_argument(
+        "--wait-url",
+        type=_http_url,
+        help="a fast-forward run's wait URL: sleep and wait_for skip the run's clock through it "
+        "instead of waiting in wall time (README, Fast-forward)",
+    )
     prompt = p.add_mutually_exclusive_group(required=True)
     prompt.add_argument("--prompt", help="the task's prompt")
     prompt.add_argument("--prompt-file", type=Path, help="a file holding the task's prompt")
@@ -115,12 +128,16 @@ def main(argv: list[str] | None = None) -> int:
     transcript = Transcript(args.task_dir, started=started)
     try:
         with Browser.launch(contact_url=task.contact_url) as browser:
+            clock: TaskClock | RunClock = TaskClock(args.speed_factor)
+            if args.wait_url:
+                clock = RunClock(post_json(args.wait_url), browser)
+                wall.skipped = clock.skipped_wall  # a skip spends the budget as the wait would
             toolbox = Toolbox(
                 browser,
                 model,
                 kind=args.kind,
                 contact_url=task.contact_url,
-                clock=TaskClock(args.speed_factor),
+                clock=clock,
                 wall_left=wall.left,
             )
             loop = AgentLoop(

@@ -47,7 +47,23 @@ SETTLE_MS = 300  # after an action, time for scripts (HTMX swaps) to redraw befo
 TRANSCRIPT_SCALE = 0.5  # transcript JPEGs are 640 px wide
 TRANSCRIPT_JPEG_QUALITY = 60
 
+CATCH_UP_TIMEOUT_MS = 5000  # a fast-forward skip's push normally lands within milliseconds
+
 T = TypeVar("T")
+
+# The live page's config node (static/site/live.js keeps its data-seq and data-due current).
+_DECLARED_DUE = """() => {
+  const live = document.getElementById("sentinel-live");
+  return live && live.dataset.due !== "" ? Number(live.dataset.due) : null;
+}"""
+# Caught up: the page shows at least log position `seq`, and its clock window starts after
+# `now` (a render from before the skip would be due by then). A page of no run is as it is.
+_CAUGHT_UP = """([seq, now]) => {
+  const live = document.getElementById("sentinel-live");
+  if (!live) return true;
+  const due = live.dataset.due;
+  return Number(live.dataset.seq) >= seq && (due === "" || Number(due) > now);
+}"""
 
 
 class BrowserError(Exception):
@@ -244,6 +260,27 @@ class Browser:
 
     def reload(self) -> None:
         self.page.reload(wait_until="domcontentloaded")
+
+    # --- WatchedLivePage, for a fast-forward run's clock (apps.browser_agent.fast_forward) -
+
+    def next_change(self) -> float | None:
+        """When the page next changes with the clock, as the site's live pages declare it
+        (`#sentinel-live[data-due]`, kept current by every push); None on any other page."""
+        with contextlib.suppress(PlaywrightError):  # navigating: nothing declared
+            due = self.page.evaluate(_DECLARED_DUE)
+            return float(due) if isinstance(due, int | float) else None
+        return None
+
+    def catch_up(self, seq: int, now: float) -> None:
+        """Return once the page shows log position `seq` at simulated time `now` (its pushes
+        arrive within milliseconds); a page that does not catch up in time is reloaded."""
+        try:
+            self.page.wait_for_function(
+                _CAUGHT_UP, arg=[seq, now], timeout=CATCH_UP_TIMEOUT_MS, polling=20
+            )
+        except PlaywrightError:
+            with contextlib.suppress(PlaywrightError):
+                self.reload()
 
     # --- the browser tools ----------------------------------------------------------------
 

@@ -64,16 +64,24 @@ class Task:
 
 
 class WallBudget:
-    """Wall seconds left of `max_wall_s` since `started` (None: no budget)."""
+    """Wall seconds left of `max_wall_s` since `started` (None: no budget).
 
-    def __init__(self, max_wall_s: float | None, started: float) -> None:
+    On a fast-forward run what the run's clock skipped (`skipped`: in wall seconds at its speed)
+    counts as spent, as if waited: the budget is then the same stretch of the task as on a live
+    clock, so the agent stops where it would have, after the same model calls."""
+
+    def __init__(
+        self, max_wall_s: float | None, started: float, skipped: Callable[[], float] = lambda: 0.0
+    ) -> None:
         self.max_wall_s = max_wall_s
         self.started = started
+        self.skipped = skipped
 
     def left(self) -> float | None:
         if self.max_wall_s is None:
             return None
-        return max(0.0, self.max_wall_s - (time.monotonic() - self.started))
+        spent = time.monotonic() - self.started + self.skipped()
+        return max(0.0, self.max_wall_s - spent)
 
 
 def system_prompt(kind: WaitKind) -> str:

@@ -8,6 +8,11 @@ Time is the task's: with `--speed-factor F` the scenario plays F times faster th
 clock, so the agent's clock does too — `sleep(60)` and a 60 s timeout last 60/F wall seconds,
 the same stretch of the scenario at any speed, and wait_for's intervals scale with them. A wait
 never outlasts the wall-clock budget.
+
+On a fast-forward run (`--wait-url`) the clock is the run's own (fast_forward.RunClock): a sleep
+is one skip and wait_for skips from one moment worth a look to the next, so waiting costs no
+wall time; what it skips counts against the wall-clock budget as if waited (loop.WallBudget),
+so a wait is capped where it would be on a live clock.
 """
 
 from __future__ import annotations
@@ -26,6 +31,7 @@ from playwright.sync_api import Error as PlaywrightError
 
 from apps.browser_agent import waiting
 from apps.browser_agent.browser import Browser, BrowserError, first_line
+from apps.browser_agent.fast_forward import KILL_AT, RunClock, WaitFailed
 from apps.browser_agent.model import ChatModel
 
 WaitKind = Literal["sleep", "wait_for"]
@@ -203,7 +209,7 @@ class Toolbox:
         *,
         kind: WaitKind,
         contact_url: str,
-        clock: TaskClock,
+        clock: TaskClock | RunClock,
         wall_left: Callable[[], float | None],
     ) -> None:
         self.browser = browser
@@ -231,6 +237,8 @@ class Toolbox:
             return ToolResult(f"error: {error}")
         except PlaywrightError as error:  # e.g. the page navigated while wait_for read it
             return ToolResult(f"error: {first_line(error)}")
+        except WaitFailed as error:  # the run refused a skip (e.g. over): the model reads why
+            return ToolResult(f"error: {error}")
 
     # One method per tool, named after it; arguments as the schema names them.
 
@@ -259,6 +267,9 @@ class Toolbox:
         asked = _seconds("seconds", seconds)
         granted = self._within_wall_budget(asked)
         self.clock.sleep(granted)
+        if isinstance(self.clock, RunClock) and self.clock.last.get("why") == KILL_AT:
+            slept = self.clock.last["sim_time"] - self.clock.last["from"]
+            return ToolResult(f"slept {slept:.0f} of {asked:g} s: the task's time is up")
         if granted < asked:
             return ToolResult(f"slept {granted:.0f} of {asked:g} s: the time budget is spent")
         return ToolResult(f"slept {asked:g} s")

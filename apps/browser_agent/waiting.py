@@ -13,6 +13,13 @@ Every page of the site shows the simulated time to the minute, and mail lists sa
 both change as time passes, so a long wait sees a new block about once a simulated minute even
 when nothing else happens. That is what a person watching the page sees, and what the paper's
 tool saw on real sites; the back-off is what keeps it cheap, so those blocks are not filtered.
+
+On a fast-forward run the clock is the run's own and can skip (`SkippingClock`): instead of
+looking every second, the loop skips straight to the next moment a look could lead somewhere —
+while the model may not be asked yet, to the moment it may (a one-second poller would see then
+whatever changed meanwhile, and ask about it then); once it may, to the page's next change.
+Either way never past the next reload or the timeout. So the model is asked at the same
+simulated moments, about the same changes, as on a live run: the same calls, less wall time.
 """
 
 from __future__ import annotations
@@ -22,13 +29,23 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Protocol, runtime_checkable
 
 
 class Clock(Protocol):
     def now(self) -> float: ...
 
     def sleep(self, seconds: float) -> None: ...
+
+
+@runtime_checkable
+class SkippingClock(Clock, Protocol):
+    """A fast-forward run's clock (apps.browser_agent.fast_forward.RunClock)."""
+
+    def skip_to(self, at: float, *, wake_at_change: bool) -> bool:
+        """Skip ahead to `at` (earlier at the page's next change when `wake_at_change`), the page
+        caught up with it; False when the run allows no further skip (its kill_at is reached)."""
+        ...
 
 
 class _SystemClock:
@@ -122,7 +139,16 @@ def wait_for(
             if met:
                 return result(True, why)
             check_interval = min(2 * check_interval, schedule.max_check)
-        clock.sleep(schedule.poll)
+        if isinstance(clock, SkippingClock):
+            at, wake_at_change = next_look(
+                clock.now(),
+                end=min(start + timeout, next_reload),
+                may_ask_at=last_check + check_interval,
+            )
+            if not clock.skip_to(at, wake_at_change=wake_at_change):
+                break  # the run's time is up: the final check below, as at a timeout
+        else:
+            clock.sleep(schedule.poll)
 
     # The final check sees every block, those already shown included: the model judges the
     # page's whole change since the start, not only what arrived after its last answer.
@@ -134,6 +160,17 @@ def wait_for(
     met, why = judge(condition, blocks)
     checks += 1
     return result(met, why)
+
+
+def next_look(now: float, *, end: float, may_ask_at: float) -> tuple[float, bool]:
+    """When a watcher whose clock skips looks next, and whether a change may wake it sooner.
+
+    Until the model may be asked again nothing seen could be acted on, so it skips to that
+    moment (a poller would see then what changed meanwhile); after, it wakes at the first
+    change. Never past `end` (the next reload, or the timeout)."""
+    if now < may_ask_at:
+        return min(may_ask_at, end), False
+    return end, True
 
 
 def unified_diff_blocks(base: str, current: str) -> list[str]:

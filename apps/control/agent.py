@@ -1,4 +1,5 @@
-"""Agent-facing run URLs: the task URL, the contact page and the JSON action endpoint.
+"""Agent-facing run URLs: the task URL, the contact page, the JSON action endpoint and the
+wait endpoint of fast-forward runs.
 
 These need no control token: the unguessable run token in the path is the credential, and
 none of them reveals scenario internals.
@@ -7,6 +8,7 @@ none of them reveals scenario internals.
 from __future__ import annotations
 
 import contextlib
+import math
 
 from django.core.exceptions import RequestDataTooBig
 from django.http import HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
@@ -17,10 +19,12 @@ from django.views.decorators.http import require_http_methods, require_POST
 from apps.control import slot
 from apps.control.parsers import BadBody, body_limit, read_json
 from apps.kit.links import contact_path, start_page_path
+from apps.kit.live import last_live_seq
 from apps.kit.pages import arrival_wall, run_for_token
-from events import lifecycle
+from events import fastforward, lifecycle
+from events.clock import TICKING
 from events.commands import current_folded, perform_action
-from events.models import ClockMode, Run, RunStatus
+from events.models import Run, RunStatus
 from events.registry import ActionRejected
 from events.schemas import text_problem
 
@@ -29,7 +33,7 @@ from events.schemas import text_problem
 def task_start(request: HttpRequest, token: str) -> HttpResponse:
     """Start the run's clock (first visit) and go to its start page; reloading is harmless."""
     run = run_for_token(token)
-    if run.clock_mode == ClockMode.LIVE and run.status in lifecycle.CLOCK_STARTABLE:
+    if run.clock_mode in TICKING and run.status in lifecycle.CLOCK_STARTABLE:
         # A concurrent first visit may have started it: then just go to the page.
         with contextlib.suppress(lifecycle.LifecycleError):
             run = lifecycle.start_clock(run)
@@ -103,4 +107,65 @@ def run_action(request: HttpRequest, token: str) -> JsonResponse:
             "run_status": RunStatus(run.status).value,
         },
         status=201,
+    )
+
+
+WAIT_SHAPE = 'body must be {"seconds": s} or {"until": "change", "timeout": s}'
+
+
+def wait_of(body: object) -> fastforward.Wait:
+    """The wait a `/wait` body asks for; BadBody naming the field otherwise."""
+    if not isinstance(body, dict):
+        raise BadBody(WAIT_SHAPE)
+    unknown = sorted(set(body) - {"seconds", "until", "timeout"})
+    if unknown:
+        raise BadBody(f"{unknown[0]}: unknown field; {WAIT_SHAPE}")
+    if ("seconds" in body) == ("until" in body):
+        raise BadBody(WAIT_SHAPE)
+    if "seconds" in body and "timeout" in body:
+        raise BadBody('timeout goes with "until": a sleep of "seconds" has no timeout')
+    if "until" in body and body["until"] != "change":
+        raise BadBody(f'until: must be "change", got {body["until"]!r}')
+    for name in ("seconds", "timeout"):
+        value = body.get(name)
+        if name in body and (
+            isinstance(value, bool)
+            or not isinstance(value, int | float)
+            or not (math.isfinite(value) and value >= 0)
+        ):
+            raise BadBody(f"{name}: must be a finite number of seconds ≥ 0, got {value!r}")
+    if "seconds" in body:
+        return fastforward.Wait(seconds=float(body["seconds"]))
+    timeout = body.get("timeout")
+    return fastforward.Wait(until_change=True, timeout=None if timeout is None else float(timeout))
+
+
+@csrf_exempt  # JSON API authenticated by the run token in the path
+@require_POST
+def run_wait(request: HttpRequest, token: str) -> JsonResponse:
+    """`POST {"seconds": s}` or `{"until": "change", "timeout": s}` on a fast_forward run: skip
+    its clock ahead instead of sleeping; answers where the clock is now and what fired."""
+    run = run_for_token(token)
+    try:
+        wait = wait_of(read_json(request.body or b"{}"))
+    except BadBody as exc:
+        return JsonResponse({"detail": str(exc)}, status=400)
+    except RequestDataTooBig:
+        return JsonResponse({"detail": f"body is larger than {body_limit()} bytes"}, status=400)
+    try:
+        skipped = fastforward.skip(run, wait, wall=arrival_wall(request))
+    except lifecycle.LifecycleError as exc:
+        return JsonResponse({"detail": str(exc)}, status=exc.status)
+    return JsonResponse(
+        {
+            "from": skipped.start,
+            "sim_time": skipped.end,
+            "why": skipped.why,
+            "fired": [{"at": event.at, "type": event.type} for event in skipped.fired],
+            # The log position a page showing the new moment has reached at least (live
+            # pages carry theirs in #sentinel-live[data-seq]).
+            "seq": last_live_seq(run.pk),
+            "speed_factor": run.speed_factor,
+            "run_status": RunStatus(run.status).value,
+        }
     )

@@ -59,7 +59,9 @@ def init(request: Request) -> Response:
     if not payload.is_valid():
         return Response(_one_line(payload.errors), status=http.HTTP_422_UNPROCESSABLE_ENTITY)
     run = slot.create_default_run(
-        payload.to_spec(), speed_factor=payload.validated_data["speed_factor"]
+        payload.to_spec(),
+        speed_factor=payload.validated_data["speed_factor"],
+        clock_mode=payload.validated_data["clock_mode"],
     )
     return Response(_status_body(run))
 

@@ -41,6 +41,9 @@ class InitPayloadSerializer(serializers.Serializer):
     eval_sql = serializers.CharField(required=False, allow_blank=True, default="")
     condition_at = FiniteFloatField(required=False, allow_null=True, default=None)
     speed_factor = FiniteFloatField(required=False, default=1.0, validators=[_speed_factor])
+    clock_mode = serializers.ChoiceField(  # ours: upstream has only the live clock
+        choices=ClockMode.choices, required=False, default=ClockMode.LIVE
+    )
     # [{time, type, payload}]: checked in validate() as a scenario file's timeline is.
     events = serializers.ListField(child=serializers.JSONField())
     start_page = serializers.CharField(
@@ -145,6 +148,7 @@ class AdvanceSerializer(serializers.Serializer):
 class RunSerializer(serializers.ModelSerializer):
     task_url = serializers.SerializerMethodField()
     contact_url = serializers.SerializerMethodField()
+    wait_url = serializers.SerializerMethodField()
     prompt = serializers.SerializerMethodField()
     sim_time = serializers.SerializerMethodField()
 
@@ -162,6 +166,7 @@ class RunSerializer(serializers.ModelSerializer):
             "prompt",
             "task_url",
             "contact_url",
+            "wait_url",
             "catalog_hash",
             "created_at",
             "closed_at",
@@ -176,6 +181,9 @@ class RunSerializer(serializers.ModelSerializer):
 
     def get_contact_url(self, run: Run) -> str:
         return self._absolute(links.contact_path(run))
+
+    def get_wait_url(self, run: Run) -> str:
+        return self._absolute(links.wait_path(run))
 
     def get_prompt(self, run: Run) -> str:
         return run.spec.get("prompt", "")

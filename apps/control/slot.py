@@ -16,7 +16,7 @@ from django.db import IntegrityError, transaction
 from django.http import HttpResponse, JsonResponse
 
 from events.lifecycle import LifecycleError, close, create_run
-from events.models import Run
+from events.models import ClockMode, Run
 
 NO_SESSION = "No active simulation. Call /init first."
 SWITCHED_OFF = (
@@ -48,11 +48,13 @@ def require_default_run() -> Run:
     return run
 
 
-def create_default_run(spec: dict, *, speed_factor: float) -> Run:
+def create_default_run(spec: dict, *, speed_factor: float, clock_mode: str = ClockMode.LIVE) -> Run:
     """Create the slot's run; the partial unique index settles a race between two /init."""
     try:
         with transaction.atomic():
-            return create_run(spec, speed_factor=speed_factor, default_slot=True)
+            return create_run(
+                spec, speed_factor=speed_factor, clock_mode=clock_mode, default_slot=True
+            )
     except IntegrityError:
         current = default_run()
         raise LifecycleError(

@@ -40,4 +40,5 @@ run_urlpatterns = [
     path("start", agent.task_start, name="run-start"),
     path("contact", agent.run_contact, name="run-contact"),
     path("actions", agent.run_action, name="run-actions"),
+    path("wait", agent.run_wait, name="run-wait"),
 ]

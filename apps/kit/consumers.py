@@ -12,8 +12,9 @@ Protocol (JSON text frames):
 
 Clock-driven pushes: after each push (and on subscribing) the socket sets one timer for the wall
 time at which the page's `next_change` comes on the run's clock, when the clock is running; a
-clock moved by hand (`/advance`, start) is broadcast as `run.clock_moved` and re-checked at once.
-At most one clock-driven push per wall second per socket, whatever the speed factor.
+clock moved by hand (`/advance`, start, a fast-forward skip) is broadcast as `run.clock_moved`
+and re-checked at once. At most one clock-driven push per wall second per socket while time
+passes, whatever the speed factor; a jump is pushed at once.
 
 The socket joins the channel group of its run only, so one run's events never reach another
 run's pages.
@@ -116,6 +117,9 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
 
     async def run_clock_moved(self, message: dict) -> None:
         self.clock = live.with_clock(self.run, message["clock"])
+        # A jump is a request's doing, not time passing at speed: pushed at once, not held back
+        # by the clock-push rate limit (a fast-forward agent reads the page right after).
+        self.clock_pushed_at = float("-inf")
         self.arm()  # re-check the due time now: it may have come, or a timer may be needed
 
     async def push(self, seq: int, *, clock_driven: bool = False) -> None:

@@ -52,5 +52,10 @@ def contact_path(run: Run) -> str:
     return reverse("run-contact", kwargs={"token": run.token})
 
 
+def wait_path(run: Run) -> str:
+    """Where the agent of a fast_forward run declares its waits (apps.control.agent.run_wait)."""
+    return reverse("run-wait", kwargs={"token": run.token})
+
+
 def task_path(run: Run) -> str:
     return reverse("run-start", kwargs={"token": run.token})

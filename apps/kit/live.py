@@ -5,7 +5,8 @@ The flow, one path for every backend:
 
 1. Whoever appends `scenario` or `action` events (the ticker in any backend, a lazy catch-up
    inside a request, an agent action) calls the engine's `events.notifications.log_grew(run_id,
-   seq)`; whoever moves a clock by hand (`/advance`, starting the clock) calls `clock_moved`.
+   seq)`; whoever moves a clock by hand (`/advance`, starting the clock, a fast-forward skip)
+   calls `clock_moved`.
    After the transaction commits, this module hears it and sends a `run.log_grew` /
    `run.clock_moved` message to the channel group `run.<id>` through the configured channel
    layer (in-memory embedded, Redis in production).
@@ -48,6 +49,7 @@ from django.urls import Resolver404, resolve, reverse
 from django.utils.crypto import get_random_string
 
 from apps.kit import request_attrs
+from events.clock import CLOCK_FIELDS
 from events.lru import LRU
 from events.models import Event, Run
 from events.notifications import LIVE_KINDS, clock_moved_signal, log_grew_signal
@@ -118,14 +120,14 @@ def last_live_seq(run_id: int) -> int:
 def clock_reading(run_id: int) -> dict | None:
     """The run's clock fields, fresh from the database, as a channel-layer-safe dict (None: the
     run is gone). Speed and clock mode never change; a closed run's pages stop rendering."""
-    return Run.objects.filter(pk=run_id).values("status", "started_at", "sim_time").first()
+    return Run.objects.filter(pk=run_id).values(*CLOCK_FIELDS).first()
 
 
 def with_clock(run: Run, reading: dict) -> Run:
     """A copy of `run` whose clock reads `reading` (events.clock's functions take a Run)."""
     clock = copy.copy(run)
-    clock.status, clock.started_at = reading["status"], reading["started_at"]
-    clock.sim_time = reading["sim_time"]
+    for name in CLOCK_FIELDS:
+        setattr(clock, name, reading[name])
     return clock
 
 

@@ -65,6 +65,9 @@
     if (!message || message.type !== "regions" || message.seq < seq || message.url !== pageUrl()) return;
     seq = message.seq;
     due = typeof message.next_change === "number" ? message.next_change : null;
+    // Kept on the config node too, so whoever reads the page (a fast-forward agent waiting for
+    // it to catch up with a skip) sees which log position and clock window it shows.
+    if (configNode) { configNode.dataset.seq = String(seq); configNode.dataset.due = due === null ? "" : String(due); }
     var holder = document.createElement("template");
     holder.innerHTML = message.html;
     Array.prototype.slice.call(holder.content.children).forEach(function (el) { if (el.id) swap(el); });

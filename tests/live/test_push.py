@@ -256,7 +256,12 @@ def test_group_messages_use_the_configured_layer():
     assert moved == {
         "type": "run.clock_moved",
         "run": run.pk,
-        "clock": {"status": "running_manual", "started_at": None, "sim_time": LATE_AT},
+        "clock": {
+            "status": "running_manual",
+            "started_at": None,
+            "sim_time": LATE_AT,
+            "skipped": 0.0,
+        },
     }
     assert grew["type"] == "run.log_grew" and grew["run"] == run.pk
 

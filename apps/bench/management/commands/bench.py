@@ -19,10 +19,12 @@ from django.utils import timezone
 
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import (
+    BENCH_CLOCKS,
     REFERENCE_KINDS,
     BenchConfig,
     ConfigError,
     ReferenceAgent,
+    bench_clock,
     load_config,
 )
 from apps.bench.runner import CONTROL_AGENTS, BenchError, Harness, Progress, discover, run_pool
@@ -115,6 +117,12 @@ class Command(BaseCommand):
         run.add_argument(
             "--model-url",
             help="the reference agent's OpenAI-compatible base URL (overrides agent.base_url)",
+        )
+        run.add_argument(
+            "--clock",
+            choices=[*BENCH_CLOCKS, "fast-forward"],
+            help="the runs' clock (config: clock; default live): fast-forward skips the clock "
+            "when the agent declares a wait (its wait URL) instead of it sleeping",
         )
         run.add_argument(
             "--retry-errors", action="store_true", help="rerun tasks that have error.txt"
@@ -216,6 +224,7 @@ class Command(BaseCommand):
         agent,
         model,
         model_url,
+        clock,
         retry_errors,
         results_dir,
         **_,
@@ -234,6 +243,8 @@ class Command(BaseCommand):
             changes["parallel"] = parallel
         if server_url:
             changes["server_url"] = server_url.rstrip("/")
+        if clock is not None:
+            changes["clock"] = bench_clock(clock, "--clock")
         cfg = dataclasses.replace(cfg, **changes)
         run_dir = Path(results_dir) / name
         started_at = timezone.now()
@@ -256,9 +267,12 @@ class Command(BaseCommand):
                     Path(settings.BASE_DIR),
                     agent=agent,
                     retry_errors=retry_errors,
+                    clock=cfg.clock,
                 )
                 tasks = harness.tasks(listing)
-                self.stdout.write(f"Found {len(tasks)} tasks. Results -> {run_dir}")
+                self.stdout.write(
+                    f"Found {len(tasks)} tasks. Results -> {run_dir} (clock: {cfg.clock})"
+                )
                 if task:
                     self.stdout.write(f"Selecting tasks: {', '.join(task)}")
                 if filter:

@@ -1,0 +1,166 @@
+"""Fast-forward: on a `fast_forward` run, a wait the agent declares skips the clock ahead.
+
+The run's clock is a live clock (it runs at the speed factor while the agent works) plus
+`skipped`, the sum of every skip (see events.clock for the one formula). A wait is one of
+
+- `Wait(seconds=s)`: skip `s` simulated seconds, waking early at nothing (a sleep);
+- `Wait(until_change=True, timeout=s)`: skip to the next scheduled timeline entry, at most `s`
+  seconds (a wait for something to happen).
+
+A skip never passes the run's kill_at (nor its timeline end). It moves the sum forward and, in
+the same transaction, logs itself — a lifecycle `skip` event {from, to, why} at its `from` — and
+fires every timeline entry it passed, in order, each at its own scheduled time, as the ticker
+would have. The log therefore says everything: a replay refolds the same events, time travel
+shows the skip where it happened, and other processes never see the new clock without the
+entries it passed.
+
+Concurrency: the clock moves by a conditional write on the sum it read (`skipped = seen`), so
+two waits at once are applied one after the other (the loser reads again and skips from where
+the winner left off), never both from the same moment. Entries are fired by the same code as
+everything else, so the unique (run, timeline_index) keeps each one once while the ticker or a
+page request fires too. An action posted meanwhile is appended before or after the skip in the
+one log (its seq orders it), never lost.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from django.db import transaction
+
+from events import notifications
+from events.clock import CLOCK_FIELDS, sim_now, wall_now
+from events.lifecycle import CONTACT_GET, CONTACT_POST, LifecycleError
+from events.models import ClockMode, Event, EventKind, Run, RunStatus
+from events.scheduler import fire_due, fire_through
+from events.store import append_event
+from events.ticker import notify_clock_started
+
+SKIP = "skip"  # the lifecycle event a skip logs
+MAX_ATTEMPTS = 50
+
+# Why a skip stopped where it did (the `why` of its log entry and of the answer).
+SLEPT = "slept"  # a sleep ran its length
+CHANGE = "change"  # the next scheduled entry came
+TIMEOUT = "timeout"  # a wait for a change ran out first
+KILL_AT = "kill_at"  # the run's last moment to skip to (kill_at or the timeline end)
+
+
+class WaitRefused(LifecycleError):
+    """A wait this run cannot take (wrong clock, not started, over); HTTP 409 by default."""
+
+
+@dataclass(frozen=True)
+class Wait:
+    seconds: float | None = None
+    until_change: bool = False
+    timeout: float | None = None  # for until_change; None: as far as the run allows
+
+    def __post_init__(self) -> None:
+        if (self.seconds is None) == (not self.until_change):
+            raise ValueError("a wait is either some seconds or until a change")
+        for name in ("seconds", "timeout"):
+            value = getattr(self, name)
+            if value is not None and not (math.isfinite(value) and value >= 0):
+                raise ValueError(f"{name} must be a finite number of seconds ≥ 0, got {value!r}")
+
+
+@dataclass(frozen=True)
+class Skipped:
+    """What a wait did: the clock went from `start` to `end` (simulated seconds)."""
+
+    start: float
+    end: float
+    why: str
+    fired: list[Event] = field(default_factory=list)
+
+
+def skip_limit(run: Run) -> float:
+    """The last simulated second a wait may reach: kill_at, or the timeline end if sooner."""
+    kill_at = run.spec.get("kill_at")
+    end = run.event_timeline_end
+    return end if kill_at is None else min(float(kill_at), end)
+
+
+def target(run: Run, wait: Wait, now: float) -> tuple[float, str]:
+    """Where a wait starting at `now` stops, and why (pure: the run's timeline and limit)."""
+    limit = skip_limit(run)
+    if wait.seconds is not None:
+        to, why = now + wait.seconds, SLEPT
+    else:
+        upcoming = (entry["time"] for entry in run.timeline if entry["time"] > now)
+        nxt = next(upcoming, math.inf)
+        horizon = math.inf if wait.timeout is None else now + wait.timeout
+        to, why = (nxt, CHANGE) if nxt <= horizon else (horizon, TIMEOUT)
+    if to >= limit:
+        return max(now, limit), KILL_AT
+    return to, why
+
+
+def refusal(run: Run) -> WaitRefused | None:
+    """Why `run` cannot take a wait now, or None when it can."""
+    if run.closed_at is not None:
+        return WaitRefused("this run is closed")
+    if run.clock_mode != ClockMode.FAST_FORWARD:
+        return WaitRefused(
+            f"this run's clock is {run.clock_mode}: only a fast_forward run skips time on a "
+            "wait (on a live clock, wait by sleeping; a virtual clock moves only by /advance)"
+        )
+    if run.status == RunStatus.COMPLETED:
+        contacted = Event.objects.filter(
+            run_id=run.pk, kind=EventKind.LIFECYCLE, type__in=(CONTACT_GET, CONTACT_POST)
+        ).exists()
+        if contacted:
+            return WaitRefused("the agent has contacted the user: the task is over, no more waits")
+        return WaitRefused("the run is completed: its time has run out")
+    if run.status != RunStatus.RUNNING_AUTO or run.started_at is None:
+        return WaitRefused("the clock has not started: open the task URL first")
+    return None
+
+
+def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
+    """Take `wait` on `run` at wall time `wall` (default now; read once): move the clock, log the
+    skip and fire what it passed. Raises WaitRefused when the run cannot wait."""
+    wall = wall_now() if wall is None else wall
+    for _ in range(MAX_ATTEMPTS):
+        run.refresh_from_db(fields=[*CLOCK_FIELDS, "closed_at"])
+        refused = refusal(run)
+        if refused is not None:
+            raise refused
+        fire_due(run, wall=wall, reload=False)  # what is due already fires on time, before
+        now = sim_now(run, wall)
+        to, why = target(run, wait, now)
+        if to <= now:
+            return Skipped(now, now, why)
+        seen = run.skipped
+        with transaction.atomic():
+            moved = Run.objects.filter(
+                pk=run.pk,
+                status=RunStatus.RUNNING_AUTO,
+                closed_at__isnull=True,
+                skipped=seen,
+            ).update(skipped=_landing(run, wall, to))
+            if not moved:
+                continue  # another wait (or a contact) moved the run first: read it again
+            run.refresh_from_db(fields=CLOCK_FIELDS)
+            append_event(
+                run, EventKind.LIFECYCLE, SKIP, {"from": now, "to": to, "why": why}, at=now
+            )
+            fired = fire_through(run, to, on_time=False).fired
+            if to >= run.event_timeline_end:
+                fire_due(run, wall=wall, reload=False)  # the clock ran out: the run completes
+        notify_clock_started(run)  # the ticker's schedule of this run is stale now
+        notifications.clock_moved(run.pk)  # open pages re-render what the new time changes
+        return Skipped(now, to, why, fired)
+    raise LifecycleError("the run kept changing while the wait was applied; wait again")
+
+
+def _landing(run: Run, wall: float, to: float) -> float:
+    """The sum of skips with which the clock reads exactly `to` (not a rounding error short of
+    it, which would leave the entry at `to` unfired by a later reading) at wall time `wall`."""
+    ran = (wall - run.started_at) * run.speed_factor if run.started_at is not None else 0.0
+    skipped = run.skipped + (to - sim_now(run, wall))
+    while ran + skipped < to:
+        skipped = math.nextafter(skipped, math.inf)
+    return skipped
