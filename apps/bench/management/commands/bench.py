@@ -17,6 +17,7 @@ from django.db import connection
 from django.db.migrations.executor import MigrationExecutor
 from django.utils import timezone
 
+from apps.bench import preflight
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import (
     REFERENCE_KINDS,
@@ -25,11 +26,30 @@ from apps.bench.config import (
     ReferenceAgent,
     load_config,
 )
-from apps.bench.runner import CONTROL_AGENTS, BenchError, Harness, Progress, discover, run_pool
+from apps.bench.grading import error_lines
+from apps.bench.manifest import (
+    build_manifest,
+    git_commit,
+    machine,
+    project_version,
+    read_manifest,
+    scenario_hash,
+    write_manifest,
+)
+from apps.bench.runner import (
+    CONTROL_AGENTS,
+    ERROR,
+    BenchError,
+    Harness,
+    Progress,
+    discover,
+    run_pool,
+)
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
 DEFAULT_CONFIG = "eval_config.yaml"
+VALIDATE_RETRIES = 2  # times bench validate runs a task again after an error
 
 
 @contextlib.contextmanager
@@ -51,6 +71,41 @@ def terminate_as_interrupt():
 
 def _usage(message: str) -> CommandError:
     return CommandError(message, returncode=2)
+
+
+def _preflight_failed(problems: list[str]) -> CommandError:
+    """Every problem on its own line; nothing was run."""
+    return _usage("\n".join(f"preflight: {problem}" for problem in problems))
+
+
+def config_as_used(cfg: BenchConfig, agent: str | None, trials: int) -> dict:
+    """The configuration a result set was produced with: the file's keys, the command line's
+    overrides applied, the control token left out."""
+    used = {k: v for k, v in cfg.raw.items() if k != "control_token"}
+    used.update(
+        speed_factor=cfg.speed_factor,
+        parallel=cfg.parallel,
+        reaction_window=cfg.reaction_window,
+        grace=cfg.grace,
+        trials=trials,
+    )
+    if cfg.server_url:
+        used["server_url"] = cfg.server_url
+    if agent:
+        used["control_agent"] = agent
+        used.pop("agent_subprocess", None)
+    if cfg.reference_agent:
+        used["agent"] = dataclasses.asdict(cfg.reference_agent)
+        used.pop("agent_subprocess", None)
+    return used
+
+
+def catalog_hashes(run_dir: Path) -> list[str]:
+    """The catalogs the tasks of a result set ran on (from their results.json)."""
+    from apps.bench.grading import load_rows
+
+    rows = load_rows(run_dir) if run_dir.is_dir() else []
+    return sorted({str(r.result["catalog_hash"]) for r in rows if r.result.get("catalog_hash")})
 
 
 def reference_changes(
@@ -119,6 +174,13 @@ class Command(BaseCommand):
         run.add_argument(
             "--retry-errors", action="store_true", help="rerun tasks that have error.txt"
         )
+        run.add_argument(
+            "--trials",
+            type=int,
+            default=1,
+            metavar="K",
+            help="run every task K times, each its own run (trial n in <task>/trial-<n>/)",
+        )
         run.add_argument("--results-dir", default="results")
 
         grade = sub.add_parser(
@@ -184,8 +246,12 @@ class Command(BaseCommand):
     # --- shared ----------------------------------------------------------------------------
 
     @contextlib.contextmanager
-    def server(self, server_url: str | None):
+    def server(self, server_url: str | None, *, external_is_preflight: bool = False):
         if server_url:
+            if external_is_preflight:
+                problem = preflight.reachable(server_url)
+                if problem:
+                    raise _preflight_failed([problem])
             yield server_url
             return
         executor = MigrationExecutor(connection)
@@ -218,6 +284,7 @@ class Command(BaseCommand):
         model_url,
         retry_errors,
         results_dir,
+        trials,
         **_,
     ):
         cfg = load_config(config) if agent is None or Path(config).exists() else BenchConfig(None)
@@ -234,11 +301,19 @@ class Command(BaseCommand):
             changes["parallel"] = parallel
         if server_url:
             changes["server_url"] = server_url.rstrip("/")
+        if trials < 1:
+            raise _usage(f"--trials must be >= 1, got {trials}")
         cfg = dataclasses.replace(cfg, **changes)
+        base_dir = Path(settings.BASE_DIR)
+        # Before any server or task: a setup that cannot work runs nothing (preflight.py).
+        problems = [] if agent else preflight.command_problems(cfg, base_dir)
+        problems += preflight.model_problems(cfg.reference_agent)
+        if problems:
+            raise _preflight_failed(problems)
         run_dir = Path(results_dir) / name
         started_at = timezone.now()
         began = time.monotonic()
-        with self.server(cfg.server_url) as url:
+        with self.server(cfg.server_url, external_is_preflight=True) as url:
             client = ControlClient(
                 url,
                 token=cfg.control_token or settings.SENTINEL_CONTROL_TOKEN,
@@ -249,16 +324,20 @@ class Command(BaseCommand):
                 listing = discover(client, task=task, filter=filter, skipped=invalid)
                 for entry in invalid:
                     self.stdout.write(f"Skipping {entry['path']} (invalid: {entry['error']})")
+                problems = preflight.server_problems(listing, url)
+                if problems:
+                    raise _preflight_failed(problems)
                 harness = Harness(
                     cfg,
                     client,
                     run_dir,
-                    Path(settings.BASE_DIR),
+                    base_dir,
                     agent=agent,
                     retry_errors=retry_errors,
                 )
-                tasks = harness.tasks(listing)
-                self.stdout.write(f"Found {len(tasks)} tasks. Results -> {run_dir}")
+                tasks = harness.tasks(listing, trials)
+                trials_note = f" ({len(listing)} scenarios × {trials} trials)" if trials > 1 else ""
+                self.stdout.write(f"Found {len(tasks)} tasks{trials_note}. Results -> {run_dir}")
                 if task:
                     self.stdout.write(f"Selecting tasks: {', '.join(task)}")
                 if filter:
@@ -268,19 +347,43 @@ class Command(BaseCommand):
                 outcomes = run_pool([(harness, t) for t in todo], cfg.parallel, progress)
             finally:
                 client.close()
+        from apps.bench.grading import load_rows, outcome_counts, task_errors
         from apps.bench.records import record_benchmark
 
         reference = cfg.reference_agent
         label = agent or (f"{reference.kind} on {reference.model}" if reference else None)
-        record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=cfg.raw)
+        used = config_as_used(cfg, agent, trials)
+        record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=used)
+        errors = task_errors(run_dir) if run_dir.is_dir() else []
+        totals = outcome_counts(load_rows(run_dir) if run_dir.is_dir() else [], errors)
+        write_manifest(
+            run_dir,
+            build_manifest(
+                read_manifest(run_dir),
+                name=name,
+                config=used,
+                version=project_version(base_dir),
+                commit=git_commit(base_dir),
+                scenarios={t.scenario_id: scenario_hash(t.spec) for t in tasks},
+                catalog_hashes=catalog_hashes(run_dir),
+                started_at=started_at,
+                finished_at=timezone.now(),
+                counts=totals,
+                host=machine(),
+            ),
+        )
         counts = {s: sum(o.status == s for o in outcomes) for s in ("passed", "failed", "error")}
         self.stdout.write(
             f"Done. ran={len(outcomes)} passed={counts['passed']} failed={counts['failed']} "
             f"errors={counts['error']} skipped={len(tasks) - len(todo)} wall_s={time.monotonic() - began:.1f}"
         )
-        if counts["error"]:
+        for line in error_lines(errors):
+            self.stdout.write(line)
+        if errors:
             raise CommandError(
-                f"{counts['error']} task(s) hit a harness error; see their error.txt", returncode=1
+                f"{len(errors)} task(s) are errors, not graded (causes above; their error.txt): "
+                "fix the cause, then run again with --retry-errors",
+                returncode=1,
             )
 
     # --- grade -----------------------------------------------------------------------------
@@ -300,7 +403,9 @@ class Command(BaseCommand):
         if len(sets) == 1:  # one set: the upstream table, as before
             (one,) = sets
             text = (
-                grading.render_csv(one.rows) if csv else grading.render_table(one.rows, one.errors)
+                grading.render_csv(one.rows)
+                if csv
+                else grading.render_table(one.rows, one.errors, window)
             )
         else:
             render = grading.render_comparison_csv if csv else grading.render_comparison
@@ -346,13 +451,28 @@ class Command(BaseCommand):
                     f"at speed factor {sf:g} on {clock} clocks (results -> {root})"
                 )
                 jobs = [(harnesses[a], t) for a in CONTROL_AGENTS for t in tasks[a]]
+                job_of = {t.folder: (h, t) for h, t in jobs}
                 outcomes = run_pool(jobs, parallel * len(CONTROL_AGENTS), self.progress())
+                # An error (a control agent's own request timed out on a loaded machine, the
+                # server hiccuped) says nothing about the scenario: run those tasks again.
+                for _ in range(VALIDATE_RETRIES):
+                    again = [o for o in outcomes if o.status == "error"]
+                    if not again:
+                        break
+                    self.stdout.write(f"Running {len(again)} task(s) again after an error")
+                    retry = [job_of[o.task.folder] for o in again]
+                    for _, t in retry:
+                        (t.folder / ERROR).unlink(missing_ok=True)
+                    kept = [o for o in outcomes if o.status != "error"]
+                    outcomes = kept + run_pool(
+                        retry, parallel * len(CONTROL_AGENTS), self.progress()
+                    )
             finally:
                 client.close()
         wall = time.monotonic() - began
         errors = [o for o in outcomes if o.status == "error"]
         for o in errors:
-            self.stdout.write(f"harness error: {o.task.folder}: {o.detail}")
+            self.stdout.write(f"error (not a verdict): {o.label}{o.task.label}: {o.detail}")
         rows = {
             a: {r.name: r for r in load_rows(root / a)} if (root / a).is_dir() else {}
             for a in CONTROL_AGENTS
