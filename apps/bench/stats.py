@@ -41,7 +41,10 @@ def wilson(passed: int, total: int, z: float = Z95) -> Interval | None:
     denominator = 1 + z * z / total
     centre = (p + z * z / (2 * total)) / denominator
     half = z * math.sqrt(p * (1 - p) / total + z * z / (4 * total * total)) / denominator
-    return Interval(max(0.0, centre - half), min(1.0, centre + half))
+    # At 0 % and 100 % the bound is exactly 0 or 1 (the formula leaves a rounding error).
+    low = 0.0 if passed == 0 else max(0.0, centre - half)
+    high = 1.0 if passed == total else min(1.0, centre + half)
+    return Interval(low, high)
 
 
 def _resampled_medians(values: list[float], rng: random.Random, times: int) -> list[float]:
