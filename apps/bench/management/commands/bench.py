@@ -413,7 +413,9 @@ class Command(BaseCommand):
         self.stdout.write(text, ending="")
         if html:
             if len(sets) == 1:
-                report.write_report(Path(html), sets[0].name, sets[0].rows, window)
+                report.write_report(
+                    Path(html), sets[0].name, sets[0].rows, window, result_set=sets[0]
+                )
             else:
                 report.write_comparison_report(Path(html), sets, window)
             if not csv:
