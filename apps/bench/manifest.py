@@ -92,8 +92,8 @@ def build_manifest(
 ) -> dict[str, Any]:
     """The manifest after one more `bench run` (pure: the caller reads and writes the file)."""
     this_run = {
-        "started_at": started_at.isoformat(),
-        "finished_at": finished_at.isoformat(),
+        "started_at": started_at.isoformat(timespec="seconds"),
+        "finished_at": finished_at.isoformat(timespec="seconds"),
         "version": version,
         "commit": commit,
         "config": config,

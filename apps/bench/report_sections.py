@@ -51,7 +51,7 @@ def _produced_by(config: dict[str, Any]) -> str:
 def manifest_section(rs: ResultSet) -> str:
     """What produced the set (manifest.json), with the counts by outcome of what is graded."""
     counts = outcome_counts(rs.rows, rs.errors)
-    tally = ", ".join(f"{n} {outcome}" for outcome, n in counts.items())
+    tally = f"{counts['passed']} passed, {counts['failed']} failed, {counts['error']} errors"
     m = rs.manifest
     if m is None:
         return (

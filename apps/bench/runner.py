@@ -380,12 +380,14 @@ class Harness:
                 self.client.close_run(run["id"])
             raise Interrupted(task.scenario_id)
         verdict = self.client.evaluate(run["id"])
-        exported = self.client.export(run["id"])  # a header line, then every event
+        with contextlib.suppress(HarnessError):
+            self.client.close_run(run["id"])
+        # Exported once closed, so the log it saves (and the verdict it records for `replay`)
+        # is the run's last: a header line, then every event.
+        exported = self.client.export(run["id"])
         with open(task.folder / EVENTS, "w", encoding="utf-8") as log:
             for line in exported:
                 log.write(json.dumps(line, default=str) + "\n")
-        with contextlib.suppress(HarnessError):
-            self.client.close_run(run["id"])
         result = {
             **verdict,
             "scenario_id": task.scenario_id,

@@ -287,7 +287,11 @@ class Command(BaseCommand):
         trials,
         **_,
     ):
-        cfg = load_config(config) if agent is None or Path(config).exists() else BenchConfig(None)
+        if agent is None or Path(config).exists():
+            # A built-in agent (--agent) stands in for the config's, which may then be absent.
+            cfg = load_config(config, require_agent=agent is None)
+        else:
+            cfg = BenchConfig(None)
         if agent is None and cfg.agent_subprocess is None and cfg.reference_agent is None:
             raise _usage(f"{config}: agent_subprocess: is required (or pass --agent)")
         changes = reference_changes(cfg, agent, model, model_url)
@@ -395,7 +399,7 @@ class Command(BaseCommand):
 
         if config is None and Path(DEFAULT_CONFIG).exists():
             config = DEFAULT_CONFIG
-        cfg = load_config(config) if config else BenchConfig(None)
+        cfg = load_config(config, require_agent=False) if config else BenchConfig(None)
         window = cfg.reaction_window if timely_window is None else timely_window
         if not window > 0:  # also rejects NaN
             raise _usage(f"--timely-window must be a positive number of seconds, got {window}")
