@@ -445,7 +445,13 @@ class Command(BaseCommand):
                 url, token=settings.SENTINEL_CONTROL_TOKEN, timeout=cfg.http_timeout
             )
             try:
-                listing = discover(client, filter=filter)
+                invalid: list[dict] = []
+                listing = discover(client, filter=filter, skipped=invalid)
+                for entry in invalid:
+                    self.stdout.write(f"Skipping {entry['path']} (invalid: {entry['error']})")
+                problems = preflight.server_problems(listing, url)
+                if problems:  # nothing validated is no proof of anything
+                    raise _preflight_failed(problems)
                 clock = "live" if real_time else "virtual"
                 harnesses = {
                     a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a, clock=clock)
