@@ -12,6 +12,8 @@ import pytest
 import yaml
 from django.core.management import CommandError, call_command
 
+from apps.bench.models import TaskResult
+
 pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
 CRASH = [sys.executable, "-c", "raise SystemExit('my_agent: cannot import my_model')"]
@@ -50,6 +52,10 @@ def test_a_crash_before_the_task_is_an_error_never_cached_and_retried(
         folder = results / "setup" / "micromail" / name
         assert not (folder / "results.json").exists()  # never cached as a result
         assert (folder / "error.txt").read_text().splitlines()[0] == cause
+
+    # The database keeps them as errors, without a success either way.
+    mirrored = TaskResult.objects.get(benchmark__name="setup", scenario_id="bench-noop")
+    assert mirrored.success is None and mirrored.error.startswith(cause)
 
     # Grading counts them apart: no rate includes them.
     table, error = bench("grade", "setup", *where)

@@ -15,6 +15,7 @@ import pytest
 import yaml
 from django.core.management import CommandError, call_command
 
+from apps.bench.models import TaskResult
 from tests.bench.conftest import shorten
 from tests.conftest import OUR_SCENARIOS
 
@@ -96,6 +97,11 @@ def test_three_trials_give_intervals_pass_at_k_and_a_manifest(ten_scenarios, tmp
     assert len(manifest["catalog_hashes"]) == 1
     assert manifest["counts"] == {"passed": 18, "failed": 12, "error": 0}
     assert manifest["machine"]["cpus"] >= 1 and manifest["started_at"] < manifest["finished_at"]
+
+    # The database mirrors every trial apart.
+    mirrored = TaskResult.objects.filter(benchmark__name="sleepy")
+    assert mirrored.count() == 30
+    assert sorted(mirrored.values_list("trial", flat=True).distinct()) == [1, 2, 3]
 
     # Grade: intervals, pass@3 / pass^3, by environment.
     text = bench("grade", "sleepy", *where)
