@@ -1,8 +1,12 @@
-"""The README's scripted-model demo, run as written on a fresh copy of the repository: its
-`demo.yaml`, its scripted model server in the background and its `bench run`. The one change:
-port 8765 becomes a port this test chose, so that parallel test runs cannot collide on it.
-Once with the port already held by another program (refused with one line, nothing run), then
-on a free port (the `wait_for` agent drives Chromium, sees Kevin Lee's email and reports)."""
+"""The README's bench examples that tests/first_hour/test_readme_harness.py does not run, run
+as written on a fresh copy of the repository (the examples needing a hosted model or Ollama
+cannot run here).
+
+The scripted-model demo: its `demo.yaml`, its scripted model server in the background and its
+`bench run`. The one change: port 8765 becomes a port this test chose, so that parallel test
+runs cannot collide on it. Once with the port already held by another program (refused with
+one line, nothing run), then on a free port (the `wait_for` agent drives Chromium, sees Kevin
+Lee's email and reports). And `bench validate`, on every scenario of the repository."""
 
 from __future__ import annotations
 
@@ -15,9 +19,14 @@ import subprocess
 
 import pytest
 
-from tests.first_hour.test_readme_harness import code_blocks, fresh_clone, readme_section
+from tests.first_hour.test_readme_harness import (
+    code_blocks,
+    command_line,
+    fresh_clone,
+    readme_section,
+)
 
-pytestmark = [pytest.mark.e2e, pytest.mark.browser]
+pytestmark = pytest.mark.e2e
 
 TASK = "micromail-sender-absolute-passive"
 
@@ -44,6 +53,7 @@ def run_demo(clone, port: int) -> subprocess.CompletedProcess:
     )  # fmt: skip
 
 
+@pytest.mark.browser
 def test_the_readme_demo_runs_and_refuses_a_taken_port(tmp_path):
     assert "--port 8765 --background &&" in demo_script()
     clone = fresh_clone(tmp_path / "clone")
@@ -80,3 +90,19 @@ def test_the_readme_demo_runs_and_refuses_a_taken_port(tmp_path):
     finally:
         if model:
             os.kill(int(model.group(1)), signal.SIGTERM)
+
+
+def test_the_readme_validate_command_proves_every_scenario(tmp_path):
+    blocks = code_blocks(readme_section("Benchmarking an agent"))
+    commands = next(code for lang, code, _ in blocks if lang == "bash" and "bench run" in code)
+    validate = command_line(commands, ".venv/bin/python manage.py bench validate")
+    clone = fresh_clone(tmp_path / "clone")
+    done = subprocess.run(
+        validate, cwd=clone, env=user_env(), capture_output=True, text=True, timeout=900
+    )
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr
+    assert re.fullmatch(
+        r"bench_validate: scenarios=100 oracle=100/100 early_fail=80/80 never_ok=100/100 "
+        r"sleeper=39/100 wall_s=[\d.]+ clock=virtual",
+        done.stdout.strip().splitlines()[-1],
+    )
