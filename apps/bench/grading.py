@@ -809,11 +809,11 @@ def outcome_counts(rows: list[Row], errors: list[TaskError]) -> dict[str, int]:
 
 
 def _difference_cells(
-    name: str, first: str, other: str, diff: str, interval: Interval | None
+    name: str, first: str, other: str, diff: str, interval: Interval | None, unit: str
 ) -> list[str]:
     if interval is None:
         return [name, first, other, diff, "N/A", "too few to say"]
-    bounds = f"{interval.low:+.1f}–{interval.high:+.1f}"
+    bounds = f"{interval.low:+.1f} to {interval.high:+.1f}{unit}"
     verdict = "within the noise" if interval.contains(0.0) else "beyond the noise"
     return [name, first, other, diff, bounds, verdict]
 
@@ -840,6 +840,7 @@ def difference_table(sets: list[ResultSet], window: float) -> TableCells:
                     str(ro),
                     "N/A" if diff is None else f"{100 * diff:+.1f} pts",
                     None if interval is None else Interval(100 * interval.low, 100 * interval.high),
+                    " pts",
                 )
             )
         interval = bootstrap_median_difference(sb.reaction, so.reaction)
@@ -851,6 +852,7 @@ def difference_table(sets: list[ResultSet], window: float) -> TableCells:
                 _seconds(mo),
                 "N/A" if mb is None or mo is None else f"{mb - mo:+.1f}s",
                 interval,
+                "s",
             )
         )
     return header, lines

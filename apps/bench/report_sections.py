@@ -56,8 +56,8 @@ def manifest_section(rs: ResultSet) -> str:
     if m is None:
         return (
             f'<div class="manifest" id="manifest-{escape(rs.name)}"><p>Result set '
-            f"<b>{escape(rs.name)}</b>: no manifest.json (written by bench run since results "
-            f"carry one); outcomes: {escape(tally)}</p></div>"
+            f"<b>{escape(rs.name)}</b>: no manifest.json (a result set older than manifests, "
+            f"or not written by bench run); outcomes: {escape(tally)}</p></div>"
         )
     config = m.get("config") or {}
     host = m.get("machine") or {}
