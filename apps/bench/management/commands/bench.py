@@ -8,6 +8,7 @@ import signal
 import tempfile
 import threading
 import time
+from datetime import datetime
 from pathlib import Path
 
 from django.conf import settings
@@ -26,7 +27,7 @@ from apps.bench.config import (
     ReferenceAgent,
     load_config,
 )
-from apps.bench.grading import error_lines
+from apps.bench.grading import TaskError, error_lines, load_rows, outcome_counts, task_errors
 from apps.bench.manifest import (
     build_manifest,
     git_commit,
@@ -42,6 +43,7 @@ from apps.bench.runner import (
     BenchError,
     Harness,
     Progress,
+    Task,
     discover,
     run_pool,
 )
@@ -100,12 +102,35 @@ def config_as_used(cfg: BenchConfig, agent: str | None, trials: int) -> dict:
     return used
 
 
-def catalog_hashes(run_dir: Path) -> list[str]:
-    """The catalogs the tasks of a result set ran on (from their results.json)."""
-    from apps.bench.grading import load_rows
-
+def update_manifest(
+    name: str,
+    run_dir: Path,
+    used: dict,
+    tasks: list[Task],
+    started_at: datetime,
+    base_dir: Path,
+    errors: list[TaskError],
+) -> None:
+    """`manifest.json` after this `bench run`: what produced the set, and its counts now."""
     rows = load_rows(run_dir) if run_dir.is_dir() else []
-    return sorted({str(r.result["catalog_hash"]) for r in rows if r.result.get("catalog_hash")})
+    write_manifest(
+        run_dir,
+        build_manifest(
+            read_manifest(run_dir),
+            name=name,
+            config=used,
+            version=project_version(base_dir),
+            commit=git_commit(base_dir),
+            scenarios={t.scenario_id: scenario_hash(t.spec) for t in tasks},
+            catalog_hashes=sorted(
+                {str(r.result["catalog_hash"]) for r in rows if r.result.get("catalog_hash")}
+            ),
+            started_at=started_at,
+            finished_at=timezone.now(),
+            counts=outcome_counts(rows, errors),
+            host=machine(),
+        ),
+    )
 
 
 def reference_changes(
@@ -351,7 +376,6 @@ class Command(BaseCommand):
                 outcomes = run_pool([(harness, t) for t in todo], cfg.parallel, progress)
             finally:
                 client.close()
-        from apps.bench.grading import load_rows, outcome_counts, task_errors
         from apps.bench.records import record_benchmark
 
         reference = cfg.reference_agent
@@ -359,23 +383,7 @@ class Command(BaseCommand):
         used = config_as_used(cfg, agent, trials)
         record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=used)
         errors = task_errors(run_dir) if run_dir.is_dir() else []
-        totals = outcome_counts(load_rows(run_dir) if run_dir.is_dir() else [], errors)
-        write_manifest(
-            run_dir,
-            build_manifest(
-                read_manifest(run_dir),
-                name=name,
-                config=used,
-                version=project_version(base_dir),
-                commit=git_commit(base_dir),
-                scenarios={t.scenario_id: scenario_hash(t.spec) for t in tasks},
-                catalog_hashes=catalog_hashes(run_dir),
-                started_at=started_at,
-                finished_at=timezone.now(),
-                counts=totals,
-                host=machine(),
-            ),
-        )
+        update_manifest(name, run_dir, used, tasks, started_at, base_dir, errors)
         counts = {s: sum(o.status == s for o in outcomes) for s in ("passed", "failed", "error")}
         self.stdout.write(
             f"Done. ran={len(outcomes)} passed={counts['passed']} failed={counts['failed']} "
@@ -430,7 +438,6 @@ class Command(BaseCommand):
     def handle_validate(
         self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, real_time, **_
     ):
-        from apps.bench.grading import load_rows
 
         sf = validate_speed_factor(speed_factor)
         if parallel < 1:
