@@ -438,7 +438,6 @@ class Command(BaseCommand):
     def handle_validate(
         self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, real_time, **_
     ):
-
         sf = validate_speed_factor(speed_factor)
         if parallel < 1:
             raise _usage(f"--parallel must be >= 1, got {parallel}")
