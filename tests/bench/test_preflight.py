@@ -161,3 +161,11 @@ NEVER = {"views": 0, "actions": 0, "contact_get_time": None, "contact_post_time"
 )
 def test_the_outcome_rule(verdict, exit_code, killed, cause):
     assert error_cause(verdict, exit_code, killed) == cause
+
+
+def test_an_unreachable_server_stops_at_preflight(tmp_path):
+    (tmp_path / "my_agent.py").write_text("print('hi')\n")
+    config = {"agent_subprocess": ["python", "my_agent.py", "__TASK_URL__"]}
+    server = f"http://127.0.0.1:{free_port()}"
+    line = stopped_at_preflight(bench_run(tmp_path, config, "--server-url", server), tmp_path)
+    assert line.startswith(f"CommandError: preflight: server_url: {server}: not reachable (")
