@@ -856,3 +856,17 @@ def difference_table(sets: list[ResultSet], window: float) -> TableCells:
             )
         )
     return header, lines
+
+
+def provenance_line(rs: ResultSet) -> str:
+    """One line from the set's manifest.json: what produced it (the HTML report shows it all)."""
+    m = rs.manifest
+    if m is None:
+        return f"\nProduced by: unknown (no {rs.name}/manifest.json)\n"
+    config = m.get("config") or {}
+    return (
+        f"\nProduced by: version {m.get('version')}, commit {m.get('commit')}, "
+        f"speed factor {config.get('speed_factor')}, trials {config.get('trials', 1)}, "
+        f"{m.get('started_at')} – {m.get('finished_at')} on {(m.get('machine') or {}).get('host')} "
+        f"(manifest.json)\n"
+    )

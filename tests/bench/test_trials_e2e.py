@@ -114,6 +114,10 @@ def test_three_trials_give_intervals_pass_at_k_and_a_manifest(ten_scenarios, tmp
         share = "100.0% (3/3)" if category == "passive" else "0.0% (0/3)"
         assert re.search(rf"{environment} +\| 3 +\| {re.escape(share)} \[", by_environment)
     assert re.search(r"median reaction time +\| [\d.]+s \[[\d.]+s–[\d.]+s\] \(n=18\)", text)
+    assert (
+        f"Produced by: version 0.1.0, commit {manifest['commit']}, speed factor 4.0, trials 3"
+        in text
+    )
 
     # A harness result replays: import its events.jsonl, regrade from scratch, same verdict.
     for folder in (passive / "trial-2", results / "sleepy" / "microhub" / "t-microhub"):

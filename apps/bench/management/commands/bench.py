@@ -418,6 +418,7 @@ class Command(BaseCommand):
                 grading.render_csv(one.rows)
                 if csv
                 else grading.render_table(one.rows, one.errors, window)
+                + grading.provenance_line(one)
             )
         else:
             render = grading.render_comparison_csv if csv else grading.render_comparison
