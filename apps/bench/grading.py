@@ -218,10 +218,6 @@ def task_errors(run_dir: Path) -> list[TaskError]:
     ]
 
 
-def error_tasks(run_dir: Path) -> list[str]:
-    return sorted({e.name for e in task_errors(run_dir)})
-
-
 # --- statistics ------------------------------------------------------------------------------
 
 
