@@ -405,7 +405,7 @@ def _fmt1(value: float | None) -> str:
     return "" if value is None else f"{value:.1f}"
 
 
-def render_csv(rows: list[Row]) -> str:
+def render_csv(rows: list[Row], errors: list[TaskError] | None = None) -> str:
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(COLUMNS)
@@ -437,6 +437,7 @@ def render_csv(rows: list[Row]) -> str:
         ("Average Views Per Minute", _fmt1(mean(s.views_per_min))),
         ("Average Actions Per Minute", _fmt1(mean(s.actions_per_min))),
     ]
+    pairs.append(("Errors Not Graded", len(errors or [])))
     writer.writerows(pairs)
     return buffer.getvalue()
 
@@ -632,7 +633,7 @@ def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
     for prefix in ("cost_usd", "tool_calls", "tokens"):
         header += [f"{prefix}_{h}" for h in STAT_HEADERS]
     header += ["unpriced_tasks", "reaction_n", "reaction_mean_s", "reaction_median_s"]
-    header += ["timely_window_s"]
+    header += ["timely_window_s", "error_tasks"]
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(header)
@@ -646,7 +647,7 @@ def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
             + stats(s.tool_calls)
             + stats(s.total_tokens)
             + [s.unpriced, len(s.reaction), _fmt1(mean(s.reaction)), _fmt1(median(s.reaction))]
-            + [f"{window:g}"]
+            + [f"{window:g}", len(rs.errors)]
         )
     return buffer.getvalue()
 

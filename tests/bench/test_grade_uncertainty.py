@@ -88,3 +88,13 @@ def test_errors_are_listed_with_their_cause_and_counted_in_no_rate(results):
     )
     by_environment = text.split("By environment:")[1].split("By category:")[0]
     assert re.search(r"microchat +\| 20 +\| 90\.0% \(18/20\)", by_environment)
+
+
+def test_the_csv_counts_errors_apart(results):
+    errored = results / "steady" / "micromail" / "task-40"
+    errored.mkdir(parents=True)
+    (errored / "error.txt").write_text("the agent reported its environment failed (exit code 75)\n")
+    out = io.StringIO()
+    call_command("bench", "grade", "steady", "--csv", "--results-dir", str(results), stdout=out)
+    summary = dict(row.split(",", 1) for row in out.getvalue().split("\n\n")[1].splitlines())
+    assert summary["Total Tasks"] == "40" and summary["Errors Not Graded"] == "1"

@@ -415,7 +415,7 @@ class Command(BaseCommand):
         if len(sets) == 1:  # one set: the upstream table, as before
             (one,) = sets
             text = (
-                grading.render_csv(one.rows)
+                grading.render_csv(one.rows, one.errors)
                 if csv
                 else grading.render_table(one.rows, one.errors, window)
                 + grading.provenance_line(one)
