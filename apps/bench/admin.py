@@ -24,6 +24,7 @@ class TaskResultInline(admin.TabularInline):
     model = TaskResult
     fields = (
         "scenario_id",
+        "trial",
         "environment",
         "category",
         "success",
@@ -91,6 +92,7 @@ class BenchmarkRunAdmin(admin.ModelAdmin):
 class TaskResultAdmin(admin.ModelAdmin):
     list_display = (
         "scenario_id",
+        "trial",
         "benchmark",
         "environment",
         "category",

@@ -15,6 +15,10 @@ sleeps); a virtual run's clock is moved by the agent itself through the control 
 on the way firing in order, so a whole scenario takes as long as its requests (`bench validate`
 without `--real-time`).
 
+A request of their own that fails or times out (a loaded machine) is not a verdict on the
+scenario: they exit with 75 (EX_TEMPFAIL, apps/bench/outcomes.py), the harness counts the task
+as an error and `bench validate` runs it again.
+
 Standard library only, so a subprocess starts fast and needs no Django.
 """
 
@@ -25,10 +29,12 @@ import json
 import os
 import sys
 import time
+import urllib.error
 import urllib.parse
 import urllib.request
 
 AGENTS = ("oracle", "early", "never", "sleeper")
+SETUP_FAILED = 75  # apps.bench.outcomes.SETUP_FAILED (not imported: this module needs no Django)
 HTTP_TIMEOUT_S = 20.0
 CONDITION_MARGIN_S = 0.5  # wall seconds after condition_at, so the contact is never early
 SLEEPER_MARGIN_S = 5.0  # wall seconds before the deadline
@@ -101,6 +107,14 @@ def perform(actions_url: str, solution: list[dict]) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
+    try:
+        return play(argv)
+    except (urllib.error.URLError, OSError) as error:  # URLError, timeouts, resets
+        log(f"stopped: a request of the control agent failed: {error}")
+        return SETUP_FAILED
+
+
+def play(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m apps.bench.agents")
     parser.add_argument("agent", choices=AGENTS)
     parser.add_argument("--task-url", required=True)

@@ -69,5 +69,9 @@ class ControlClient:
     def events(self, run_id: int) -> list[dict[str, Any]]:
         return self.request("GET", f"/api/runs/{run_id}/events/")
 
+    def export(self, run_id: int) -> list[dict[str, Any]]:
+        """The run as `export_run` writes it: a header (run, scenario, verdict), then its events."""
+        return self.request("GET", f"/api/runs/{run_id}/export/")
+
     def close_run(self, run_id: int) -> None:
         self.request("POST", f"/api/runs/{run_id}/close/")

@@ -296,10 +296,11 @@ def parse_config(data: Any, *, source: str = "config", require_agent: bool = Tru
     )
 
 
-def load_config(path: str | Path) -> BenchConfig:
+def load_config(path: str | Path, *, require_agent: bool = True) -> BenchConfig:
     path = Path(path)
     try:
         data = read_yaml(path, "config file")
     except YamlFileError as exc:
         raise ConfigError(str(exc)) from None
-    return dataclasses.replace(parse_config(data, source=str(path)), folder=path.resolve().parent)
+    config = parse_config(data, source=str(path), require_agent=require_agent)
+    return dataclasses.replace(config, folder=path.resolve().parent)

@@ -24,7 +24,17 @@ from pathlib import Path
 from typing import Any
 
 from apps.bench.config import BenchConfig, input_tokens, output_tokens
-from apps.bench.runner import COSTS, ERROR, RESULTS, BenchError
+from apps.bench.manifest import read_manifest
+from apps.bench.runner import COSTS, ERROR, RESULTS, BenchError, error_cause_of
+from apps.bench.stats import (
+    Interval,
+    bootstrap_median,
+    bootstrap_median_difference,
+    newcombe_difference,
+    pass_at_k,
+    pass_hat_k,
+    wilson,
+)
 from events.timing import REACTION_WINDOW
 
 COLUMNS = (
@@ -61,6 +71,11 @@ class Row:
     result: dict[str, Any] = field(default_factory=dict)
     costs: dict[str, Any] | None = None
     folder: Path | None = None  # the task's result folder (transcript, screenshots, output)
+    trial: int = 1  # bench run --trials: which of the task's runs this is
+
+    @property
+    def label(self) -> str:
+        return self.name if self.trial == 1 else f"{self.name} (trial {self.trial})"
 
     @property
     def is_noop(self) -> bool:
@@ -123,8 +138,7 @@ def load_rows(
     if not run_dir.is_dir():
         raise BenchError(f"results folder not found: {run_dir}")
     rows = []
-    for path in sorted(run_dir.glob(f"*/*/{RESULTS}")):
-        name = path.parent.name
+    for path, environment, name, trial in _result_files(run_dir, RESULTS):
         if (task is not None and name != task) or (filter and filter.lower() not in name.lower()):
             continue
         result = _read_json(path)
@@ -145,7 +159,7 @@ def load_rows(
         rows.append(
             Row(
                 name=name,
-                environment=path.parent.parent.name,
+                environment=environment,
                 category=category,
                 success=bool(result.get("success")),
                 evaluation_time=result.get("evaluation_time"),
@@ -162,6 +176,7 @@ def load_rows(
                 result=result,
                 costs=costs,
                 folder=path.parent,
+                trial=trial,
             )
         )
     if not rows and (task or filter):
@@ -169,10 +184,38 @@ def load_rows(
     return rows
 
 
-def error_tasks(run_dir: Path) -> list[str]:
-    return sorted(
-        p.parent.name for p in run_dir.glob(f"*/*/{ERROR}") if not (p.parent / RESULTS).exists()
-    )
+def _result_files(run_dir: Path, filename: str) -> list[tuple[Path, str, str, int]]:
+    """(path, environment, task name, trial) of every `filename` of a results tree, in order:
+    trial 1 in `<env>/<task>/`, trial n in `<env>/<task>/trial-<n>/`."""
+    found = [(p, p.parent.parent.name, p.parent.name, 1) for p in run_dir.glob(f"*/*/{filename}")]
+    for path in run_dir.glob(f"*/*/trial-*/{filename}"):
+        number = path.parent.name.removeprefix("trial-")
+        if number.isdigit() and int(number) > 1:
+            found.append(
+                (path, path.parent.parent.parent.name, path.parent.parent.name, int(number))
+            )
+    return sorted(found, key=lambda entry: (entry[1], entry[2], entry[3]))
+
+
+@dataclass(frozen=True)
+class TaskError:
+    """A task whose outcome is `error` (error.txt, no results.json): not graded, not counted."""
+
+    name: str
+    environment: str
+    trial: int
+    cause: str
+
+    def __str__(self) -> str:
+        return self.name if self.trial == 1 else f"{self.name} (trial {self.trial})"
+
+
+def task_errors(run_dir: Path) -> list[TaskError]:
+    return [
+        TaskError(name, environment, trial, error_cause_of(path.parent))
+        for path, environment, name, trial in _result_files(run_dir, ERROR)
+        if not (path.parent / RESULTS).exists()
+    ]
 
 
 # --- statistics ------------------------------------------------------------------------------
@@ -280,7 +323,7 @@ def _cell(value: Any) -> str:
 
 def row_values(row: Row) -> list[Any]:
     return [
-        row.name,
+        row.label,
         row.evaluation_time,
         row.success,
         row.stop_time,
@@ -320,9 +363,11 @@ def clocks(rows: list[Row]) -> str:
     return ", ".join(f"{clock} {n}" for clock, n in sorted(counts.items()))
 
 
-def render_table(rows: list[Row], errors: list[str] | None = None) -> str:
+def render_table(
+    rows: list[Row], errors: list[TaskError] | None = None, window: float = REACTION_WINDOW
+) -> str:
     out = aligned(list(COLUMNS), [[_cell(v) for v in row_values(r)] for r in rows])
-    s = summarise(rows)
+    s = summarise(rows, window)
     out += [
         "",
         f"Total Tasks: {s.total}",
@@ -354,8 +399,8 @@ def render_table(rows: list[Row], errors: list[str] | None = None) -> str:
             else "N/A"
         ),
     ]
-    if errors:
-        out.append(f"Harness errors (not graded): {len(errors)} — {', '.join(errors)}")
+    out += uncertainty_lines(rows, window)
+    out += error_lines(errors or [])
     return "\n".join(out) + "\n"
 
 
@@ -373,7 +418,7 @@ def _fmt1(value: float | None) -> str:
     return "" if value is None else f"{value:.1f}"
 
 
-def render_csv(rows: list[Row]) -> str:
+def render_csv(rows: list[Row], errors: list[TaskError] | None = None) -> str:
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(COLUMNS)
@@ -405,6 +450,7 @@ def render_csv(rows: list[Row]) -> str:
         ("Average Views Per Minute", _fmt1(mean(s.views_per_min))),
         ("Average Actions Per Minute", _fmt1(mean(s.actions_per_min))),
     ]
+    pairs.append(("Errors Not Graded", len(errors or [])))
     writer.writerows(pairs)
     return buffer.getvalue()
 
@@ -418,7 +464,8 @@ class ResultSet:
 
     name: str
     rows: list[Row]
-    errors: list[str]
+    errors: list[TaskError]
+    manifest: dict[str, Any] | None = None
 
 
 def load_result_sets(
@@ -448,7 +495,8 @@ def load_result_sets(
         ResultSet(
             name,
             load_rows(results_dir / name, config, task=task, filter=filter),
-            [] if task or filter else error_tasks(results_dir / name),
+            [] if task or filter else task_errors(results_dir / name),
+            read_manifest(results_dir / name),
         )
         for name in names
     ]
@@ -569,11 +617,10 @@ def render_comparison(sets: list[ResultSet], window: float) -> str:
     )
     if unpriced_models(sets):
         out += ["", f"No price in the config for model(s): {', '.join(unpriced_models(sets))}"]
+    out += ["", "Differences beyond the noise (95 % intervals; first set minus each other)"]
+    out += aligned(*difference_table(sets, window))
     for rs in sets:
-        if rs.errors:
-            out.append(
-                f"{rs.name}: harness errors (not graded): {len(rs.errors)} — {', '.join(rs.errors)}"
-            )
+        out += error_lines(rs.errors, prefix=f"{rs.name}: ")
     return "\n".join(out) + "\n"
 
 
@@ -600,7 +647,7 @@ def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
     for prefix in ("cost_usd", "tool_calls", "tokens"):
         header += [f"{prefix}_{h}" for h in STAT_HEADERS]
     header += ["unpriced_tasks", "reaction_n", "reaction_mean_s", "reaction_median_s"]
-    header += ["timely_window_s"]
+    header += ["timely_window_s", "error_tasks"]
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(header)
@@ -614,6 +661,223 @@ def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
             + stats(s.tool_calls)
             + stats(s.total_tokens)
             + [s.unpriced, len(s.reaction), _fmt1(mean(s.reaction)), _fmt1(median(s.reaction))]
-            + [f"{window:g}"]
+            + [f"{window:g}", len(rs.errors)]
         )
     return buffer.getvalue()
+
+
+# --- uncertainty: intervals, trials, breakdowns (stats.py) -----------------------------------
+
+
+def percent_interval(interval: Interval | None) -> str:
+    return "N/A" if interval is None else f"{100 * interval.low:.1f}–{100 * interval.high:.1f}%"
+
+
+def rate_with_interval(rate: Rate) -> str:
+    """`66.7% (4/6) [30.0–90.3%]`: the rate, its counts and its Wilson 95 % interval."""
+    if not rate.total:
+        return str(rate)
+    return f"{rate} [{percent_interval(wilson(rate.passed, rate.total))}]"
+
+
+def median_with_interval(values: list[float], fmt: Callable[[float], str]) -> str:
+    if not values:
+        return "N/A"
+    interval = bootstrap_median(values)
+    bounds = "" if interval is None else f" [{fmt(interval.low)}–{fmt(interval.high)}]"
+    return f"{fmt(median(values))}{bounds} (n={len(values)})"
+
+
+def _usd(value: float) -> str:
+    return f"${value:.4f}"
+
+
+def _secs(value: float) -> str:
+    return f"{value:.1f}s"
+
+
+def interval_table(rows: list[Row], window: float) -> TableCells:
+    """The headline figures with their 95 % intervals (Wilson for rates, bootstrap medians)."""
+    s = summarise(rows, window)
+    return ["figure", "value [95% interval]"], [
+        ["success", rate_with_interval(s.rates["overall"])],
+        [f"timely success (<= {window:g} s)", rate_with_interval(s.timely["overall"])],
+        ["median reaction time", median_with_interval(s.reaction, _secs)],
+        ["median cost per task", median_with_interval(s.costs, _usd)],
+        ["median tokens per task", median_with_interval(s.total_tokens, lambda v: f"{v:.0f}")],
+    ]
+
+
+def _by_task(rows: list[Row]) -> dict[tuple[str, str], list[Row]]:
+    tasks: dict[tuple[str, str], list[Row]] = {}
+    for row in rows:
+        tasks.setdefault((row.environment, row.name), []).append(row)
+    return tasks
+
+
+def trials_of(rows: list[Row]) -> int:
+    """The number of trials the set was run with: the most any task has (1 without --trials)."""
+    return max((len(trials) for trials in _by_task(rows).values()), default=0)
+
+
+@dataclass(frozen=True)
+class PassK:
+    k: int
+    tasks: int  # tasks with at least k graded trials (the others are left out)
+    left_out: int
+    at_k: float | None  # pass@k, averaged over tasks
+    all_k: float | None  # pass^k, averaged over tasks
+
+
+def pass_k(rows: list[Row], k: int | None = None) -> PassK:
+    """pass@k and pass^k over the tasks that have k graded trials (errors are not trials)."""
+    tasks = _by_task(rows)
+    k = k or trials_of(rows)
+    full = [trials for trials in tasks.values() if len(trials) >= k]
+    if not full or k < 1:
+        return PassK(k, 0, len(tasks), None, None)
+    counts = [(len(trials), sum(r.success for r in trials)) for trials in full]
+    return PassK(
+        k,
+        len(full),
+        len(tasks) - len(full),
+        statistics.fmean(pass_at_k(n, c, k) for n, c in counts),
+        statistics.fmean(pass_hat_k(n, c, k) for n, c in counts),
+    )
+
+
+def pass_k_line(rows: list[Row]) -> str | None:
+    result = pass_k(rows)
+    if result.k < 2 or result.at_k is None or result.all_k is None:
+        return None
+    left = (
+        f"; {result.left_out} task(s) with fewer graded trials left out" if result.left_out else ""
+    )
+    return (
+        f"pass@{result.k} {100 * result.at_k:.1f}%, pass^{result.k} {100 * result.all_k:.1f}% "
+        f"over {result.tasks} tasks × {result.k} trials{left}"
+    )
+
+
+def breakdown_table(
+    rows: list[Row], window: float, key: Callable[[Row], str], title: str
+) -> TableCells:
+    """One line per group (environment or category): attempts, success and timely success with
+    their intervals, the median reaction time with its interval."""
+    groups: dict[str, list[Row]] = {}
+    for row in rows:
+        groups.setdefault(key(row), []).append(row)
+    lines = []
+    for name in sorted(groups):
+        members = groups[name]
+        s = summarise(members, window)
+        lines.append(
+            [
+                name,
+                str(len(members)),
+                rate_with_interval(s.rates["overall"]),
+                rate_with_interval(s.timely["overall"]),
+                median_with_interval(s.reaction, _secs),
+            ]
+        )
+    return [title, "attempts", "success [95%]", "timely [95%]", "median reaction [95%]"], lines
+
+
+def environment_table(rows: list[Row], window: float) -> TableCells:
+    return breakdown_table(rows, window, lambda r: r.environment, "environment")
+
+
+def category_table(rows: list[Row], window: float) -> TableCells:
+    return breakdown_table(rows, window, lambda r: r.category, "category")
+
+
+def uncertainty_lines(rows: list[Row], window: float = REACTION_WINDOW) -> list[str]:
+    """The figures with their 95 % intervals, pass@k/pass^k, by environment and by category."""
+    if not rows:
+        return []
+    out = ["", "With 95 % intervals (Wilson for rates, bootstrap for medians):"]
+    out += aligned(*interval_table(rows, window))
+    line = pass_k_line(rows)
+    if line:
+        out += ["", line]
+    out += ["", "By environment:", *aligned(*environment_table(rows, window))]
+    out += ["", "By category:", *aligned(*category_table(rows, window))]
+    return out
+
+
+def error_lines(errors: list[TaskError], prefix: str = "") -> list[str]:
+    """Errors are counted apart and listed with their cause (never graded, never in a rate)."""
+    if not errors:
+        return []
+    out = ["", f"{prefix}errors (not graded, not in any rate): {len(errors)}"]
+    out += [f"  {e.environment}/{e}: {e.cause or 'no cause recorded'}" for e in errors]
+    return out
+
+
+def outcome_counts(rows: list[Row], errors: list[TaskError]) -> dict[str, int]:
+    passed = sum(r.success for r in rows)
+    return {"passed": passed, "failed": len(rows) - passed, "error": len(errors)}
+
+
+def _difference_cells(
+    name: str, first: str, other: str, diff: str, interval: Interval | None, unit: str
+) -> list[str]:
+    if interval is None:
+        return [name, first, other, diff, "N/A", "too few to say"]
+    bounds = f"{interval.low:+.1f} to {interval.high:+.1f}{unit}"
+    verdict = "within the noise" if interval.contains(0.0) else "beyond the noise"
+    return [name, first, other, diff, bounds, verdict]
+
+
+def difference_table(sets: list[ResultSet], window: float) -> TableCells:
+    """Each set against the first: a difference counts only when its 95 % interval leaves out 0
+    (Newcombe's interval for rates; a bootstrap interval for the median reaction time)."""
+    header = ["figure", "first", "other", "difference", "95% interval", "verdict"]
+    lines = []
+    base, *others = sets
+    sb = summarise(base.rows, window)
+    for rs in others:
+        so = summarise(rs.rows, window)
+        for label, rb, ro in (
+            ("success", sb.rates["overall"], so.rates["overall"]),
+            ("timely success", sb.timely["overall"], so.timely["overall"]),
+        ):
+            result = newcombe_difference(rb.passed, rb.total, ro.passed, ro.total)
+            diff, interval = result if result else (None, None)
+            lines.append(
+                _difference_cells(
+                    f"{label}: {base.name} − {rs.name}",
+                    str(rb),
+                    str(ro),
+                    "N/A" if diff is None else f"{100 * diff:+.1f} pts",
+                    None if interval is None else Interval(100 * interval.low, 100 * interval.high),
+                    " pts",
+                )
+            )
+        interval = bootstrap_median_difference(sb.reaction, so.reaction)
+        mb, mo = median(sb.reaction), median(so.reaction)
+        lines.append(
+            _difference_cells(
+                f"median reaction: {base.name} − {rs.name}",
+                _seconds(mb),
+                _seconds(mo),
+                "N/A" if mb is None or mo is None else f"{mb - mo:+.1f}s",
+                interval,
+                "s",
+            )
+        )
+    return header, lines
+
+
+def provenance_line(rs: ResultSet) -> str:
+    """One line from the set's manifest.json: what produced it (the HTML report shows it all)."""
+    m = rs.manifest
+    if m is None:
+        return f"\nProduced by: unknown (no {rs.name}/manifest.json)\n"
+    config = m.get("config") or {}
+    return (
+        f"\nProduced by: version {m.get('version')}, commit {m.get('commit')}, "
+        f"speed factor {config.get('speed_factor')}, trials {config.get('trials', 1)}, "
+        f"{m.get('started_at')} – {m.get('finished_at')} on {(m.get('machine') or {}).get('host')} "
+        f"(manifest.json)\n"
+    )

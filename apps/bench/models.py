@@ -28,9 +28,12 @@ class BenchmarkRun(models.Model):
 class TaskResult(models.Model):
     benchmark = models.ForeignKey(BenchmarkRun, on_delete=models.CASCADE, related_name="tasks")
     scenario_id = models.CharField(max_length=200)
+    trial = models.PositiveIntegerField(default=1, help_text="bench run --trials: which run")
     environment = models.CharField(max_length=64)
     category = models.CharField(max_length=64, blank=True)
-    success = models.BooleanField(null=True, help_text="null when the harness failed (see error)")
+    success = models.BooleanField(
+        null=True, help_text="null when the outcome is an error, ours or the setup's (see error)"
+    )
     reaction_time = models.FloatField(null=True, blank=True, help_text="wall seconds")
     condition_at = models.FloatField(null=True, blank=True, help_text="wall seconds")
     evaluation_time = models.FloatField(null=True, blank=True, help_text="wall seconds")
@@ -47,12 +50,13 @@ class TaskResult(models.Model):
     recorded_at = models.DateTimeField(auto_now=True)
 
     class Meta:
-        ordering = ["benchmark", "environment", "scenario_id"]
+        ordering = ["benchmark", "environment", "scenario_id", "trial"]
         constraints = [
             models.UniqueConstraint(
-                fields=["benchmark", "scenario_id"], name="bench_one_result_per_task"
+                fields=["benchmark", "scenario_id", "trial"], name="bench_one_result_per_trial"
             ),
         ]
 
     def __str__(self) -> str:
-        return f"{self.benchmark}: {self.scenario_id}"
+        trial = f" (trial {self.trial})" if self.trial != 1 else ""
+        return f"{self.benchmark}: {self.scenario_id}{trial}"

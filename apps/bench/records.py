@@ -8,9 +8,9 @@ from typing import Any
 from django.utils import timezone
 
 from apps.bench.config import BenchConfig
-from apps.bench.grading import error_tasks, load_rows
+from apps.bench.grading import load_rows, task_errors
 from apps.bench.models import BenchmarkRun, TaskResult
-from apps.bench.runner import ERROR
+from apps.bench.runner import ERROR, trial_folder
 from events.models import Run
 
 
@@ -46,6 +46,7 @@ def record_benchmark(
         TaskResult.objects.update_or_create(
             benchmark=benchmark,
             scenario_id=row.name,
+            trial=row.trial,
             defaults={
                 "environment": row.environment,
                 "category": row.category,
@@ -63,13 +64,14 @@ def record_benchmark(
                 "error": "",
             },
         )
-    for name_ in error_tasks(run_dir) if run_dir.is_dir() else []:
-        folder = next(run_dir.glob(f"*/{name_}"))
+    for error in task_errors(run_dir) if run_dir.is_dir() else []:
+        folder = trial_folder(run_dir / error.environment / error.name, error.trial)
         TaskResult.objects.update_or_create(
             benchmark=benchmark,
-            scenario_id=name_,
+            scenario_id=error.name,
+            trial=error.trial,
             defaults={
-                "environment": folder.parent.name,
+                "environment": error.environment,
                 "success": None,
                 "error": (folder / ERROR).read_text(encoding="utf-8", errors="replace")[:20000],
             },

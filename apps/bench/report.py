@@ -6,6 +6,11 @@ target time (with the y = x diagonal), cost vs target time. Several result sets 
 paper's comparison instead: success (and timely success) by category side by side, a per-task
 cost box plot on a log axis, tool-call and reaction-time tables.
 
+Both open with each set's manifest (what produced it) and give every figure its 95 %
+interval, pass@k / pass^k when a set has several trials, the breakdown by environment, and the
+errors with their causes (report_sections.py); several sets also say whether their differences
+are larger than the noise.
+
 Both end with a per-task table whose rows link to the task's transcript, rendered as its own
 page in `<report stem>-transcripts/` beside the report (apps/bench/transcripts.py).
 """
@@ -31,6 +36,13 @@ from apps.bench.grading import (
     timely_table,
     tool_calls_table,
     unpriced_models,
+)
+from apps.bench.report_sections import (
+    SECTION_STYLE,
+    differences_section,
+    errors_section,
+    manifest_section,
+    uncertainty_section,
 )
 from apps.bench.transcripts import has_transcript, relative_href, render_transcript_page
 from events.timing import REACTION_WINDOW
@@ -291,23 +303,34 @@ def render_report(
     rows: list[Row],
     window: float = REACTION_WINDOW,
     links: TranscriptLinks | None = None,
+    result_set: ResultSet | None = None,
 ) -> str:
+    rs = result_set or ResultSet(name, rows, [])
     plots = [success_plot(rows), cost_plot(rows), time_plot(rows), cost_time_plot(rows)]
     return (
         '<!doctype html>\n<html lang="en"><head><meta charset="utf-8">'
-        f"<title>Benchmark report: {escape(name)}</title><style>{STYLE}</style></head><body>"
+        f"<title>Benchmark report: {escape(name)}</title>"
+        f"<style>{STYLE}{SECTION_STYLE}</style></head><body>"
         f"<h1>Benchmark report: {escape(name)}</h1>"
-        f'<div class="plots">{"".join(plots)}</div>'
-        f"<h2>Tasks</h2><pre>{escape(render_table(rows))}</pre>"
+        f"{manifest_section(rs)}{uncertainty_section(rs, window)}"
+        f'<div class="plots">{"".join(plots)}</div>{errors_section(rs)}'
+        f"<h2>Tasks</h2><pre>{escape(render_table(rows, rs.errors, window))}</pre>"
         f"<h2>Per task</h2>{_timely_note(window)}"
-        f"{tasks_table([ResultSet(name, rows, [])], window, links or {})}"
+        f"{tasks_table([rs], window, links or {})}"
         "</body></html>\n"
     )
 
 
-def write_report(path: Path, name: str, rows: list[Row], window: float = REACTION_WINDOW) -> None:
-    links = write_transcripts(path, [ResultSet(name, rows, [])], window)
-    path.write_text(render_report(name, rows, window, links), encoding="utf-8")
+def write_report(
+    path: Path,
+    name: str,
+    rows: list[Row],
+    window: float = REACTION_WINDOW,
+    result_set: ResultSet | None = None,
+) -> None:
+    rs = result_set or ResultSet(name, rows, [])
+    links = write_transcripts(path, [rs], window)
+    path.write_text(render_report(name, rows, window, links, rs), encoding="utf-8")
 
 
 def write_comparison_report(path: Path, sets: list[ResultSet], window: float) -> None:
@@ -512,15 +535,19 @@ def render_comparison_report(
     )
     return (
         '<!doctype html>\n<html lang="en"><head><meta charset="utf-8">'
-        f"<title>Benchmark comparison: {escape(names)}</title><style>{STYLE}</style></head><body>"
+        f"<title>Benchmark comparison: {escape(names)}</title>"
+        f"<style>{STYLE}{SECTION_STYLE}</style></head><body>"
         f"<h1>Benchmark comparison: {escape(names)}</h1>"
+        f"{''.join(manifest_section(rs) for rs in sets)}"
         f'<p class="legend">{legend}</p>{_timely_note(window)}'
+        f"{differences_section(sets, window)}"
         f"<h2>Success by category</h2>{success}"
         f"<h2>Timely success by category</h2>{timely}"
         f'<div class="plots">{"".join(plots)}</div>'
         f"<h2>Cost per task (USD)</h2>{cost}{_unpriced_note(sets)}"
         f"<h2>Tool calls per task</h2>{tools}"
         f"<h2>Reaction time (passed targeted tasks)</h2>{reaction}"
+        f"{''.join(errors_section(rs) for rs in sets)}"
         f"<h2>Per task</h2>{tasks_table(sets, window, links or {})}"
         "</body></html>\n"
     )
@@ -549,7 +576,7 @@ TASK_COLUMNS = (
 def task_facts(set_name: str, row: Row, window: float) -> list[tuple[str, str]]:
     """A task's cells in the per-task table (TASK_COLUMNS), as (label, value) pairs."""
     values = (
-        row.name,
+        row.label,
         row.environment,
         set_name,
         row.category,
@@ -566,7 +593,7 @@ def tasks_table(sets: list[ResultSet], window: float, links: TranscriptLinks) ->
     """Every task of every set, a task's sets next to each other, linked to its transcript."""
     entries = sorted(
         (
-            (row.environment, row.name, i, rs.name, row)
+            (row.environment, row.label, i, rs.name, row)
             for i, rs in enumerate(sets)
             for row in rs.rows
         ),
@@ -598,13 +625,14 @@ def write_transcripts(report: Path, sets: list[ResultSet], window: float) -> Tra
         for row in rs.rows:
             if not has_transcript(row.folder):
                 continue
-            page = transcripts_folder(report) / rs.name / row.environment / f"{row.name}.html"
+            stem = row.name if row.trial == 1 else f"{row.name}-trial-{row.trial}"
+            page = transcripts_folder(report) / rs.name / row.environment / f"{stem}.html"
             page.parent.mkdir(parents=True, exist_ok=True)
             facts = task_facts(rs.name, row, window)
             facts.append(("verdict", str(row.result.get("detail") or "")))
             page.write_text(
                 render_transcript_page(
-                    title=f"{row.name} — {rs.name}",
+                    title=f"{row.label} — {rs.name}",
                     facts=facts,
                     task_folder=row.folder,
                     page_folder=page.parent,
@@ -612,5 +640,5 @@ def write_transcripts(report: Path, sets: list[ResultSet], window: float) -> Tra
                 ),
                 encoding="utf-8",
             )
-            links[(rs.name, row.environment, row.name)] = relative_href(page, report.parent)
+            links[(rs.name, row.environment, row.label)] = relative_href(page, report.parent)
     return links

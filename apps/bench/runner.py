@@ -13,8 +13,13 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
    scenarios end early. At the deadline a completed run gets `grace` more seconds;
 4. the whole process group is SIGKILLed at the end, even when the agent exited by itself, so
    no background child survives into the next task;
-5. evaluate, save the log (events.jsonl), close the run, write results.json last — its
-   presence means "done". A harness failure writes error.txt instead, never a failed result.
+5. evaluate, save the log (events.jsonl, in `export_run`'s format: `import_run` reads it),
+   close the run, write results.json last — its presence means "done". A task whose outcome is
+   an error (outcomes.py: ours or the setup's, not the agent's) writes error.txt instead, never
+   a failed result.
+
+`--trials k` runs every task k times, each its own run: trial 1 in `<env>/<id>/`, trial n in
+`<env>/<id>/trial-<n>/`, so a result set run once can be given more trials later.
 """
 
 from __future__ import annotations
@@ -35,6 +40,7 @@ from typing import Any, TextIO
 
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig
+from apps.bench.outcomes import error_cause, graded_outcome
 from events.timing import MAX_CONDITION_AT
 
 RESULTS, ERROR, OUTPUT, EVENTS, COSTS = (
@@ -90,10 +96,29 @@ class Task:
     spec: dict[str, Any]
     folder: Path
     reference: str = ""  # how the server names it: the id, or the path for a repeated id
+    trial: int = 1
 
     @property
     def category(self) -> str:
         return category_of(self.spec)
+
+    @property
+    def label(self) -> str:
+        return self.scenario_id if self.trial == 1 else f"{self.scenario_id} (trial {self.trial})"
+
+
+def trial_folder(task_folder: Path, trial: int) -> Path:
+    """Where trial `trial` of a task keeps its files (trial 1: the task's own folder)."""
+    return task_folder if trial == 1 else task_folder / f"trial-{trial}"
+
+
+def error_cause_of(folder: Path) -> str:
+    """The first line of a task's error.txt: why it is an error."""
+    try:
+        with open(folder / ERROR, encoding="utf-8", errors="replace") as fh:
+            return fh.readline().strip()
+    except OSError:
+        return ""
 
 
 @dataclass
@@ -157,7 +182,7 @@ class Harness:
     def speed_factor(self) -> float:
         return self.config.speed_factor
 
-    def tasks(self, listing: list[dict]) -> list[Task]:
+    def tasks(self, listing: list[dict], trials: int = 1) -> list[Task]:
         tasks = []
         for entry in listing:
             # A file repeating another's id runs by its path, its results under its file name.
@@ -165,7 +190,10 @@ class Harness:
             spec = self.client.scenario(reference)
             name = Path(reference).stem if entry.get("duplicate_of") else spec["id"]
             folder = self.results_root / spec["environment"] / name
-            tasks.append(Task(spec["id"], spec["environment"], spec, folder, reference))
+            tasks += [
+                Task(spec["id"], spec["environment"], spec, trial_folder(folder, n), reference, n)
+                for n in range(1, trials + 1)
+            ]
         return tasks
 
     def should_skip(self, task: Task) -> str | None:
@@ -173,7 +201,9 @@ class Harness:
             return "already done" + self._speed_note(task)
         if (task.folder / ERROR).exists():
             if not self.retry_errors:
-                return "previous error"
+                return (
+                    f"previous error: {error_cause_of(task.folder)}; --retry-errors runs it again"
+                )
             (task.folder / ERROR).unlink()
         return None
 
@@ -276,6 +306,7 @@ class Harness:
         task.folder.mkdir(parents=True, exist_ok=True)
         try:
             result = self._run_task(task)
+            cause = result.pop("error_cause", None)
         except Interrupted:
             return Outcome(task, "error", "interrupted", time.monotonic() - began)
         except Exception as exc:  # any failure here is the harness's, reported as such
@@ -294,7 +325,20 @@ class Harness:
                 time.monotonic() - began,
                 output_tail=output_tail(task.folder / OUTPUT),
             )
-        status = "passed" if result["success"] else "failed"
+        if cause:
+            # Not the agent's doing: kept apart in error.txt (its cause first), never a result.
+            (task.folder / ERROR).write_text(
+                f"{cause}\n\nverdict (not counted): {json.dumps(result, default=str)}\n",
+                encoding="utf-8",
+            )
+            return Outcome(
+                task,
+                "error",
+                cause,
+                time.monotonic() - began,
+                output_tail=output_tail(task.folder / OUTPUT),
+            )
+        status = graded_outcome(result)
         return Outcome(
             task,
             status,
@@ -340,12 +384,14 @@ class Harness:
                 self.client.close_run(run["id"])
             raise Interrupted(task.scenario_id)
         verdict = self.client.evaluate(run["id"])
-        events = self.client.events(run["id"])
-        with open(task.folder / EVENTS, "w", encoding="utf-8") as log:
-            for event in events:
-                log.write(json.dumps(event, default=str) + "\n")
         with contextlib.suppress(HarnessError):
             self.client.close_run(run["id"])
+        # Exported once closed, so the log it saves (and the verdict it records for `replay`)
+        # is the run's last: a header line, then every event.
+        exported = self.client.export(run["id"])
+        with open(task.folder / EVENTS, "w", encoding="utf-8") as log:
+            for line in exported:
+                log.write(json.dumps(line, default=str) + "\n")
         result = {
             **verdict,
             "scenario_id": task.scenario_id,
@@ -358,6 +404,13 @@ class Harness:
             "agent_killed": killed,
             "agent_wall_s": round(time.monotonic() - launched, 3),
         }
+        if task.trial != 1:
+            result["trial"] = task.trial
+        header = exported[0] if exported and "format" in exported[0] else {}
+        result["catalog_hash"] = (header.get("run") or {}).get("catalog_hash")
+        cause = error_cause(verdict, process.returncode, killed)
+        if cause:
+            return {**result, "error_cause": cause}
         write_json_atomically(task.folder / RESULTS, result)
         return result
 
@@ -414,7 +467,7 @@ class Harness:
         for task in tasks:
             reason = self.should_skip(task)
             if reason:
-                progress.line(f"Skipping {task.scenario_id} ({reason})")
+                progress.line(f"Skipping {task.label} ({reason})")
             else:
                 todo.append(task)
         return todo
@@ -523,7 +576,7 @@ class Progress:
             if self.tty:
                 self._bar()
             else:
-                self._write(f"  Running {label}{task.scenario_id} ...\n")
+                self._write(f"  Running {label}{task.label} ...\n")
 
     def finished(self, outcome: Outcome) -> None:
         with self._lock:
@@ -539,12 +592,12 @@ class Progress:
                 if outcome.status != "passed":
                     self._write(
                         f"\r\033[K  {outcome.status.upper()} {outcome.label}"
-                        f"{outcome.task.scenario_id}{extra}\n{reason}"
+                        f"{outcome.task.label}{extra}\n{reason}"
                     )
                 self._bar()
             else:
                 self._write(
-                    f"  {outcome.status.upper()} {outcome.label}{outcome.task.scenario_id} ({outcome.wall_s:.1f}s){extra} "
+                    f"  {outcome.status.upper()} {outcome.label}{outcome.task.label} ({outcome.wall_s:.1f}s){extra} "
                     f"[done {self.done}/{self.total}, running {self.running}, passed {self.passed}]\n"
                     + reason
                 )

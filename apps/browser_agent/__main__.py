@@ -1,8 +1,11 @@
 """`python -m apps.browser_agent`: the reference browser agent on one task (see README.md).
 
 Exit codes: 0 the agent ended normally (whatever its reason: done, terminated, a budget spent);
-1 it could not go on (the browser would not start, the model failed after its retries);
-2 bad arguments or a missing API key.
+1 it could not go on (the model refused a request of ours, the browser failed mid-task);
+2 bad arguments or a missing API key; 75 (EX_TEMPFAIL) its environment failed, not the agent:
+the model endpoint could not be reached or kept failing (connection, timeout, 401/403/404, 429,
+5xx after the retries), or Chromium would not start — the harness counts the task as an error,
+never as the agent failing (apps/bench/outcomes.py).
 """
 
 from __future__ import annotations
@@ -28,6 +31,9 @@ from apps.browser_agent.tools import WAIT_KINDS, TaskClock, Toolbox
 from apps.browser_agent.transcript import Transcript
 
 PROGRAM = "browser_agent"
+SETUP_FAILED = 75  # apps.bench.outcomes.SETUP_FAILED: "my environment failed, not me"
+# Answers that say the endpoint is wrong or unavailable, not that our request was bad.
+ENDPOINT_STATUSES = frozenset({401, 403, 404, 405, 429})
 LOCAL_KEY = "not-needed"  # a local OpenAI-compatible server takes any key; the client needs one
 
 
@@ -126,8 +132,10 @@ def main(argv: list[str] | None = None) -> int:
     wall = WallBudget(args.max_wall, started)
     task = Task(args.task_url, args.contact_url, args.prompt)
     transcript = Transcript(args.task_dir, started=started)
+    browser_started = False
     try:
         with Browser.launch(contact_url=task.contact_url) as browser:
+            browser_started = True
             clock: TaskClock | RunClock = TaskClock(args.speed_factor)
             if args.wait_url:
                 clock = RunClock(post_json(args.wait_url), browser)
@@ -154,13 +162,21 @@ def main(argv: list[str] | None = None) -> int:
             loop.run()
     except openai.APIError as error:
         say(f"stopped: the model failed: {first_line(error)}")
-        return 1
+        return SETUP_FAILED if endpoint_failed(error) else 1
     except PlaywrightError as error:
         say(f"stopped: the browser failed ({CHROMIUM}): {first_line(error)}")
-        return 1
+        return 1 if browser_started else SETUP_FAILED
     finally:
         transcript.close()
     return 0
+
+
+def endpoint_failed(error: openai.APIError) -> bool:
+    """Whether the model endpoint itself failed (unreachable, wrong, unavailable)."""
+    if isinstance(error, openai.APIConnectionError):  # refused, reset, timed out
+        return True
+    status = getattr(error, "status_code", None)
+    return status is None or status in ENDPOINT_STATUSES or status >= 500
 
 
 def _usage_error(message: str) -> NoReturn:

@@ -6,7 +6,11 @@ test can hold an agent's costs.json against it. Run it with
 
     python -m apps.browser_agent.scripted_model --script demo.yaml [--port 8765]
 
-which prints its base URL (`http://127.0.0.1:8765/v1`) and serves until interrupted.
+which prints its base URL (`http://127.0.0.1:8765/v1`) and serves until interrupted. A port
+another program holds is refused with one line (exit 2). `--background` returns as soon as the
+server listens, leaving it serving in its own session (its pid printed, to stop it), so a
+shell script can chain the next command with `&&` and never start it against a server that is
+not there.
 
 Requests offering `tools` are the agent loop's: the turn is the number of assistant messages
 already in the conversation, so a retried request gets the same answer and the server keeps no
@@ -22,8 +26,10 @@ OpenAI's prompt cache does, and the reply's tokens from its text, tool name and 
 from __future__ import annotations
 
 import argparse
+import errno
 import json
 import math
+import os
 import re
 import sys
 import threading
@@ -552,6 +558,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--script", required=True, type=Path, help="a YAML or JSON script")
     parser.add_argument("--port", type=int, default=0, help="default: a free port")
     parser.add_argument("--host", default="127.0.0.1")
+    parser.add_argument(
+        "--background",
+        action="store_true",
+        help="return once listening; the server goes on serving in its own session",
+    )
     args = parser.parse_args(argv)
     try:
         script = load_script(args.script)
@@ -560,12 +571,20 @@ def main(argv: list[str] | None = None) -> int:
         print(f"scripted_model: error: {error}", file=sys.stderr)
         return 2
     except OSError as error:
+        taken = " (another program holds it: stop it or pick another --port)"
         print(
-            f"scripted_model: error: cannot listen on {args.host}:{args.port}: {error.strerror}",
+            f"scripted_model: error: cannot listen on {args.host}:{args.port}: {error.strerror}"
+            + (taken if error.errno == errno.EADDRINUSE else ""),
             file=sys.stderr,
         )
         return 2
-    print(server.base_url, flush=True)
+    if args.background and _detach():
+        # The parent: the socket was bound before the fork, so the server is there already.
+        print(f"{server.base_url} (pid {_child_pid}; stop it with: kill {_child_pid})", flush=True)
+        server.server_close()
+        return 0
+    if not args.background:
+        print(server.base_url, flush=True)
     try:
         server.serve_forever()
     except KeyboardInterrupt:
@@ -573,6 +592,24 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         server.server_close()
     return 0
+
+
+_child_pid = 0
+
+
+def _detach() -> bool:
+    """Fork; True in the parent. The child leaves the terminal's session and its output."""
+    global _child_pid
+    sys.stdout.flush()
+    pid = os.fork()
+    if pid:
+        _child_pid = pid
+        return True
+    os.setsid()
+    devnull = os.open(os.devnull, os.O_RDWR)
+    for fd in (0, 1, 2):
+        os.dup2(devnull, fd)
+    return False
 
 
 if __name__ == "__main__":

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 from drf_spectacular.utils import OpenApiParameter, extend_schema
 from rest_framework import mixins, viewsets
 from rest_framework import status as http
@@ -12,6 +14,7 @@ from apps.control.pagination import NewestFirst
 from apps.control.parsers import request_data
 from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
 from apps.control.throttling import RunCreationThrottle, refusal
+from apps.replay.transfer import export_lines
 from apps.scenarios.library import get_scenario, library
 from events import lifecycle
 from events.evaluation import evaluate
@@ -89,6 +92,14 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
         run = self.get_object()
         rows = Event.objects.filter(run_id=run.pk).order_by("seq").values(*EVENT_FIELDS)
         return Response(list(rows))
+
+    @extend_schema(request=None)
+    @action(detail=True, methods=["get"])
+    def export(self, request, pk=None):
+        """The run as `export_run` writes it, one list item per line: a header (the run, its
+        scenario and its recorded verdict), then every event. `import_run` reads it back."""
+        run = self.get_object()
+        return Response([json.loads(line) for line in export_lines(run)])
 
 
 class ScenarioViewSet(viewsets.ViewSet):

@@ -77,6 +77,13 @@ def import_lines(lines: Iterable[str], *, catalog_dir=None) -> tuple[Run, list[s
         raise TransferError("line 1: the file is empty; expected a run header")
     number, first = numbered[0]
     header = _json(first, number)
+    if "format" not in header and "seq" in header:
+        # A bare log: bench run saved one before its events.jsonl carried the run's header.
+        raise TransferError(
+            f"line {number}: an event, not a run header: this log has no scenario or verdict "
+            f"to import (a harness events.jsonl from before it was written as {FORMAT!r}); "
+            "export the run with export_run, or run the task again"
+        )
     if header.get("format") != FORMAT:
         raise TransferError(
             f"line {number}: field 'format' must be {FORMAT!r}, got {header.get('format')!r}"

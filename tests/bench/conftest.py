@@ -28,8 +28,9 @@ def shorten(
     condition_at: float = 40.0,
     kill_at: float = 60.0,
     end: float = 100.0,
+    environment: str = "micromail",
 ) -> dict:
-    data = json.loads((REAL / f"{source}.json").read_text())
+    data = json.loads((OUR_SCENARIOS / environment / f"{source}.json").read_text())
     old = data["condition_at"]
     factor = condition_at / (old if old is not None else 300.0)
     events = []

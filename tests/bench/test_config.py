@@ -115,7 +115,7 @@ def test_resuming_skips_done_tasks_and_previous_errors_unless_retried(tmp_path):
     )
     assert [harness.should_skip(t) for t in (done, failed, fresh)] == [
         "already done",
-        "previous error",
+        "previous error: harness error: boom; --retry-errors runs it again",
         None,
     ]
     harness.retry_errors = True

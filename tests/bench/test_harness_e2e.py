@@ -83,7 +83,8 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     for name in outcome:
         folder = tree / name
         assert (folder / "output.txt").stat().st_size > 0
-        events = [json.loads(line) for line in (folder / "events.jsonl").read_text().splitlines()]
+        header, *events = map(json.loads, (folder / "events.jsonl").read_text().splitlines())
+        assert header["format"] == "sentinel-run/1"  # export_run's format: import_run reads it
         assert [e["seq"] for e in events] == list(range(1, len(events) + 1))
         assert not (folder / "error.txt").exists()
     assert "contacted" in (tree / "bench-active" / "output.txt").read_text()

@@ -80,8 +80,15 @@ def test_a_tampered_preload_changes_the_verdict(finished_run, tmp_path):
 
 def test_import_rejects_a_file_without_header(tmp_path):
     path = tmp_path / "bad.jsonl"
-    path.write_text('{"seq": 1}\n')
+    path.write_text('{"run": 1}\n')
     with pytest.raises(CommandError, match="line 1: field 'format'"):
+        run_command("import_run", str(path))
+
+
+def test_import_says_what_a_bare_log_lacks(tmp_path):
+    path = tmp_path / "events.jsonl"
+    path.write_text('{"seq": 1}\n')
+    with pytest.raises(CommandError, match="line 1: an event, not a run header: this log has no"):
         run_command("import_run", str(path))
 
 

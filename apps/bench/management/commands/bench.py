@@ -8,6 +8,7 @@ import signal
 import tempfile
 import threading
 import time
+from datetime import datetime
 from pathlib import Path
 
 from django.conf import settings
@@ -17,6 +18,7 @@ from django.db import connection
 from django.db.migrations.executor import MigrationExecutor
 from django.utils import timezone
 
+from apps.bench import preflight
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import (
     BENCH_CLOCKS,
@@ -27,11 +29,31 @@ from apps.bench.config import (
     bench_clock,
     load_config,
 )
-from apps.bench.runner import CONTROL_AGENTS, BenchError, Harness, Progress, discover, run_pool
+from apps.bench.grading import TaskError, error_lines, load_rows, outcome_counts, task_errors
+from apps.bench.manifest import (
+    build_manifest,
+    git_commit,
+    machine,
+    project_version,
+    read_manifest,
+    scenario_hash,
+    write_manifest,
+)
+from apps.bench.runner import (
+    CONTROL_AGENTS,
+    ERROR,
+    BenchError,
+    Harness,
+    Progress,
+    Task,
+    discover,
+    run_pool,
+)
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
 DEFAULT_CONFIG = "eval_config.yaml"
+VALIDATE_RETRIES = 2  # times bench validate runs a task again after an error
 
 
 @contextlib.contextmanager
@@ -53,6 +75,64 @@ def terminate_as_interrupt():
 
 def _usage(message: str) -> CommandError:
     return CommandError(message, returncode=2)
+
+
+def _preflight_failed(problems: list[str]) -> CommandError:
+    """Every problem on its own line; nothing was run."""
+    return _usage("\n".join(f"preflight: {problem}" for problem in problems))
+
+
+def config_as_used(cfg: BenchConfig, agent: str | None, trials: int) -> dict:
+    """The configuration a result set was produced with: the file's keys, the command line's
+    overrides applied, the control token left out."""
+    used = {k: v for k, v in cfg.raw.items() if k != "control_token"}
+    used.update(
+        speed_factor=cfg.speed_factor,
+        parallel=cfg.parallel,
+        reaction_window=cfg.reaction_window,
+        grace=cfg.grace,
+        trials=trials,
+    )
+    if cfg.server_url:
+        used["server_url"] = cfg.server_url
+    if agent:
+        used["control_agent"] = agent
+        used.pop("agent_subprocess", None)
+    if cfg.reference_agent:
+        used["agent"] = dataclasses.asdict(cfg.reference_agent)
+        used.pop("agent_subprocess", None)
+    return used
+
+
+def update_manifest(
+    name: str,
+    run_dir: Path,
+    used: dict,
+    tasks: list[Task],
+    started_at: datetime,
+    base_dir: Path,
+    errors: list[TaskError],
+) -> None:
+    """`manifest.json` after this `bench run`: what produced the set, and its counts now."""
+    rows = load_rows(run_dir) if run_dir.is_dir() else []
+    write_manifest(
+        run_dir,
+        build_manifest(
+            read_manifest(run_dir),
+            name=name,
+            config=used,
+            version=project_version(base_dir),
+            commit=git_commit(base_dir),
+            scenarios={t.scenario_id: scenario_hash(t.spec) for t in tasks},
+            catalog_hashes=sorted(
+                {str(r.result["catalog_hash"]) for r in rows if r.result.get("catalog_hash")}
+            ),
+            started_at=started_at,
+            finished_at=timezone.now(),
+            counts=outcome_counts(rows, errors),
+            host=machine(),
+        ),
+    )
 
 
 def reference_changes(
@@ -127,6 +207,13 @@ class Command(BaseCommand):
         run.add_argument(
             "--retry-errors", action="store_true", help="rerun tasks that have error.txt"
         )
+        run.add_argument(
+            "--trials",
+            type=int,
+            default=1,
+            metavar="K",
+            help="run every task K times, each its own run (trial n in <task>/trial-<n>/)",
+        )
         run.add_argument("--results-dir", default="results")
 
         grade = sub.add_parser(
@@ -192,8 +279,12 @@ class Command(BaseCommand):
     # --- shared ----------------------------------------------------------------------------
 
     @contextlib.contextmanager
-    def server(self, server_url: str | None):
+    def server(self, server_url: str | None, *, external_is_preflight: bool = False):
         if server_url:
+            if external_is_preflight:
+                problem = preflight.reachable(server_url)
+                if problem:
+                    raise _preflight_failed([problem])
             yield server_url
             return
         executor = MigrationExecutor(connection)
@@ -227,9 +318,14 @@ class Command(BaseCommand):
         clock,
         retry_errors,
         results_dir,
+        trials,
         **_,
     ):
-        cfg = load_config(config) if agent is None or Path(config).exists() else BenchConfig(None)
+        if agent is None or Path(config).exists():
+            # A built-in agent (--agent) stands in for the config's, which may then be absent.
+            cfg = load_config(config, require_agent=agent is None)
+        else:
+            cfg = BenchConfig(None)
         if agent is None and cfg.agent_subprocess is None and cfg.reference_agent is None:
             raise _usage(f"{config}: agent_subprocess: is required (or pass --agent)")
         changes = reference_changes(cfg, agent, model, model_url)
@@ -245,11 +341,19 @@ class Command(BaseCommand):
             changes["server_url"] = server_url.rstrip("/")
         if clock is not None:
             changes["clock"] = bench_clock(clock, "--clock")
+        if trials < 1:
+            raise _usage(f"--trials must be >= 1, got {trials}")
         cfg = dataclasses.replace(cfg, **changes)
+        base_dir = Path(settings.BASE_DIR)
+        # Before any server or task: a setup that cannot work runs nothing (preflight.py).
+        problems = [] if agent else preflight.command_problems(cfg, base_dir)
+        problems += preflight.model_problems(cfg.reference_agent)
+        if problems:
+            raise _preflight_failed(problems)
         run_dir = Path(results_dir) / name
         started_at = timezone.now()
         began = time.monotonic()
-        with self.server(cfg.server_url) as url:
+        with self.server(cfg.server_url, external_is_preflight=True) as url:
             client = ControlClient(
                 url,
                 token=cfg.control_token or settings.SENTINEL_CONTROL_TOKEN,
@@ -260,18 +364,23 @@ class Command(BaseCommand):
                 listing = discover(client, task=task, filter=filter, skipped=invalid)
                 for entry in invalid:
                     self.stdout.write(f"Skipping {entry['path']} (invalid: {entry['error']})")
+                problems = preflight.server_problems(listing, url)
+                if problems:
+                    raise _preflight_failed(problems)
                 harness = Harness(
                     cfg,
                     client,
                     run_dir,
-                    Path(settings.BASE_DIR),
+                    base_dir,
                     agent=agent,
                     retry_errors=retry_errors,
                     clock=cfg.clock,
                 )
-                tasks = harness.tasks(listing)
+                tasks = harness.tasks(listing, trials)
+                trials_note = f" ({len(listing)} scenarios × {trials} trials)" if trials > 1 else ""
                 self.stdout.write(
-                    f"Found {len(tasks)} tasks. Results -> {run_dir} (clock: {cfg.clock})"
+                    f"Found {len(tasks)} tasks{trials_note}. Results -> {run_dir} "
+                    f"(clock: {cfg.clock})"
                 )
                 if task:
                     self.stdout.write(f"Selecting tasks: {', '.join(task)}")
@@ -286,15 +395,22 @@ class Command(BaseCommand):
 
         reference = cfg.reference_agent
         label = agent or (f"{reference.kind} on {reference.model}" if reference else None)
-        record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=cfg.raw)
+        used = config_as_used(cfg, agent, trials)
+        record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=used)
+        errors = task_errors(run_dir) if run_dir.is_dir() else []
+        update_manifest(name, run_dir, used, tasks, started_at, base_dir, errors)
         counts = {s: sum(o.status == s for o in outcomes) for s in ("passed", "failed", "error")}
         self.stdout.write(
             f"Done. ran={len(outcomes)} passed={counts['passed']} failed={counts['failed']} "
             f"errors={counts['error']} skipped={len(tasks) - len(todo)} wall_s={time.monotonic() - began:.1f}"
         )
-        if counts["error"]:
+        for line in error_lines(errors):
+            self.stdout.write(line)
+        if errors:
             raise CommandError(
-                f"{counts['error']} task(s) hit a harness error; see their error.txt", returncode=1
+                f"{len(errors)} task(s) are errors, not graded (causes above; their error.txt): "
+                "fix the cause, then run again with --retry-errors",
+                returncode=1,
             )
 
     # --- grade -----------------------------------------------------------------------------
@@ -306,7 +422,7 @@ class Command(BaseCommand):
 
         if config is None and Path(DEFAULT_CONFIG).exists():
             config = DEFAULT_CONFIG
-        cfg = load_config(config) if config else BenchConfig(None)
+        cfg = load_config(config, require_agent=False) if config else BenchConfig(None)
         window = cfg.reaction_window if timely_window is None else timely_window
         if not window > 0:  # also rejects NaN
             raise _usage(f"--timely-window must be a positive number of seconds, got {window}")
@@ -314,7 +430,10 @@ class Command(BaseCommand):
         if len(sets) == 1:  # one set: the upstream table, as before
             (one,) = sets
             text = (
-                grading.render_csv(one.rows) if csv else grading.render_table(one.rows, one.errors)
+                grading.render_csv(one.rows, one.errors)
+                if csv
+                else grading.render_table(one.rows, one.errors, window)
+                + grading.provenance_line(one)
             )
         else:
             render = grading.render_comparison_csv if csv else grading.render_comparison
@@ -322,7 +441,9 @@ class Command(BaseCommand):
         self.stdout.write(text, ending="")
         if html:
             if len(sets) == 1:
-                report.write_report(Path(html), sets[0].name, sets[0].rows, window)
+                report.write_report(
+                    Path(html), sets[0].name, sets[0].rows, window, result_set=sets[0]
+                )
             else:
                 report.write_comparison_report(Path(html), sets, window)
             if not csv:
@@ -333,8 +454,6 @@ class Command(BaseCommand):
     def handle_validate(
         self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, real_time, **_
     ):
-        from apps.bench.grading import load_rows
-
         sf = validate_speed_factor(speed_factor)
         if parallel < 1:
             raise _usage(f"--parallel must be >= 1, got {parallel}")
@@ -348,7 +467,13 @@ class Command(BaseCommand):
                 url, token=settings.SENTINEL_CONTROL_TOKEN, timeout=cfg.http_timeout
             )
             try:
-                listing = discover(client, filter=filter)
+                invalid: list[dict] = []
+                listing = discover(client, filter=filter, skipped=invalid)
+                for entry in invalid:
+                    self.stdout.write(f"Skipping {entry['path']} (invalid: {entry['error']})")
+                problems = preflight.server_problems(listing, url)
+                if problems:  # nothing validated is no proof of anything
+                    raise _preflight_failed(problems)
                 clock = "live" if real_time else "virtual"
                 harnesses = {
                     a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a, clock=clock)
@@ -360,13 +485,28 @@ class Command(BaseCommand):
                     f"at speed factor {sf:g} on {clock} clocks (results -> {root})"
                 )
                 jobs = [(harnesses[a], t) for a in CONTROL_AGENTS for t in tasks[a]]
+                job_of = {t.folder: (h, t) for h, t in jobs}
                 outcomes = run_pool(jobs, parallel * len(CONTROL_AGENTS), self.progress())
+                # An error (a control agent's own request timed out on a loaded machine, the
+                # server hiccuped) says nothing about the scenario: run those tasks again.
+                for _ in range(VALIDATE_RETRIES):
+                    again = [o for o in outcomes if o.status == "error"]
+                    if not again:
+                        break
+                    self.stdout.write(f"Running {len(again)} task(s) again after an error")
+                    retry = [job_of[o.task.folder] for o in again]
+                    for _, t in retry:
+                        (t.folder / ERROR).unlink(missing_ok=True)
+                    kept = [o for o in outcomes if o.status != "error"]
+                    outcomes = kept + run_pool(
+                        retry, parallel * len(CONTROL_AGENTS), self.progress()
+                    )
             finally:
                 client.close()
         wall = time.monotonic() - began
         errors = [o for o in outcomes if o.status == "error"]
         for o in errors:
-            self.stdout.write(f"harness error: {o.task.folder}: {o.detail}")
+            self.stdout.write(f"error (not a verdict): {o.label}{o.task.label}: {o.detail}")
         rows = {
             a: {r.name: r for r in load_rows(root / a)} if (root / a).is_dir() else {}
             for a in CONTROL_AGENTS

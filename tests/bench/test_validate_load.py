@@ -1,0 +1,76 @@
+"""`bench validate` is a measurement, so it must not move with the machine's load: with both
+cores kept busy by other processes it gives the same counts three times in a row (a control
+agent's own timeout is an error, run again, never a verdict), and it exits non-zero when a
+control agent's verdict differs from what the scenario requires."""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+import subprocess
+import sys
+
+import pytest
+from django.core.management import CommandError, call_command
+
+from tests.bench.conftest import shorten
+
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
+
+BURN = "while True: pass"
+
+
+def validate(*args: str) -> str:
+    out = io.StringIO()
+    call_command(
+        "bench", "validate", "--speed-factor", "4", "--reaction-window", "2", *args, stdout=out
+    )
+    return out.getvalue()
+
+
+def counts(line: str) -> str:
+    """The last line without its wall time."""
+    assert line.startswith("bench_validate: "), line
+    return re.sub(r" wall_s=[\d.]+", "", line)
+
+
+def test_validate_gives_the_same_counts_three_times_on_a_busy_machine(bench_scenarios):
+    burners = [subprocess.Popen([sys.executable, "-c", BURN]) for _ in range(2)]
+    try:
+        lines = [counts(validate("--parallel", "10").splitlines()[-1]) for _ in range(3)]
+    finally:
+        for burner in burners:
+            burner.kill()
+            burner.wait()
+    print("\n".join(lines))
+    assert lines[0] == lines[1] == lines[2]
+    assert lines[0].startswith("bench_validate: scenarios=6 oracle=6/6 early_fail=5/5 never_ok=6/6")
+
+
+def test_a_control_verdict_that_differs_from_the_scenario_fails_validation(tmp_path, settings):
+    # A no-op whose eval_sql can never hold: even the agent that rightly stays silent fails.
+    root = tmp_path / "scenarios" / "micromail"
+    root.mkdir(parents=True)
+    data = shorten("sender-absolute-noop", "unpassable-noop", "")
+    data["eval_sql"] = "SELECT 0"
+    (root / "unpassable-noop.json").write_text(json.dumps(data))
+    settings.SENTINEL_SCENARIO_DIR = root.parent
+    out = io.StringIO()
+    with pytest.raises(CommandError) as error:
+        try:
+            call_command("bench", "validate", "--speed-factor", "4", stdout=out)
+        finally:
+            print(out.getvalue())
+    assert error.value.returncode == 1
+    assert "PROBLEM: oracle failed unpassable-noop" in out.getvalue()
+    assert "PROBLEM: never failed unpassable-noop" in out.getvalue()
+    assert "validation failed: 2 problem(s), 0 harness error(s)" in str(error.value)
+
+
+def test_validating_no_scenario_is_no_proof(tmp_path, settings):
+    (tmp_path / "scenarios").mkdir()
+    settings.SENTINEL_SCENARIO_DIR = tmp_path / "scenarios"
+    with pytest.raises(CommandError, match=r"preflight: server .*: no scenario to run") as error:
+        call_command("bench", "validate", stdout=io.StringIO())
+    assert error.value.returncode == 2
