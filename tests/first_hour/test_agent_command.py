@@ -33,7 +33,7 @@ def test_python_is_the_projects_and_the_placeholders_name_it(tmp_path):
     )
     harness = Harness(load_config(tmp_path / "eval_config.yaml"), None, tmp_path, tmp_path)
     task = Task("t", "micromail", {}, tmp_path / "micromail" / "t")
-    run = {"task_url": "u", "contact_url": "c"}
+    run = {"task_url": "u", "contact_url": "c", "wait_url": "w"}
     argv, _, env = harness.command_for(task, run, "prompt")
     assert argv == [sys.executable, "-c", "pass", str(task.folder.resolve())]
     assert env["PATH"].split(":")[0] == str(Path(sys.executable).parent)
