@@ -10,7 +10,7 @@ from rest_framework import status as http
 from rest_framework.decorators import action
 from rest_framework.response import Response
 
-from apps.control.pagination import NewestFirst
+from apps.control.pagination import NewestFirst, log_page
 from apps.control.parsers import request_data
 from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
 from apps.control.throttling import RunCreationThrottle, refusal
@@ -88,10 +88,15 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
     @extend_schema(request=None)
     @action(detail=True, methods=["get"])
     def events(self, request, pk=None):
-        """The run's whole log, in order: enough to replay it."""
+        """The run's log, in order, enough to replay it: up to 10,000 entries a page (`?after=`
+        the last seq seen, `?limit=`), the next page named in a `Link` header."""
         run = self.get_object()
         rows = Event.objects.filter(run_id=run.pk).order_by("seq").values(*EVENT_FIELDS)
-        return Response(list(rows))
+        page, next_url = log_page(request, rows, request.path)
+        response = Response(page)
+        if next_url:
+            response["Link"] = f'<{next_url}>; rel="next"'
+        return response
 
     @extend_schema(request=None)
     @action(detail=True, methods=["get"])

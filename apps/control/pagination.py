@@ -1,4 +1,5 @@
-"""The run list a page at a time, newest first, still a plain JSON list.
+"""Long lists a page at a time, still plain JSON lists: the run list (newest first) and a run's
+log (in order).
 
 `GET /api/runs/` answered every run ever made in one response. Now it answers at most `limit`
 (default 100, at most 1,000); when there are more, a `Link: <…?before=<id>>; rel="next"` header
@@ -73,3 +74,20 @@ class NewestFirst(BasePagination):
                 "schema": {"type": "integer"},
             },
         ]
+
+
+LOG_PAGE = 10_000  # entries of a run's log per page: all of nearly every run in one
+LOG_MOST = 50_000
+
+
+def log_page(request, rows, path: str) -> tuple[list[dict], str | None]:
+    """One page of a run's log (`rows`: its events' values, by seq) from `?after=<seq>`, at most
+    `?limit=` entries, and the next page's URL (None: this was the last)."""
+    limit = whole_number(request, "limit", LOG_PAGE, least=1, most=LOG_MOST)
+    after = whole_number(request, "after", 0, least=0, most=None)
+    page = list(rows.filter(seq__gt=after)[: limit + 1])
+    if len(page) <= limit:
+        return page, None
+    page = page[:limit]
+    query = {**request.query_params.dict(), "after": page[-1]["seq"]}
+    return page, request.build_absolute_uri(f"{path}?{urlencode(query)}")

@@ -81,3 +81,21 @@ def test_a_huge_run_renders_in_the_admin_a_page_at_a_time(
     assert last.count('class="time-travel"') == total - 1000
     only_actions = admin_client.get(f"{timeline}?kind=action").content.decode()
     assert "timeline-pages" not in only_actions  # one page: no pager
+
+
+def test_a_runs_log_comes_a_page_at_a_time_in_order():
+    from rest_framework.test import APIClient
+
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    huge_log(run, 25)
+    total = Event.objects.filter(run=run).count()
+    api, seqs = APIClient(), []
+    url = f"/api/runs/{run.pk}/events/?limit=10"
+    while url:
+        page = api.get(url)
+        assert page.status_code == 200
+        seqs += [row["seq"] for row in page.json()]
+        url = page.get("Link", "").split(">")[0].strip("<")
+    assert seqs == list(range(1, total + 1))
+    assert "Link" not in api.get(f"/api/runs/{run.pk}/events/").headers  # all in one page
+    assert api.get(f"/api/runs/{run.pk}/events/?after=x").status_code == 400
