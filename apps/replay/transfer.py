@@ -8,16 +8,23 @@
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Iterable, Iterator
+from pathlib import Path
 from typing import Any
 
+from django.conf import settings
 from django.db import transaction
 from django.utils import timezone
 
 from apps.replay.models import RunVerdict
 from apps.replay.records import latest_verdict, record_verdict
-from events.catalog import CatalogError, load_catalog
-from events.models import EVENT_FIELDS, ClockMode, Event, Run, RunStatus
+from apps.scenarios.format import ScenarioError, parse_scenario
+from events.catalog import load_catalog
+from events.models import EVENT_FIELDS, ClockMode, Event, EventKind, Run, RunStatus
+from events.registry import Environment, get_environment
+from events.schemas import value_problem
+from events.timing import SpeedFactorError, validate_speed_factor
 
 FORMAT = "sentinel-run/1"
 
@@ -70,13 +77,94 @@ def _need(data: dict, key: str, number: int, what: str) -> Any:
     return data[key]
 
 
+def _scenario(spec: Any, number: int) -> dict[str, Any]:
+    """The run's scenario, checked as /init and scenario files are (its environment, its
+    timeline against the event types' schemas, every text storable)."""
+    try:
+        parse_scenario(spec, source=f"line {number}: run.scenario")
+    except ScenarioError as error:
+        raise TransferError(str(error)) from None
+    return spec
+
+
+def _finite(meta: dict, key: str, number: int, default: float | None) -> float | None:
+    value = meta.get(key, default)
+    if value is None and default is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise TransferError(f"line {number}: field '{key}' must be a finite number, got {value!r}")
+    return float(value)
+
+
+def _catalog(meta: dict, catalog_dir, warnings: list[str]):
+    """The catalog to replay with: the one the operator named (--catalog), else the file's own
+    when this server already plays it (the configured folder, or one a run here was created
+    on), else the configured one. An imported file never points the server at another folder
+    on the disk."""
+    if catalog_dir is not None:
+        return load_catalog(catalog_dir)
+    named = str(meta.get("catalog_dir") or "")
+    configured = str(Path(settings.SENTINEL_CATALOG_DIR).resolve())
+    if named and (named == configured or Run.objects.filter(catalog_dir=named).exists()):
+        return load_catalog(named)
+    if named:
+        warnings.append(
+            f"the file names catalog {named!r}, which this server does not play; using "
+            f"{configured} (pass --catalog to choose another)"
+        )
+    return load_catalog(None)
+
+
+def _event(data: dict, number: int, environment: Environment) -> dict[str, Any]:
+    values = {}
+    for key in EVENT_FIELDS:
+        if key in ("timeline_index", "lateness_ms"):
+            values[key] = data.get(key)
+        else:
+            values[key] = _need(
+                data, key, number, "every event line has " + ", ".join(EVENT_FIELDS[:6])
+            )
+    kind, kind_of = values["kind"], values["type"]
+    if kind not in EventKind.values:
+        raise TransferError(
+            f"line {number}: field 'kind' is {kind!r}; allowed: {', '.join(EventKind.values)}"
+        )
+    if not isinstance(kind_of, str) or not 0 < len(kind_of) <= 64:
+        raise TransferError(f"line {number}: field 'type' must be a name of 1–64 characters")
+    known = {
+        EventKind.SCENARIO: environment.event_types,
+        EventKind.ACTION: environment.actions,
+    }.get(kind)
+    if known is not None and kind_of not in known:
+        raise TransferError(
+            f"line {number}: {kind} type {kind_of!r} is not one of {environment.name}'s"
+        )
+    if not isinstance(values["payload"], dict):
+        raise TransferError(f"line {number}: field 'payload' must be an object")
+    for key in ("at", "recorded_at"):
+        _finite(values, key, number, None)
+    found = value_problem(values["payload"])
+    if found:
+        where, problem = found
+        raise TransferError(f"line {number}: payload {where} {problem}".replace("  ", " "))
+    return values
+
+
+BATCH = 1_000  # events written at a time: a file of any length is read as a stream
+
+
 def import_lines(lines: Iterable[str], *, catalog_dir=None) -> tuple[Run, list[str]]:
-    """Create a new closed Run with the file's events; returns it and any warnings."""
-    numbered = [(n, line) for n, line in enumerate(lines, 1) if line.strip()]
-    if not numbered:
+    """Create a new closed Run with the file's events; returns it and any warnings.
+
+    Everything is checked as it would be on its way in through the API (the scenario, the
+    speed factor, the clock, every event's kind, type and payload), and nothing is written
+    unless all of it is: a bad file is one error naming its line, and changes nothing."""
+    numbered = ((n, line) for n, line in enumerate(lines, 1) if line.strip())
+    first = next(numbered, None)
+    if first is None:
         raise TransferError("line 1: the file is empty; expected a run header")
-    number, first = numbered[0]
-    header = _json(first, number)
+    number, line = first
+    header = _json(line, number)
     if "format" not in header and "seq" in header:
         # A bare log: bench run saved one before its events.jsonl carried the run's header.
         raise TransferError(
@@ -89,53 +177,66 @@ def import_lines(lines: Iterable[str], *, catalog_dir=None) -> tuple[Run, list[s
             f"line {number}: field 'format' must be {FORMAT!r}, got {header.get('format')!r}"
         )
     meta = _need(header, "run", number, "the exported run")
-    spec = _need(meta, "scenario", number, "the scenario as played")
+    if not isinstance(meta, dict):
+        raise TransferError(f"line {number}: field 'run' must be an object")
+    spec = _scenario(_need(meta, "scenario", number, "the scenario as played"), number)
+    environment = get_environment(spec["environment"])
+    if meta.get("environment", spec["environment"]) != spec["environment"]:
+        raise TransferError(
+            f"line {number}: field 'environment' is {meta.get('environment')!r}, but the "
+            f"scenario plays {spec['environment']!r}"
+        )
     clock_mode = meta.get("clock_mode", ClockMode.LIVE)
     if clock_mode not in ClockMode.values:
         raise TransferError(
             f"line {number}: field 'clock_mode' is {clock_mode!r}; allowed: {', '.join(ClockMode.values)}"
         )
-    warnings = []
+    status = meta.get("status", RunStatus.COMPLETED)
+    if status not in RunStatus.values:
+        raise TransferError(
+            f"line {number}: field 'status' is {status!r}; allowed: {', '.join(RunStatus.values)}"
+        )
     try:
-        catalog = load_catalog(catalog_dir or meta.get("catalog_dir"))
-    except CatalogError:
-        catalog = load_catalog(catalog_dir)
+        speed_factor = validate_speed_factor(meta.get("speed_factor", 1.0))
+    except SpeedFactorError as error:
+        raise TransferError(f"line {number}: {error}") from None
+    warnings: list[str] = []
+    catalog = _catalog(meta, catalog_dir, warnings)
     if catalog.content_hash != meta.get("catalog_hash"):
         warnings.append(
             f"catalog {catalog.directory} has hash {catalog.content_hash[:12]}…, the run used "
             f"{str(meta.get('catalog_hash'))[:12]}…: replay will likely not match"
         )
-    events = []
-    for number, line in numbered[1:]:
-        data = _json(line, number)
-        values = {}
-        for key in EVENT_FIELDS:
-            if key in ("timeline_index", "lateness_ms"):
-                values[key] = data.get(key)
-            else:
-                values[key] = _need(
-                    data, key, number, "every event line has " + ", ".join(EVENT_FIELDS[:6])
-                )
-        events.append(values)
-    seqs = [e["seq"] for e in events]
-    if seqs != list(range(1, len(seqs) + 1)):
-        raise TransferError("events: seq must run 1, 2, 3 … without gaps or repeats")
     with transaction.atomic():
         run = Run.objects.create(
-            scenario_id=_need(meta, "scenario_id", 1, "the scenario id"),
-            environment=_need(meta, "environment", 1, "the environment"),
+            scenario_id=spec["id"],
+            environment=spec["environment"],
             scenario=spec,
-            speed_factor=meta.get("speed_factor", 1.0),
+            speed_factor=speed_factor,
             clock_mode=clock_mode,
-            status=meta.get("status", RunStatus.COMPLETED),
-            started_at=meta.get("started_at"),
-            sim_time=meta.get("sim_time", 0.0),
-            skipped=meta.get("skipped", 0.0),
+            status=status,
+            started_at=_finite(meta, "started_at", number, None),
+            sim_time=_finite(meta, "sim_time", number, 0.0),
+            skipped=_finite(meta, "skipped", number, 0.0),
             catalog_dir=str(catalog.directory),
-            catalog_hash=meta.get("catalog_hash", catalog.content_hash),
+            catalog_hash=meta.get("catalog_hash") or catalog.content_hash,
             closed_at=timezone.now(),
         )
-        Event.objects.bulk_create(Event(run=run, **values) for values in events)
+        batch: list[Event] = []
+        expected = 1
+        for number, line in numbered:
+            values = _event(_json(line, number), number, environment)
+            if values["seq"] != expected:
+                raise TransferError(
+                    f"line {number}: seq is {values['seq']!r}, expected {expected}: events run "
+                    "1, 2, 3 … without gaps or repeats"
+                )
+            expected += 1
+            batch.append(Event(run=run, **values))
+            if len(batch) >= BATCH:
+                Event.objects.bulk_create(batch)
+                batch = []
+        Event.objects.bulk_create(batch)
         verdict = header.get("verdict")
         if isinstance(verdict, dict):
             RunVerdict.objects.create(

@@ -1,11 +1,12 @@
 """`manage.py import_run run.jsonl`: create a new (closed) run from an export; prints its id."""
 
+import contextlib
 import sys
-from pathlib import Path
 
 from django.core.management.base import BaseCommand, CommandError
 
 from apps.replay.transfer import TransferError, import_lines
+from events.catalog import CatalogError
 
 
 class Command(BaseCommand):
@@ -19,17 +20,14 @@ class Command(BaseCommand):
         )
 
     def handle(self, *args, file, catalog=None, **options):
-        try:
-            lines = (
-                sys.stdin.readlines()
-                if file == "-"
-                else Path(file).read_text(encoding="utf-8").splitlines()
-            )
+        try:  # read as a stream: a file of any size costs one batch of memory
+            with (
+                contextlib.nullcontext(sys.stdin) if file == "-" else open(file, encoding="utf-8")
+            ) as stream:
+                run, warnings = import_lines(stream, catalog_dir=catalog)
         except (OSError, UnicodeDecodeError) as error:
             raise CommandError(f"{file}: cannot read: {error}") from None
-        try:
-            run, warnings = import_lines(lines, catalog_dir=catalog)
-        except TransferError as error:
+        except (TransferError, CatalogError) as error:
             raise CommandError(f"{file}: {error}") from None
         for warning in warnings:
             self.stderr.write(f"warning: {warning}")
