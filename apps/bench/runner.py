@@ -3,16 +3,19 @@
 Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
 
 1. create a live run of the scenario (POST /api/runs/);
-2. launch the agent in its own process group, cwd = the task's result folder (as upstream: an
-   agent writes its costs.json there), a file named beside the config file passed by its
-   absolute path (`python my_agent.py` works), the project's Python first on PATH,
-   stdout+stderr to output.txt;
+2. launch the agent under `reaper.py` (which kills everything it starts and abandons, and
+   caps its output), cwd = a fresh temporary folder of its own that `__TASK_DIR__` names
+   (upstream's agents write costs.json there; it is copied into the task's result folder
+   afterwards, never a file named like the harness's own), a file named beside the config
+   file passed by its absolute path (`python my_agent.py` works), the project's Python first
+   on PATH, stdout+stderr to output.txt (the first and last 8 MiB);
 3. the deadline counts from the run's *start* (the agent's first visit to the task URL; before
    that, from launch): `min(MAX_CONDITION_AT, kill_at) / sf + reaction_window`, which is
    `kill_at_wall(sf)` for every benchmark scenario (their kill_at is 630) and lets short test
    scenarios end early. At the deadline a completed run gets `grace` more seconds;
-4. the whole process group is SIGKILLed at the end, even when the agent exited by itself, so
-   no background child survives into the next task;
+4. at the end, even when the agent exited by itself, the reaper kills the agent's process
+   group and whatever is left under it (a `setsid()` grandchild included), so no background
+   process survives into the next task;
 5. evaluate, save the log (events.jsonl, in `export_run`'s format: `import_run` reads it),
    close the run, write results.json last — its presence means "done". A task whose outcome is
    an error (outcomes.py: ours or the setup's, not the agent's) writes error.txt instead, never
@@ -27,9 +30,11 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 import traceback
@@ -220,8 +225,11 @@ class Harness:
         )
 
     def command_for(
-        self, task: Task, run: dict[str, Any], prompt: str
+        self, task: Task, run: dict[str, Any], prompt: str, workspace: Path | None = None
     ) -> tuple[list[str] | str, bool, dict]:
+        """The agent's command line, whether it is a shell line, and its environment; it runs
+        in `workspace` (default: the task's folder), which its task-folder placeholders name."""
+        where = (workspace or task.folder).resolve()
         env = dict(os.environ)
         if self.agent or self.config.reference_agent:
             # Built-in agents are modules of this project, run from the task's folder.
@@ -230,7 +238,7 @@ class Harness:
             )
             env["PYTHONUNBUFFERED"] = "1"  # output.txt shows each step as it happens
         if self.config.reference_agent:
-            return self._reference_command(task, run), False, env
+            return self._reference_command(task, run, where), False, env
         if self.agent:
             condition = task.spec.get("condition_at")
             argv = [
@@ -267,7 +275,7 @@ class Harness:
             "__WAIT_URL__": run["wait_url"],
             "__TASK_PROMPT__": prompt,
             "__BASE_DIR__": str(self.base_dir),
-            "__TASK_DIR__": str(task.folder.resolve()),
+            "__TASK_DIR__": str(where),
             "__PYTHON__": sys.executable,
         }
         # `python` in the agent's command is the project's Python (the .venv's, with its
@@ -275,11 +283,11 @@ class Harness:
         env["PATH"] = os.pathsep.join(
             filter(None, [str(Path(sys.executable).parent), env.get("PATH")])
         )
-        env["SENTINEL_TASK_DIR"] = str(task.folder.resolve())
+        env["SENTINEL_TASK_DIR"] = str(where)
         command, shell = self.config.agent_command(values)
         return command, shell, env
 
-    def _reference_command(self, task: Task, run: dict[str, Any]) -> list[str]:
+    def _reference_command(self, task: Task, run: dict[str, Any], where: Path) -> list[str]:
         """A built-in reference agent: the project's Python, the task's URLs and its prompt file.
 
         Its wall budget defaults to the task's deadline, so it stops by itself (leaving its
@@ -290,10 +298,10 @@ class Harness:
         argv += ["--task-url", run["task_url"], "--contact-url", run["contact_url"]]
         if self.clock == "fast_forward":
             argv += ["--wait-url", run["wait_url"]]
-        argv += ["--prompt-file", str((task.folder / "prompt.txt").resolve())]
+        argv += ["--prompt-file", str(where / "prompt.txt")]
         # Not the speed factor: like the paper's agents, it knows only its URLs and prompt and
         # lives in wall time, so a faster scenario leaves it less time to notice.
-        argv += ["--task-dir", str(task.folder.resolve())]
+        argv += ["--task-dir", str(where)]
         if agent.max_wall is None:
             limit = deadline_s(task.spec, self.speed_factor, self.config.reaction_window)
             argv += ["--max-wall", repr(limit)]
@@ -354,29 +362,31 @@ class Harness:
             run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"]
         )
         (task.folder / "prompt.txt").write_text(prompt, encoding="utf-8")
-        command, shell, env = self.command_for(task, run, prompt)
         limit = deadline_s(task.spec, sf, self.config.reaction_window)
         launched = time.monotonic()
-        with open(task.folder / OUTPUT, "wb") as output:
+        # The agent works in a fresh folder of its own, outside the project and the results:
+        # it can never write a result of its own (a forged results.json was taken as done).
+        with AgentWorkspace(task.folder) as workspace:
+            (workspace.path / "prompt.txt").write_text(prompt, encoding="utf-8")
+            command, shell, env = self.command_for(task, run, prompt, workspace.path)
             try:
                 process = subprocess.Popen(
-                    command,
-                    shell=shell,
-                    cwd=task.folder,
+                    reaper_command(command, shell, task.folder / OUTPUT),
+                    cwd=workspace.path,
                     env=env,
                     stdin=subprocess.DEVNULL,
-                    stdout=output,
-                    stderr=subprocess.STDOUT,
+                    stdout=subprocess.PIPE,
                     start_new_session=True,
                 )
             except OSError as exc:
                 raise HarnessError(f"could not launch the agent {command!r}: {exc}") from exc
+            agent_group = agent_pid_of(process)
             with self._lock:
                 self._live.add(process.pid)
             try:
                 killed = self._supervise(process, run["id"], limit, launched)
             finally:
-                kill_group(process)
+                stop_agent(process, agent_group)
                 with self._lock:
                     self._live.discard(process.pid)
         if self.stopping.is_set():
@@ -455,9 +465,9 @@ class Harness:
         self.stopping.set()
         with self._lock:
             pids = list(self._live)
-        for pid in pids:
+        for pid in pids:  # each reaper kills its agent and all under it, then exits
             with contextlib.suppress(ProcessLookupError, PermissionError):
-                os.killpg(pid, signal.SIGKILL)
+                os.kill(pid, signal.SIGTERM)
 
     # --- many tasks --------------------------------------------------------------------------
 
@@ -517,12 +527,82 @@ def output_tail(path: Path, lines: int = OUTPUT_TAIL_LINES) -> tuple[str, ...]:
     return tuple(line for line in text.splitlines() if line.strip())[-lines:]
 
 
-def kill_group(process: subprocess.Popen) -> None:
-    """SIGKILL the agent's whole process group (its children too), then reap the agent."""
+REAPER = Path(__file__).with_name("reaper.py")
+OUTPUT_CAP = 16 * 1024 * 1024  # of output.txt: the first and last 8 MiB are kept
+REAPER_STOP_S = 15.0
+
+
+def reaper_command(command: list[str] | str, shell: bool, output: Path) -> list[str]:
+    """The agent's command run under apps/bench/reaper.py (by path: the standard library only)."""
+    argv = [
+        sys.executable,
+        str(REAPER),
+        "--output",
+        str(output.resolve()),
+        "--cap",
+        str(OUTPUT_CAP),
+    ]
+    argv += ["--shell", "--", command] if shell else ["--", *command]
+    return argv
+
+
+def agent_pid_of(process: subprocess.Popen) -> int | None:
+    """The agent's pid (its process group), from the reaper's first line; None if it never
+    launched one."""
+    assert process.stdout is not None
+    words = process.stdout.readline().split()
+    return int(words[1]) if len(words) == 2 and words[0] == b"agent" else None
+
+
+def stop_agent(process: subprocess.Popen, agent_group: int | None) -> None:
+    """Stop the agent, its children and whatever it left running (the reaper does it), then,
+    should the reaper not have managed, SIGKILL both process groups."""
     with contextlib.suppress(ProcessLookupError, PermissionError):
-        os.killpg(process.pid, signal.SIGKILL)
+        os.kill(process.pid, signal.SIGTERM)
+    with contextlib.suppress(subprocess.TimeoutExpired):
+        process.wait(timeout=REAPER_STOP_S)
+    for group in (process.pid, agent_group):
+        if group is not None:
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.killpg(group, signal.SIGKILL)
     with contextlib.suppress(subprocess.TimeoutExpired):
         process.wait(timeout=10)
+    if process.stdout is not None:
+        process.stdout.close()
+
+
+# What the harness writes in a task's folder; an agent's file of the same name is not copied.
+HARNESS_FILES = frozenset({RESULTS, ERROR, OUTPUT, EVENTS, "prompt.txt"})
+
+
+class AgentWorkspace:
+    """A fresh temporary folder for one agent; what the agent leaves there (its costs.json,
+    transcript, screenshots) is copied into the task's result folder afterwards, except files
+    named like the harness's own, and never through a symbolic link."""
+
+    def __init__(self, results: Path):
+        self.results = results
+        self.path = Path(tempfile.mkdtemp(prefix="sentinel-agent-")).resolve()
+
+    def __enter__(self) -> AgentWorkspace:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        try:
+            self.copy_back()
+        finally:
+            shutil.rmtree(self.path, ignore_errors=True)
+
+    def copy_back(self) -> None:
+        for source in sorted(self.path.rglob("*")):
+            relative = source.relative_to(self.path)
+            if source.is_symlink() or not source.is_file():
+                continue
+            if len(relative.parts) == 1 and relative.name in HARNESS_FILES:
+                continue
+            target = self.results / relative
+            target.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, target)
 
 
 def write_json_atomically(path: Path, data: Any) -> None:

@@ -7,6 +7,10 @@ It follows the script embedded in its prompt as `[[script: step; step; ...]]`:
   contact              GET then POST the contact URL
   costs IN OUT CALLS [upstream]   write costs.json (upstream: prompt_/completion_tokens keys)
   spawn                start a child that sleeps forever; its pid goes to child.pid
+  escape               start a sleeper in a session of its own, its parent gone (a double
+                       fork): its pid goes to escaped.pid
+  forge                write a results.json of its own saying it passed
+  flood MIB            write MIB mebibytes to stdout
   hang                 sleep forever
 """
 
@@ -84,6 +88,25 @@ def main() -> int:
             with open("child.pid", "w") as f:
                 f.write(str(child.pid))
             print(f"spawned {child.pid}", flush=True)
+        elif verb == "escape":
+            # setsid and exit: the sleeper is orphaned in a session of its own at once.
+            code = (
+                "import os, subprocess, sys, time\n"
+                "child = subprocess.Popen([sys.executable, '-c', 'import time; time.sleep(3600)'],"
+                " start_new_session=True)\n"
+                "open('escaped.pid', 'w').write(str(child.pid))\n"
+            )
+            subprocess.run([sys.executable, "-c", code], check=True)
+            print("escaped", flush=True)
+        elif verb == "forge":
+            with open("results.json", "w") as f:
+                json.dump({"success": True, "detail": "forged by the agent"}, f)
+        elif verb == "flood":
+            line = b"x" * 1023 + b"\n"
+            for _ in range(int(args[0]) * 1024):
+                sys.stdout.buffer.write(line)
+            sys.stdout.flush()
+            print("flooded", flush=True)
         elif verb == "hang":
             print("hanging", flush=True)
             while True:

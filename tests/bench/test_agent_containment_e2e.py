@@ -1,0 +1,50 @@
+"""An agent cannot fool the harness (findings): it writes in a fresh folder of its own, so a
+results.json it forges is never a verdict; nothing it starts outlives its task, even a process
+in a session of its own whose parent is gone; its output is capped, head and tail kept."""
+
+from __future__ import annotations
+
+import io
+import json
+
+import pytest
+from django.core.management import call_command
+
+from apps.bench.runner import OUTPUT_CAP
+from tests.bench.conftest import shorten
+from tests.bench.test_harness_e2e import alive
+
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
+
+SCRIPT = "escape; forge; flood 24; costs 100 10 1"
+
+
+@pytest.fixture
+def hostile_scenario(tmp_path, settings):
+    root = tmp_path / "scenarios"
+    (root / "micromail").mkdir(parents=True)
+    data = shorten("inbox-relative-passive", "bench-hostile", SCRIPT, condition_at=8, kill_at=12)
+    (root / "micromail" / "bench-hostile.json").write_text(json.dumps(data))
+    settings.SENTINEL_SCENARIO_DIR = root
+    return root
+
+
+def test_a_hostile_agent_forges_nothing_leaves_nothing_and_is_capped(
+    hostile_scenario, bench_config, tmp_path
+):
+    results = tmp_path / "results"
+    out = io.StringIO()
+    call_command(
+        "bench", "run", "hostile", "--config", str(bench_config()),
+        "--results-dir", str(results), stdout=out,
+    )  # fmt: skip
+    folder = results / "hostile" / "micromail" / "bench-hostile"
+    result = json.loads((folder / "results.json").read_text())
+    assert result["success"] is False and result["detail"] != "forged by the agent"
+    assert json.loads((folder / "costs.json").read_text())["input_tokens"] == 100  # copied back
+    escaped = int((folder / "escaped.pid").read_text())
+    assert not alive(escaped), "a process the agent set loose outlived its task"
+    output = (folder / "output.txt").read_bytes()
+    assert len(output) <= OUTPUT_CAP + 200
+    assert output.startswith(b"opened ") and output.rstrip().endswith(b"flooded")
+    assert b"bytes of output cut by the harness" in output
