@@ -21,11 +21,17 @@ from events.models import Event, EventKind, Run, RunStatus
 from events.notifications import log_grew
 from events.store import TimelineEntryAlreadyFired, append_event
 
+# Entries the tickers fire for one run per turn: a run with 15,000 entries due at once used to
+# fire them in one loop, holding every other run's events back by seconds. Between its batches
+# every other due run has its turn, and a run closed meanwhile is read as closed and stops.
+TICK_BATCH = 25
+
 
 @dataclass
 class FireResult:
     fired: list[Event] = field(default_factory=list)
     next_index: int = 0  # the first timeline entry not fired yet
+    more: bool = False  # stopped at its batch limit with entries still due
 
 
 # (run pk, run token) → first timeline entry not known to be fired. The token makes the key
@@ -79,8 +85,10 @@ def fire_due(
     wall: float | None = None,
     next_index: int | None = None,
     reload: bool = True,
+    limit: int | None = None,
 ) -> FireResult:
-    """Fire every timeline entry due at the run's current simulated time, in order.
+    """Fire every timeline entry due at the run's current simulated time, in order — or, with
+    `limit`, at most that many (the tickers' batches: `FireResult.more` says some are left).
 
     Reloads the run first: the caller's copy may be stale (another process may have started,
     advanced, completed or closed it); `reload=False` is for a caller that has just read it.
@@ -95,8 +103,8 @@ def fire_due(
         return FireResult()
     wall = wall_now() if wall is None else wall
     now = sim_now(run, wall)
-    result = fire_through(run, now, next_index=next_index)
-    if run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:
+    result = fire_through(run, now, next_index=next_index, limit=limit)
+    if not result.more and run.status == RunStatus.RUNNING_AUTO and now >= run.event_timeline_end:
         # The live clock ran out: the run completes at the end of its timeline. Conditional
         # write so only one caller performs the transition.
         Run.objects.filter(pk=run.pk, status=RunStatus.RUNNING_AUTO).update(
@@ -107,15 +115,24 @@ def fire_due(
 
 
 def fire_through(
-    run: Run, upto: float, *, next_index: int | None = None, on_time: bool = True
+    run: Run,
+    upto: float,
+    *,
+    next_index: int | None = None,
+    on_time: bool = True,
+    limit: int | None = None,
 ) -> FireResult:
     """Fire every unfired timeline entry scheduled at or before simulated second `upto`, in
-    order, each at its own time. `on_time=False` for entries a skip brought (events.fastforward):
-    they were never due on a wall clock, so they carry no lateness."""
+    order, each at its own time (at most `limit` of them, when given). `on_time=False` for
+    entries a skip brought (events.fastforward): they were never due on a wall clock, so they
+    carry no lateness."""
     result = FireResult()
     timeline = run.timeline
     index = _first_unfired(run) if next_index is None else next_index
     while index < len(timeline) and timeline[index]["time"] <= upto:
+        if limit is not None and len(result.fired) >= limit:
+            result.more = True
+            break
         entry = timeline[index]
         due = wall_due(run, entry["time"]) if on_time else None
         recorded = wall_now()

@@ -9,7 +9,7 @@ from celery import shared_task
 from events.clock import wall_now
 from events.models import Run, RunStatus
 from events.retention import purge_if_due
-from events.scheduler import fire_due, fired_through, live_runs, next_wake
+from events.scheduler import TICK_BATCH, fire_due, fired_through, live_runs, next_wake
 
 HORIZON_S = 2.0  # schedule precise wake-ups for what falls due before the next heartbeat+
 
@@ -29,7 +29,7 @@ def fire_run(run_id: int) -> None:
     run = Run.objects.filter(pk=run_id).first()
     if run is None:
         return
-    result = fire_due(run)
+    result = fire_due(run, limit=TICK_BATCH)  # more due: re-queued behind other runs' tasks
     _schedule(
         run, result.next_index
     )  # chain to the next entry: precise timing without a fast heartbeat
@@ -43,7 +43,7 @@ def heartbeat() -> None:
         next_index = fired_through(run) + 1
         at = next_wake(run, next_index)
         if at is not None and at <= now:  # None: not started (the in-process ticker skips it too)
-            next_index = fire_due(run, next_index=next_index).next_index
+            next_index = fire_due(run, next_index=next_index, limit=TICK_BATCH).next_index
         _schedule(run, next_index)
 
 

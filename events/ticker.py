@@ -23,7 +23,7 @@ from django.db import close_old_connections
 from events.clock import wall_now
 from events.models import Run, RunStatus
 from events.retention import purge_if_due
-from events.scheduler import fire_due, fired_through, live_runs, next_wake
+from events.scheduler import TICK_BATCH, fire_due, fired_through, live_runs, next_wake
 
 log = logging.getLogger(__name__)
 
@@ -66,7 +66,7 @@ class Schedule:
         for pk, run in list(self.runs.items()):
             at = next_wake(run, self.next_index[pk])
             if at is not None and at <= wall:
-                result = fire_due(run, next_index=self.next_index[pk])
+                result = fire_due(run, next_index=self.next_index[pk], limit=TICK_BATCH)
                 self.next_index[pk] = result.next_index
                 if run.status != RunStatus.RUNNING_AUTO or run.closed_at is not None:
                     del self.runs[pk]
