@@ -6,7 +6,8 @@ agent: it is never written as a result, never counted in a rate, and runs again 
 `--retry-errors`. A task is an error when
 
 1. the harness could not do its part: the control API or the server failed after retries, the
-   agent's command could not be launched (`HarnessError`, raised before a verdict exists);
+   agent's command could not be launched (`HarnessError`, raised before a verdict exists), or
+   an agent on a virtual clock outlived its wall-time guard (runner.py: a loaded machine);
 2. the agent never reached its task: the server logged no page view, action or contact of it
    (it could not start, crashed first, or was given a wrong URL) — whatever its exit code, so a
    no-op whose agent never started is never a pass;

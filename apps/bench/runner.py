@@ -56,6 +56,7 @@ RESULTS, ERROR, OUTPUT, EVENTS, COSTS = (
     "costs.json",
 )
 START_POLL_S = 0.5
+VIRTUAL_GUARD_FACTOR, VIRTUAL_GUARD_MIN_S = 4.0, 120.0  # a virtual run's wall-time guard
 OUTPUT_TAIL_LINES = 5
 CONTROL_AGENTS = ("oracle", "early", "never", "sleeper")
 
@@ -419,6 +420,10 @@ class Harness:
         header = exported[0] if exported and "format" in exported[0] else {}
         result["catalog_hash"] = (header.get("run") or {}).get("catalog_hash")
         cause = error_cause(verdict, process.returncode, killed)
+        if killed and self.clock == "virtual" and not cause:
+            # No deadline exists on a virtual clock: a kill by the guard is a machine too slow
+            # (or an agent hung), never a verdict on the scenario.
+            cause = "the agent outlived its wall-time guard on a virtual clock (a loaded machine?)"
         if cause:
             return {**result, "error_cause": cause}
         write_json_atomically(task.folder / RESULTS, result)
@@ -428,11 +433,16 @@ class Harness:
         self, process: subprocess.Popen, run_id: int, limit: float, launched: float
     ) -> bool:
         """Wait for the agent or its deadline; True when it had to be killed."""
-        deadline = launched + limit
-        # A virtual clock never starts; its agent moves it, so the limit is a wall-time guard
-        # counted from launch. A fast-forward clock is read all along: every skip brings the
-        # deadline (the same simulated moment as on a live clock) sooner in wall time.
-        started = self.clock == "virtual"
+        # A virtual clock never starts; its agent moves it, so the limit is only a guard
+        # against a hung agent, counted from launch and generous: on a loaded machine a
+        # control agent may take many wall seconds to jump through its run. A fast-forward
+        # clock is read all along: every skip brings the deadline (the same simulated moment
+        # as on a live clock) sooner in wall time.
+        virtual = self.clock == "virtual"
+        deadline = launched + (
+            max(VIRTUAL_GUARD_FACTOR * limit, VIRTUAL_GUARD_MIN_S) if virtual else limit
+        )
+        started = virtual
         next_poll = launched
         while process.poll() is None:
             now = time.monotonic()

@@ -23,9 +23,12 @@ BURN = "while True: pass"
 
 def validate(*args: str) -> str:
     out = io.StringIO()
-    call_command(
-        "bench", "validate", "--speed-factor", "4", "--reaction-window", "2", *args, stdout=out
-    )
+    try:
+        call_command(
+            "bench", "validate", "--speed-factor", "4", "--reaction-window", "2", *args, stdout=out
+        )
+    finally:
+        print(out.getvalue())  # shown when it fails: which verdict differed, which task erred
     return out.getvalue()
 
 
