@@ -11,6 +11,7 @@ from django.core.management import CommandError, call_command
 
 from apps.scenarios.format import parse_scenario
 from apps.scenarios.spread import MAX_BIN_SHARE, condition_spread
+from events.timing import MAX_CONDITION_AT, MAX_SPEED_FACTOR
 from tests.conftest import OUR_SCENARIOS
 
 
@@ -80,3 +81,19 @@ def test_a_small_folder_is_printed_but_not_judged():
     spread = condition_spread([scenario_at(250.0)] * 3)
     assert not spread.judged and spread.crowded == ()
     assert [b.share for b in spread.bins][2] == 1.0
+
+
+def test_a_report_in_the_last_5_wall_seconds_before_the_deadline_is_never_timely():
+    # At speed ≤ MAX_SPEED_FACTOR the harness deadline is MAX_CONDITION_AT / sf + the reaction
+    # window; a contact 5 wall seconds before it (the sleeper control agent's) is within the
+    # window only for a condition at or after MAX_CONDITION_AT - 5 * sf: 580 s at speed 4.
+    latest = max(
+        s.condition_at
+        for s in (
+            parse_scenario(json.loads(p.read_text()))
+            for p in OUR_SCENARIOS.glob("*/*.json")
+            if p.name != "dev.json"
+        )
+        if s.condition_at is not None
+    )
+    assert latest < MAX_CONDITION_AT - 5 * MAX_SPEED_FACTOR
