@@ -6,7 +6,7 @@ reload, report through the contact page and read the verdict and the logged acti
         story = BrowserStory.start(live_site, browser, "microdin-kubernetes-absolute-active")
         story.page.get_by_role(…).click()
         story.watch_for_reload()
-        story.advance(262.8)
+        story.advance(71.0)
         expect(…).to_be_visible()
         story.assert_not_reloaded()
         …

@@ -62,7 +62,8 @@ TEST_SCENARIOS = [
     (
         "bench-active",
         "body-keyword-absolute-active",
-        "poll select-base-45; action open_email base-45; contact; costs 20000 1000 6",
+        "poll select-base-45; action open_email base-45; action flag base-45; contact; "
+        "costs 20000 1000 6",
         {},
     ),
     # Leaves a child behind when it exits by itself: the harness kills it anyway.

@@ -76,7 +76,7 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     assert passive["contact_message"] == "done"
     assert passive["views"] >= 2
     assert outcome["bench-active"]["category"] == "active-absolute"
-    assert outcome["bench-active"]["actions"] == 1
+    assert outcome["bench-active"]["actions"] == 2  # opens the mail, flags it
     assert outcome["bench-noop"]["category"] == "noop"
     assert outcome["bench-noop"]["contact_get_time"] is None
     assert "before the condition held" in outcome["bench-early"]["detail"]

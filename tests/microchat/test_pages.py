@@ -17,7 +17,7 @@ from events.models import ClockMode, Event, EventKind
 
 pytestmark = pytest.mark.django_db
 
-PAYMENTS_AT = 353.2
+PAYMENTS_AT = 534.0
 PAYMENTS_TEXT = "card payments are failing"
 
 

@@ -20,7 +20,7 @@ from tests.browser_story import BrowserStory
 pytestmark = pytest.mark.browser
 
 SCENARIO = "microdin-kubernetes-absolute-active"
-POSTED_AT = 262.8
+POSTED_AT = 71.0
 TITLE = "Infrastructure Engineer"
 
 

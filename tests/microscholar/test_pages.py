@@ -17,7 +17,7 @@ from tests.microscholar.cast import TARGET
 
 pytestmark = pytest.mark.django_db
 
-TARGET_AT = 243.7
+TARGET_AT = 12.0
 FIRST = "paper-021"  # "Faithfulness Checks for Abstractive Meeting Summaries", preloaded
 
 

@@ -23,7 +23,7 @@ from tests.browser_story import BrowserStory
 pytestmark = pytest.mark.browser
 
 SCENARIO = "microtube-video-absolute-active"
-UPLOADED_AT = 336.8
+UPLOADED_AT = 516.0
 TITLE = "Sunrise on Mount Pilchuck: A Winter Day Hike"
 VIDEO = "vid-trail-03"
 
