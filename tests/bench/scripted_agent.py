@@ -11,6 +11,7 @@ It follows the script embedded in its prompt as `[[script: step; step; ...]]`:
                        fork): its pid goes to escaped.pid
   forge                write a results.json of its own saying it passed
   flood MIB            write MIB mebibytes to stdout
+  snoop                ask the control side for the answer key; the answers go to snoop.json
   hang                 sleep forever
 """
 
@@ -22,6 +23,7 @@ import re
 import subprocess
 import sys
 import time
+import urllib.error
 import urllib.parse
 import urllib.request
 
@@ -107,6 +109,27 @@ def main() -> int:
                 sys.stdout.buffer.write(line)
             sys.stdout.flush()
             print("flooded", flush=True)
+        elif verb == "snoop":
+            base = task_url.split("/r/", 1)[0]
+            run_api = f"{base}/api/runs/"
+            asked = {
+                "runs": ("GET", run_api),
+                "scenarios": ("GET", f"{base}/api/scenarios/"),
+                "advance": ("POST", f"{base}/advance?time=600"),
+                "status": ("GET", f"{base}/status"),
+            }
+            answers = {}
+            for name, (method, url) in asked.items():
+                request = urllib.request.Request(
+                    url, method=method, data=b"{}" if method == "POST" else None
+                )
+                try:
+                    with urllib.request.urlopen(request, timeout=10) as response:
+                        answers[name] = response.status
+                except urllib.error.HTTPError as error:
+                    answers[name] = error.code
+            with open("snoop.json", "w") as f:
+                json.dump(answers, f)
         elif verb == "hang":
             print("hanging", flush=True)
             while True:

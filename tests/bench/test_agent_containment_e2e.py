@@ -1,6 +1,7 @@
-"""An agent cannot fool the harness (findings): it writes in a fresh folder of its own, so a
-results.json it forges is never a verdict; nothing it starts outlives its task, even a process
-in a session of its own whose parent is gone; its output is capped, head and tail kept."""
+"""An agent cannot fool the harness (findings): the control side of the harness's server is
+sealed from it (a fresh control token, the flat endpoints off); it writes in a fresh folder of
+its own, so a results.json it forges is never a verdict; nothing it starts outlives its task,
+even a process in a session of its own whose parent is gone; its output is capped."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ from tests.bench.test_harness_e2e import alive
 
 pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
-SCRIPT = "escape; forge; flood 24; costs 100 10 1"
+SCRIPT = "snoop; escape; forge; flood 24; costs 100 10 1"
 
 
 @pytest.fixture
@@ -44,6 +45,9 @@ def test_a_hostile_agent_forges_nothing_leaves_nothing_and_is_capped(
     assert json.loads((folder / "costs.json").read_text())["input_tokens"] == 100  # copied back
     escaped = int((folder / "escaped.pid").read_text())
     assert not alive(escaped), "a process the agent set loose outlived its task"
+    # The answer key is sealed: no run list, no scenario, no clock of its own to move.
+    snooped = json.loads((folder / "snoop.json").read_text())
+    assert all(code in (401, 403, 404) for code in snooped.values()), snooped
     output = (folder / "output.txt").read_bytes()
     assert len(output) <= OUTPUT_CAP + 200
     assert output.startswith(b"opened ") and output.rstrip().endswith(b"flooded")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import secrets
 import signal
 import tempfile
 import threading
@@ -279,21 +280,31 @@ class Command(BaseCommand):
     # --- shared ----------------------------------------------------------------------------
 
     @contextlib.contextmanager
-    def server(self, server_url: str | None, *, external_is_preflight: bool = False):
+    def server(
+        self, server_url: str | None, token: str = "", *, external_is_preflight: bool = False
+    ):
+        """The server to run against and its control token: `server_url` with `token` (or the
+        configured one), else an embedded server of our own. That one runs with a fresh random
+        control token and the flat endpoints off, so an agent's browser can reach nothing of the
+        control side (no other run, no scenario, no /advance): only its own run's URLs."""
         if server_url:
             if external_is_preflight:
                 problem = preflight.reachable(server_url)
                 if problem:
                     raise _preflight_failed([problem])
-            yield server_url
+            yield server_url, token or settings.SENTINEL_CONTROL_TOKEN
             return
         executor = MigrationExecutor(connection)
         if executor.migration_plan(executor.loader.graph.leaf_nodes()):
             call_command("migrate", interactive=False, verbosity=0)
+        token = secrets.token_urlsafe(32)
+        sealed = {"SENTINEL_CONTROL_TOKEN": token, "SENTINEL_FLAT_ENDPOINTS": "0"}
         try:
-            with site_server(log_path=Path(settings.BASE_DIR) / "var" / "bench-server.log") as url:
+            with site_server(
+                log_path=Path(settings.BASE_DIR) / "var" / "bench-server.log", extra_env=sealed
+            ) as url:
                 self.stdout.write(f"Embedded server on {url}")
-                yield url
+                yield url, token
         except ServerDidNotStart as exc:
             raise HarnessError(str(exc)) from None
 
@@ -353,12 +364,11 @@ class Command(BaseCommand):
         run_dir = Path(results_dir) / name
         started_at = timezone.now()
         began = time.monotonic()
-        with self.server(cfg.server_url, external_is_preflight=True) as url:
-            client = ControlClient(
-                url,
-                token=cfg.control_token or settings.SENTINEL_CONTROL_TOKEN,
-                timeout=cfg.http_timeout,
-            )
+        with self.server(cfg.server_url, cfg.control_token, external_is_preflight=True) as (
+            url,
+            token,
+        ):
+            client = ControlClient(url, token=token, timeout=cfg.http_timeout)
             try:
                 invalid: list[dict] = []
                 listing = discover(client, task=task, filter=filter, skipped=invalid)
@@ -462,10 +472,8 @@ class Command(BaseCommand):
         cfg = BenchConfig(None, speed_factor=sf, parallel=parallel, reaction_window=reaction_window)
         root = Path(tempfile.mkdtemp(prefix="bench-validate-"))
         began = time.monotonic()
-        with self.server(server_url) as url:
-            client = ControlClient(
-                url, token=settings.SENTINEL_CONTROL_TOKEN, timeout=cfg.http_timeout
-            )
+        with self.server(server_url) as (url, token):
+            client = ControlClient(url, token=token, timeout=cfg.http_timeout)
             try:
                 invalid: list[dict] = []
                 listing = discover(client, filter=filter, skipped=invalid)
