@@ -243,8 +243,13 @@ def browser():
     executable = shutil.which("chromium") or CHROMIUM
     if not Path(executable).exists():
         pytest.fail("chromium is not installed: apt-get install -y chromium")
-    from playwright.sync_api import sync_playwright
+    from playwright.sync_api import expect, sync_playwright
 
+    from tests.browser_story import TIMEOUT_MS
+
+    # `expect` has a ceiling of its own (5 s), which a page on a fully loaded machine can
+    # miss: the same generous one as actions. It returns as soon as its condition holds.
+    expect.set_options(timeout=TIMEOUT_MS)
     with sync_playwright() as playwright:
         instance = playwright.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
         try:
