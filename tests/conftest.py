@@ -185,25 +185,34 @@ class KeptSiteServer:
         """The base URL of a server started as this test would start it, with no memory of
         earlier tests (tests/server_urls.py)."""
         from sentinel_site.site_server import child_environment, site_server
-        from tests.server_urls import FORGET_PATH
 
         key = tuple(
             sorted((k, v) for k, v in child_environment().items() if k not in self.VOLATILE)
         )
-        if key != self.key:
-            self.stop()
-            running = contextlib.ExitStack()
-            self.base_url = running.enter_context(
-                site_server(
-                    extra_env={"SENTINEL_TEST_SHARED_SERVER": "1"},
-                    log_path=settings.BASE_DIR / "var" / "live-site.log",
-                )
+        if key == self.key:
+            try:
+                self._forget()
+                return self.base_url
+            except OSError:  # the kept server is gone (a crash, say): start another
+                pass
+        self.stop()
+        running = contextlib.ExitStack()
+        self.base_url = running.enter_context(
+            site_server(
+                extra_env={"SENTINEL_TEST_SHARED_SERVER": "1"},
+                log_path=settings.BASE_DIR / "var" / "live-site.log",
             )
-            self._running, self.key = running, key
+        )
+        self._running, self.key = running, key
+        self._forget()
+        return self.base_url
+
+    def _forget(self) -> None:
+        from tests.server_urls import FORGET_PATH
+
         forgetting = urllib.request.Request(f"{self.base_url}/{FORGET_PATH}", method="POST")
         with urllib.request.urlopen(forgetting, timeout=30) as answer:
             assert answer.status == 204, f"the server did not forget earlier tests: {answer.status}"
-        return self.base_url
 
     def stop(self) -> None:
         if self._running is not None:
@@ -243,8 +252,13 @@ def browser():
     executable = shutil.which("chromium") or CHROMIUM
     if not Path(executable).exists():
         pytest.fail("chromium is not installed: apt-get install -y chromium")
-    from playwright.sync_api import sync_playwright
+    from playwright.sync_api import expect, sync_playwright
 
+    from tests.browser_story import TIMEOUT_MS
+
+    # `expect` has a ceiling of its own (5 s), which a page on a fully loaded machine can
+    # miss: the same generous one as actions. It returns as soon as its condition holds.
+    expect.set_options(timeout=TIMEOUT_MS)
     with sync_playwright() as playwright:
         instance = playwright.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
         try:

@@ -121,11 +121,20 @@ def test_contact_goes_through_the_form_and_only_the_contact_tool_may(toolbox, st
     assert static_site.messages == ["The button was pressed."]
 
 
-def test_wait_for_watches_the_page_with_the_model_as_judge(toolbox):
-    toolbox.browser.page.evaluate(
-        "setTimeout(() => { document.getElementById('out').textContent = 'Pressed!' }, 300)"
-    )
+def test_wait_for_watches_the_page_with_the_model_as_judge(toolbox, monkeypatch):
+    browser, looks = toolbox.browser, []
+
+    def markdown() -> str:
+        """The page as wait_for reads it; the button is pressed right after its first look (a
+        timer started before wait_for could fire before that look on a loaded machine)."""
+        looks.append(Browser.markdown(browser))
+        if len(looks) == 1:
+            browser.page.evaluate("document.getElementById('out').textContent = 'Pressed!'")
+        return looks[-1]
+
+    monkeypatch.setattr(browser, "markdown", markdown)
     result = toolbox.dispatch("wait_for", {"condition": "the button is pressed", "timeout": 300})
+    assert "Pressed!" not in looks[0]
     assert result.text.startswith("met: true — a new change mentions 'Pressed'")
     assert toolbox.judge.model.ledger.total.calls >= 1
 
