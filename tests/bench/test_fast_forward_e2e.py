@@ -82,7 +82,7 @@ def results(root: Path, name: str) -> dict[str, dict]:
 
 def logged(root: Path, name: str, task: str) -> list[dict]:
     lines = (root / name / "micromail" / task / "events.jsonl").read_text().splitlines()
-    return [json.loads(line) for line in lines]
+    return [json.loads(line) for line in lines[1:]]  # after the header (export_run's format)
 
 
 def test_the_wait_for_agent_skips_to_the_email_and_passes_both_tasks(paper_scenarios, tmp_path):  # noqa: F811

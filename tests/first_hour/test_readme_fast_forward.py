@@ -30,10 +30,10 @@ def test_the_readme_fast_forward_example_answers_as_shown(live_site):
     )
     assert done.returncode == 0, done.stderr
     change, sleep = answers(done.stdout)
-    assert (change["sim_time"], change["why"]) == (41.27, "change")
-    assert change["fired"] == [{"at": 41.27, "type": "new_email"}]
-    assert sleep["why"] == "slept" and sleep["sim_time"] == pytest.approx(sleep["from"] + 60)
-    assert sleep["fired"] == [{"at": 97.83, "type": "new_email"}]
+    assert (change["sim_time"], change["why"]) == (3.26, "change")
+    assert change["fired"] == [{"at": 3.26, "type": "new_email"}]
+    assert sleep["why"] == "slept" and sleep["sim_time"] == pytest.approx(sleep["from"] + 6)
+    assert sleep["fired"] == [{"at": 7.73, "type": "new_email"}]
     assert sleep["seq"] > change["seq"] and sleep["run_status"] == "running_auto"
 
 
