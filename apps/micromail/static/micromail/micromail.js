@@ -83,13 +83,17 @@
     if (status) status.textContent = text;
   }
 
-  function saveDraft(options) {
-    var state = compose;
-    if (!state || state.sending || !document.body.contains(state.form)) return;
+  function saveDraft(options, pending) {
+    // `pending`: the compose state a save in flight was asked to save again. When the user left
+    // meanwhile, its form is no longer on the page, but what was typed is still in it: saved.
+    var state = pending || compose;
+    var leaving = Boolean(options && options.leaving);
+    if (!state || state.sending) return;
+    if (!pending && !document.body.contains(state.form)) return;
     clearTimeout(state.timer);
     var form = state.form, now = snapshot(form);
     if (now === state.saved || !hasContent(form)) return;
-    if (state.saving) { state.again = true; return; }
+    if (state.saving) { state.again = leaving ? "leaving" : state.again || "later"; return; }
     state.saving = true;
     say("Saving…");
     var data = new FormData(form);
@@ -97,7 +101,7 @@
     var headers = { "X-CSRFToken": csrf(form), Accept: "application/json" };
     headers[AUTOSAVE_HEADER] = "1";
     fetch(form.action, { method: "POST", body: data, headers: headers, credentials: "same-origin",
-                         keepalive: Boolean(options && options.leaving) })
+                         keepalive: leaving })
       .then(function (response) { return response.json(); })
       .then(function (answer) {
         if (answer && answer.draft_id) {
@@ -113,7 +117,10 @@
         if (state.resubmit) {  // Send or Discard waited for this save: go on with its draft id
           var button = state.resubmit; state.resubmit = null;
           form.requestSubmit(button);
-        } else if (state.again) { state.again = false; saveDraft(); }
+        } else if (state.again) {
+          var again = state.again; state.again = false;
+          saveDraft({ leaving: again === "leaving" }, state);  // with the draft id just given
+        }
       });
   }
 
