@@ -31,7 +31,9 @@ ALLOWED_HOSTS = [
 # and again by every JSON door (apps/control/parsers.py). 2.5 MB is Django's own default.
 DATA_UPLOAD_MAX_MEMORY_SIZE = env_int("SENTINEL_MAX_BODY_BYTES", 2_621_440, minimum=1024)
 # What one client can hold of the server, at the socket (sentinel_site/request_limits.py).
-SENTINEL_MAX_CONNECTIONS_PER_CLIENT = env_int("SENTINEL_MAX_CONNECTIONS_PER_CLIENT", 1024, minimum=1)
+SENTINEL_MAX_CONNECTIONS_PER_CLIENT = env_int(
+    "SENTINEL_MAX_CONNECTIONS_PER_CLIENT", 1024, minimum=1
+)
 SENTINEL_HEADER_DEADLINE_S = env_int("SENTINEL_HEADER_DEADLINE_S", 10, minimum=1)
 SENTINEL_IDLE_TIMEOUT_S = env_int("SENTINEL_IDLE_TIMEOUT_S", 75, minimum=1)
 CSRF_TRUSTED_ORIGINS = [o for o in env_str("SENTINEL_CSRF_TRUSTED_ORIGINS").split(",") if o]
