@@ -53,6 +53,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from sentinel_site.exposure import announcement, control_token_for
+from sentinel_site.processes import live_pids, parent_of
 
 REPO = Path(__file__).resolve().parent.parent
 TICKERS = ("process", "celery")
@@ -210,14 +211,6 @@ def _command_line(pid: int) -> list[str]:
     return [part.decode(errors="replace") for part in raw.split(b"\0") if part]
 
 
-def _parent(pid: int) -> int:
-    try:
-        stat = Path(f"/proc/{pid}/stat").read_text()
-    except OSError:
-        return 0
-    return int(stat.rsplit(")", 1)[1].split()[1])  # the field after the state
-
-
 def _is_supervisord(words: list[str]) -> bool:
     return any(Path(word).name == "supervisord" for word in words[:2])
 
@@ -239,7 +232,7 @@ def _is_ours(pid: int, shape: Shape) -> bool:
     line = " ".join(words)
     if not any(" ".join(command) in line for command in OWN_COMMANDS):
         return False
-    owner = _command_line(_parent(pid))
+    owner = _command_line(parent_of(pid))
     return not _is_supervisord(owner) or str(shape.conf_path) in owner
 
 
@@ -252,13 +245,7 @@ def stale_processes(shape: Shape) -> list[int]:
             pid = int(pidfile.read_text().strip())
             if _is_ours(pid, shape):
                 found.append(pid)
-    for entry in Path("/proc").iterdir():
-        if (
-            entry.name.isdigit()
-            and int(entry.name) not in found
-            and _is_ours(int(entry.name), shape)
-        ):
-            found.append(int(entry.name))
+    found += [pid for pid in live_pids() if pid not in found and _is_ours(pid, shape)]
     return found
 
 

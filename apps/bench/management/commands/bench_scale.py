@@ -44,6 +44,7 @@ from events.models import Event, EventKind, Run
 from events.registry import environment_names, get_environment
 from events.timing import SpeedFactorError, validate_speed_factor
 from sentinel_site.figures import percentile
+from sentinel_site.processes import live_pids, parent_of
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
 KNEE_MS = 100.0  # page p95 beyond this is where the server "breaks"
@@ -292,15 +293,8 @@ class RssSampler:
 def descendants(root: int) -> list[int]:
     """Every live process below `root`, from /proc (Linux)."""
     children: dict[int, list[int]] = {}
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            stat = (entry / "stat").read_text()
-        except OSError:
-            continue
-        ppid = int(stat.rsplit(")", 1)[1].split()[1])
-        children.setdefault(ppid, []).append(int(entry.name))
+    for pid in live_pids():
+        children.setdefault(parent_of(pid), []).append(pid)
     found, todo = [], [root]
     while todo:
         for child in children.get(todo.pop(), []):
