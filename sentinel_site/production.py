@@ -22,8 +22,8 @@ Choices, and why:
   is needed on one machine. Daphne has no SO_REUSEPORT option, and separate ports would need a
   proxy in front just to share load.
 - Every child starts through `sentinel_site.orphan_guard` (the kernel's parent-death signal),
-  so none outlives supervisord, and a new start stops what an older one of the same checkout
-  left (`stop_stale`).
+  so none outlives supervisord, and a new start stops what an older start of the same shape
+  left (`stop_stale`), found by the shape's mark in each process's environment.
 - The ticker runs in its own process, never inside a Daphne process: there it shared an event
   loop and a GIL with page rendering, so entries fired as late as the busiest page (finding
   11). The default ticker process is the embedded ticker's own loop (`events.ticker`) with
@@ -53,10 +53,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from sentinel_site.exposure import announcement, control_token_for
-from sentinel_site.processes import live_pids, parent_of
+from sentinel_site.processes import live_pids
 
 REPO = Path(__file__).resolve().parent.parent
 TICKERS = ("process", "celery")
+SHAPE_MARK = "SENTINEL_PRODUCTION_SHAPE"  # environment variable naming the shape's run folder
 REFRESH_S = 0.2  # the ticker process notices a started clock within this (a query each time)
 WORKER_THREADS = 4  # fire_run tasks are short database writes; threads wait on the database
 TICKERS_RUNNING = 2  # under `--ticker process`: one keeps firing while the other restarts
@@ -97,8 +98,12 @@ class Shape:
 
     @property
     def environment(self) -> dict[str, str]:
-        """What the shape sets in every process: Daphnes never run a ticker themselves."""
-        return {"SENTINEL_TICKER": "celery" if self.ticker == "celery" else "off"}
+        """What the shape sets in every process: Daphnes never run a ticker themselves, and each
+        carries its shape's mark, by which a later start finds what this one left."""
+        return {
+            "SENTINEL_TICKER": "celery" if self.ticker == "celery" else "off",
+            SHAPE_MARK: str(self.run_dir.resolve()),
+        }
 
     @property
     def conf_path(self) -> Path:
@@ -196,11 +201,6 @@ def supervisord_executable() -> str:
 
 
 # What the shape's own processes run (their command lines), to find those a previous start left.
-OWN_COMMANDS = (
-    ("-m", "daphne", "--fd", "0", "sentinel_site.asgi:application"),
-    ("-m", "sentinel_site.production", "ticker"),
-    ("-m", "celery", "-A", "sentinel_site"),
-)
 
 
 def _command_line(pid: int) -> list[str]:
@@ -211,29 +211,27 @@ def _command_line(pid: int) -> list[str]:
     return [part.decode(errors="replace") for part in raw.split(b"\0") if part]
 
 
-def _is_supervisord(words: list[str]) -> bool:
-    return any(Path(word).name == "supervisord" for word in words[:2])
+def _shape_mark(pid: int) -> str | None:
+    """The run folder of the shape that started `pid` (None: not a shape's process)."""
+    try:
+        raw = Path(f"/proc/{pid}/environ").read_bytes()
+    except OSError:
+        return None
+    prefix = f"{SHAPE_MARK}=".encode()
+    for entry in raw.split(b"\0"):
+        if entry.startswith(prefix):
+            return entry[len(prefix) :].decode(errors="replace")
+    return None
 
 
 def _is_ours(pid: int, shape: Shape) -> bool:
-    """A process a previous start of this shape left: supervisord with this shape's
-    configuration, or a program of this checkout's shape that no other supervisord owns (a
-    set started elsewhere from this checkout, a test's or a benchmark's, is left alone)."""
-    words = _command_line(pid)
-    if not words or pid == os.getpid():
+    """A process a previous start of this shape left: anything carrying this shape's mark
+    (supervisord and every program it started, however orphaned). Matching by the mark, not by
+    command line, leaves alone what merely looks alike: a Celery worker or Daphne that a test,
+    a benchmark or a developer started from this checkout, and every other shape's set."""
+    if pid == os.getpid():
         return False
-    if _is_supervisord(words):
-        return str(shape.conf_path) in words
-    try:
-        if Path(f"/proc/{pid}/cwd").resolve() != REPO:
-            return False
-    except OSError:
-        return False
-    line = " ".join(words)
-    if not any(" ".join(command) in line for command in OWN_COMMANDS):
-        return False
-    owner = _command_line(parent_of(pid))
-    return not _is_supervisord(owner) or str(shape.conf_path) in owner
+    return _shape_mark(pid) == str(shape.run_dir.resolve())
 
 
 def stale_processes(shape: Shape) -> list[int]:

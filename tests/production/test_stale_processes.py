@@ -15,7 +15,12 @@ from urllib.parse import urlsplit
 
 import pytest
 
-from sentinel_site.production import REPO, Shape, production_site, stop_stale
+from sentinel_site.production import (
+    REPO,
+    Shape,
+    production_site,
+    stop_stale,
+)
 from sentinel_site.site_server import child_environment
 
 pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
@@ -52,16 +57,23 @@ def test_killing_supervisord_takes_its_children_and_frees_the_port(django_db_blo
 
 
 def test_a_new_start_stops_what_an_older_one_left_and_nothing_else(tmp_path):
-    command = [sys.executable, "-m", "sentinel_site.production", "ticker"]
+    """Only processes carrying this shape's mark: another shape's, and a look-alike started from
+    this checkout without one (a test's Celery worker or ticker: CI lost one to a parallel test
+    that matched by command line), run on."""
+    shape = Shape(run_dir=tmp_path / "production")
+    ticker = [sys.executable, "-m", "sentinel_site.production", "ticker"]
     env = child_environment()  # real tickers, on the test database (no live runs in it)
-    left = subprocess.Popen(command, cwd=REPO, env=env)  # a ticker whose supervisord is gone
-    elsewhere = subprocess.Popen(command, cwd=tmp_path, env={**env, "PYTHONPATH": str(REPO)})
+    left = subprocess.Popen(ticker, cwd=REPO, env={**env, **shape.environment})
+    other_shape = Shape(run_dir=tmp_path / "other")
+    elsewhere = subprocess.Popen(ticker, cwd=REPO, env={**env, **other_shape.environment})
+    look_alike = subprocess.Popen(ticker, cwd=REPO, env=env)
+    processes = (left, elsewhere, look_alike)
     try:
-        stopped = stop_stale(Shape(run_dir=tmp_path / "production"))
-        assert left.pid in stopped and elsewhere.pid not in stopped
+        stopped = stop_stale(shape)
+        assert stopped == [left.pid]
         left.wait(timeout=PATIENCE_S)
-        assert elsewhere.poll() is None  # another checkout's process is never touched
+        assert elsewhere.poll() is None and look_alike.poll() is None
     finally:
-        for process in (left, elsewhere):
+        for process in processes:
             process.kill()
             process.wait()
