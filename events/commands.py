@@ -61,12 +61,8 @@ def perform_action(
     wall = wall_now() if wall is None else wall
     if folded is None:
         folded = current_folded(run, wall=wall)
-    if not has_room(run, folded):
-        raise ActionRejected(
-            f"this run's log is full: its agent has used its {agent_budget():,} entries "
-            "(actions and page views; SENTINEL_AGENT_LOG_BUDGET)",
-            status=429,
-        )
+    if spent := budget_spent(run, folded):
+        raise ActionRejected(spent, status=429)
     at = sim_now(run, wall)
     performed = environment.perform(folded.state, name, payload, at)
     event = append_event(run, EventKind.ACTION, name, performed.payload, at=at)
@@ -79,15 +75,29 @@ def perform_action(
 VIEW_PATH_LIMIT = 2048
 
 
-def agent_budget() -> int:
-    return int(getattr(settings, "SENTINEL_AGENT_LOG_BUDGET", 20_000))
+def budget_spent(run: Run, folded: Folded) -> str | None:
+    """Why the agent may add nothing more to the run's log (None: it may). Its actions and page
+    views are bounded in number and in stored bytes, over and above the scenario's own timeline:
+    an agent looping on one request, or posting maximal texts, grew its run's log, its exports
+    and replays without bound."""
+    entries = settings.SENTINEL_AGENT_LOG_BUDGET
+    if folded.seq >= len(run.timeline) + entries:
+        return (
+            f"this run's log is full: its agent has used its {entries:,} entries "
+            "(actions and page views; SENTINEL_AGENT_LOG_BUDGET)"
+        )
+    stored = settings.SENTINEL_AGENT_BYTES_BUDGET
+    if folded.agent_bytes >= stored:
+        return (
+            f"this run's log is full: its agent has stored {folded.agent_bytes:,} of its "
+            f"{stored:,} bytes (actions and page views; SENTINEL_AGENT_BYTES_BUDGET)"
+        )
+    return None
 
 
 def has_room(run: Run, folded: Folded) -> bool:
-    """Whether the agent may add to the run's log: its actions and page views are bounded (an
-    agent looping on one request grew its run's log, its exports and replays without bound),
-    over and above the scenario's own timeline."""
-    return folded.seq < len(run.timeline) + agent_budget()
+    """Whether the agent may add to the run's log (see `budget_spent`)."""
+    return budget_spent(run, folded) is None
 
 
 def record_view(run: Run, path: str, *, at: float, **details: Any) -> Event:

@@ -13,6 +13,7 @@ would scan every page view the run has logged.
 from __future__ import annotations
 
 import functools
+import json
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -21,7 +22,7 @@ from django.db import connection, connections
 
 from events.catalog import load_catalog
 from events.lru import LRU
-from events.models import Event, Run, column_field
+from events.models import Event, EventKind, Run, column_field
 from events.notifications import LIVE_KINDS
 from events.registry import EMPTY, Environment, LoggedEvent, get_environment
 
@@ -73,6 +74,15 @@ class Folded:
     seq: int  # the last event folded (0: none)
     live_seq: int  # the last scenario or action event folded (0: none)
     baselines: Mapping[str, Any] = field(default_factory=lambda: EMPTY)  # after the last preload
+    agent_bytes: int = 0  # the size of what the agent logged: its actions' and views' payloads
+
+
+AGENT_KINDS = (EventKind.ACTION, EventKind.VIEW)
+
+
+def payload_bytes(payload: Mapping[str, Any]) -> int:
+    """A payload's size as stored (JSON; ASCII-escaped, so characters are bytes)."""
+    return len(json.dumps(payload))
 
 
 def _fold(environment: Environment, start: Folded, events: list[LoggedEvent]) -> Folded:
@@ -80,7 +90,8 @@ def _fold(environment: Environment, start: Folded, events: list[LoggedEvent]) ->
         return start
     live_seq = next((e.seq for e in reversed(events) if e.kind in LIVE_KINDS), start.live_seq)
     state, baselines = environment.fold(start.state, events, start.baselines)
-    return Folded(state, events[-1].seq, live_seq, baselines)
+    logged = sum(payload_bytes(e.payload) for e in events if e.kind in AGENT_KINDS)
+    return Folded(state, events[-1].seq, live_seq, baselines, start.agent_bytes + logged)
 
 
 def _fold_from_scratch(run: Run, seq: int | None) -> Folded:
@@ -130,16 +141,16 @@ def folded_after(run: Run, before: Folded, event: Event, state: Any) -> Folded:
     if event.seq != before.seq + 1:
         return folded_state(run)
     live_seq = event.seq if event.kind in LIVE_KINDS else before.live_seq
-    after = Folded(state, event.seq, live_seq, before.baselines)
+    logged = before.agent_bytes + payload_bytes(event.payload)
+    after = Folded(state, event.seq, live_seq, before.baselines, logged)
     _cache.put((run.pk, run.catalog_hash), after, unless=lambda current: current.seq >= after.seq)
     return after
 
 
-def past_view(before: Folded, seq: int) -> Folded:
-    """`before` moved past a view event logged at `seq`: views never change state, so the
-    fold is the same state one entry further (valid only when `seq` is the next entry)."""
-    return (
-        Folded(before.state, seq, before.live_seq, before.baselines)
-        if seq == before.seq + 1
-        else before
-    )
+def past_view(before: Folded, view: Event) -> Folded:
+    """`before` moved past the view event `view`: views never change state, so the fold is the
+    same state one entry further (valid only when `view` is the next entry)."""
+    if view.seq != before.seq + 1:
+        return before
+    logged = before.agent_bytes + payload_bytes(view.payload)
+    return Folded(before.state, view.seq, before.live_seq, before.baselines, logged)

@@ -141,6 +141,8 @@ CELERY_BEAT_SCHEDULE_FILENAME = str(VAR_DIR / "celerybeat-schedule")
 SENTINEL_RUN_CREATION_RATE = env_rate("SENTINEL_RUN_CREATION_RATE", "1000/min")
 # Entries an agent may add to its run's log (actions and page views; events/commands.py).
 SENTINEL_AGENT_LOG_BUDGET = env_int("SENTINEL_AGENT_LOG_BUDGET", 20_000, minimum=1)
+# Bytes of payload (JSON) the agent may store in its run's log, over all its entries.
+SENTINEL_AGENT_BYTES_BUDGET = env_int("SENTINEL_AGENT_BYTES_BUDGET", 16 * 1024 * 1024, minimum=1)
 # Runs older than this many days are deleted by the ticker once a day (events/retention.py).
 SENTINEL_RUN_RETENTION_DAYS = env_int("SENTINEL_RUN_RETENTION_DAYS", 30)
 SENTINEL_CONTROL_TOKEN = env_str("SENTINEL_CONTROL_TOKEN")

@@ -206,7 +206,7 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
                     at=page.now,
                     partial=bool(getattr(request, "htmx", False)),
                 )
-                page.folded = past_view(folded, viewed.seq)
+                page.folded = past_view(folded, viewed)
             perform_implicit_actions(request, page, kwargs)
             return view(request, page, *args, **kwargs)
         except ActionRejected as exc:

@@ -47,6 +47,35 @@ def test_an_agent_that_has_used_its_log_budget_is_refused_and_its_views_go_unlog
     assert Event.objects.filter(run=run).count() == logged + 2
 
 
+def test_an_agent_that_has_stored_its_bytes_is_refused_however_few_its_entries(settings):
+    """Maximal texts: each action within its field's bound, a few hundred of them ≈ 20 MB."""
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    settings.SENTINEL_AGENT_BYTES_BUDGET = 120_000
+    client = Client()
+    draft = {"action": "save_draft", "payload": {"to": ["a@example.com"], "subject": "s"}}
+    sent = []
+    for _ in range(4):
+        draft["payload"]["body"] = "x" * 50_000  # the most a mail body may hold
+        sent.append(client.post(f"/r/{run.token}/actions", draft, "application/json"))
+    assert [r.status_code for r in sent[:3]] == [201, 201, 201]
+    assert sent[3].status_code == 429
+    assert "SENTINEL_AGENT_BYTES_BUDGET" in sent[3].json()["detail"]
+    stored = Event.objects.filter(run=run, kind=EventKind.ACTION).count()
+    assert stored == 3  # the refused one is not logged
+
+
+def test_the_bytes_an_agent_stored_are_the_same_from_the_cache_and_from_scratch():
+    from events.projection import fold_from_scratch, folded_state
+
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    client = Client()
+    client.get(f"{environment_root(run)}/?folder=inbox")
+    act = {"action": "mark_read", "payload": {"email_id": "base-04"}}
+    assert client.post(f"/r/{run.token}/actions", act, "application/json").status_code == 201
+    cached = folded_state(run).agent_bytes
+    assert cached > 0 and cached == fold_from_scratch(run).agent_bytes
+
+
 def huge_log(run, entries: int) -> None:
     """`entries` page views appended to the run's log at once (as an agent looping would)."""
     first = Event.objects.filter(run=run).count() + 1
