@@ -124,7 +124,7 @@ def rows(scholar: Scholar, ids: Iterable[str], now: float, root: str) -> tuple[R
 
 @per_state()
 def matching(scholar: Scholar, q: str, since: int | None, until: int | None, sort: str) -> tuple:
-    """Ids for a search: relevance (the original's shingle score), or newest year first."""
+    """Ids for a search: by relevance (`search.ranked`), or newest year first."""
 
     def in_range(paper: Paper) -> bool:
         return (since is None or paper.year >= since) and (until is None or paper.year <= until)
@@ -207,10 +207,10 @@ def search_screen(scholar: Scholar, query: SearchQuery, this_year: int, root: st
 
 @per_state()
 def related(scholar: Scholar, paper_id: str) -> tuple[str, ...]:
-    """Other indexed papers closest to this one's title (the original's search on its words)."""
+    """Other indexed papers closest to this one's title (any of its meaningful words)."""
     paper = scholar.papers[paper_id]
     others = [p for p in scholar.papers.values() if p.id != paper_id]
-    return tuple(search.ranked(others, paper.title)[:RELATED_SHOWN])
+    return tuple(search.similar(others, paper.title)[:RELATED_SHOWN])
 
 
 # --- a scholar's profile ------------------------------------------------------------------------------

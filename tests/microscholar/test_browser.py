@@ -68,3 +68,22 @@ def test_a_user_sees_the_paper_arrive_live_then_cites_and_saves_it(live_site, br
     assert verdict["success"] is True, verdict["detail"]
     assert verdict["actions"] == 2
     assert [name for name, _ in story.actions()] == ["cite", "save"]
+
+
+def test_nonsense_finds_nothing_and_a_topic_finds_its_papers_best_first(live_site, browser):  # noqa: F811
+    """Finding: "zzqqxxnothing" listed 18 papers (the original's three-letter shingles)."""
+    story = BrowserStory.start(live_site, browser, dict(CAST.scenario))
+    page = story.page
+    search = page.get_by_role("search", name="Search articles").get_by_role("searchbox")
+
+    search.fill("zzqqxxnothing")
+    search.press("Enter")
+    expect(page.get_by_text("did not match any articles")).to_be_visible()
+    expect(page.get_by_role("list", name="Search results")).to_have_count(0)
+
+    search = page.get_by_role("search", name="Search articles").get_by_role("searchbox")
+    search.fill("meeting summaries")
+    search.press("Enter")
+    results = page.get_by_role("list", name="Search results")
+    expect(results.get_by_role("listitem").first).to_contain_text("Meeting Summaries")
+    expect(page.get_by_text("did not match any articles")).to_have_count(0)

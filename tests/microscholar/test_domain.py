@@ -89,17 +89,38 @@ def test_the_evaluation_tables_answer_the_original_queries():
     assert tables(read, 0.0).execute("SELECT isRead FROM alert_states").fetchone() == (1,)
 
 
-def test_shingle_search_matches_partial_names_and_ranks_closer_titles_first():
-    assert search.shingles("abc") == {" ab", "abc", "bc "}
-    assert search.shingles("   ") == frozenset()
+def test_search_finds_every_word_in_any_form_and_ranks_title_matches_first():
     scholar = preloaded(["paper-087", "paper-088", "paper-091", "paper-031"])
     femi = search.ranked(scholar.papers.values(), "Adeyemi")
     assert set(femi) >= {"paper-087", "paper-088"}
-    assert search.ranked(scholar.papers.values(), "zzqx wvvk") == []
     assert (
         search.ranked(scholar.papers.values(), "Implicit Feedback from Dismissed Suggestions")[0]
         == "paper-087"
     )
+    title = scholar.papers["paper-087"].title
+    plural = search.ranked(scholar.papers.values(), "suggestion dismissed")  # other forms
+    assert "paper-087" in plural, title
+
+
+def test_nonsense_and_query_syntax_find_nothing_and_never_fail():
+    """Finding: "zzqqxxnothing" found 18 papers (three-letter shingles shared with "nothing")."""
+    everything = preloaded([f"paper-{n:03}" for n in range(1, 101)]).papers.values()
+    assert search.ranked(everything, "zzqqxxnothing") == []
+    assert search.ranked(everything, "zzqx wvvk") == []
+    for syntax in ('"unclosed', "title:agents", "a OR", "NEAR(x y)", "*", "-x"):
+        search.ranked(everything, syntax)  # read as words, never as FTS5 syntax
+    assert search.ranked(everything, "!!!") == [p.id for p in everything]  # no words: all
+
+
+def test_related_articles_share_a_meaningful_word_of_the_title():
+    scholar = preloaded([f"paper-{n:03}" for n in range(1, 101)])
+    paper = scholar.papers["paper-001"]
+    others = [p for p in scholar.papers.values() if p.id != paper.id]
+    found = search.similar(others, paper.title)  # "Batching Mobile Notifications Around …"
+    assert 0 < len(found) < len(others)  # not the whole catalog: stop words match nothing
+    titles = [scholar.papers[i].title for i in found[:6]]
+    assert any("Notification" in title for title in titles), titles
+    assert search.similar(others, "of the and") == []
 
 
 def test_search_screen_filters_by_year_and_sorts_by_date():
