@@ -99,17 +99,14 @@ def mailbox(request: HttpRequest, page: Page) -> HttpResponse:
     return render_mailbox(request, page, query)
 
 
-def _payload(action: str, email_id: str, request: HttpRequest) -> dict:
-    payload = {"email_id": email_id}
-    if action == "move":
-        payload["folder"] = request.POST.get("folder", "")
-    return payload
+def _payload(action: str, email_id: str, folder: str) -> dict:
+    return {"email_id": email_id, "folder": folder} if action == "move" else {"email_id": email_id}
 
 
-def _confirmation(action: str, request: HttpRequest, count: int, permanent: bool = False) -> str:
+def _confirmation(action: str, folder: str, count: int, permanent: bool = False) -> str:
     what = "1 email" if count == 1 else f"{count} emails"
     if action == "move":
-        return f"{what} moved to {FOLDER_TITLES.get(request.POST.get('folder', ''), 'a folder')}"
+        return f"{what} moved to {FOLDER_TITLES.get(folder, 'a folder')}"
     if action == "delete" and permanent:
         return f"{what} deleted permanently"
     return f"{what} {DONE[action]}"
@@ -122,14 +119,25 @@ def _returning(request: HttpRequest, action: str, acted_on: list[str]) -> Mailbo
     return back
 
 
-def act_on_emails(request: HttpRequest, page: Page, action: str, ids: list[str]) -> HttpResponse:
-    """`action` on each message of `ids` (move also takes the form's `folder`), then back to
-    the screen the form was on."""
+def pressed(request: HttpRequest) -> tuple[str, str]:
+    """The action the pressed button asked for, and the folder of a move. An item of a "Move to"
+    menu is a button `move_to=<folder>` (a button carries one value); any other button is
+    `action=<name>`, a move taking the form's `folder`."""
+    if "move_to" in request.POST:
+        return "move", request.POST["move_to"]
+    return request.POST.get("action", ""), request.POST.get("folder", "")
+
+
+def act_on_emails(
+    request: HttpRequest, page: Page, action: str, ids: list[str], folder: str
+) -> HttpResponse:
+    """`action` on each message of `ids` (a move, to `folder`), then back to the screen the
+    form was on."""
     permanent = False
     for email_id in ids:
-        event = page.act(action, _payload(action, email_id, request))
+        event = page.act(action, _payload(action, email_id, folder))
         permanent |= event.payload.get("permanent", False)
-    messages.success(request, _confirmation(action, request, len(ids), permanent))
+    messages.success(request, _confirmation(action, folder, len(ids), permanent))
     return back_to(request, page, _returning(request, action, ids))
 
 
@@ -137,21 +145,23 @@ def act_on_emails(request: HttpRequest, page: Page, action: str, ids: list[str])
 @run_page
 def email_action(request: HttpRequest, page: Page, email_id: str, action: str) -> HttpResponse:
     """`POST emails/<id>/<action>` (move also takes `folder`), then back to the same screen."""
-    return act_on_emails(request, page, one_of(action, EMAIL_ACTIONS, "email action"), [email_id])
+    action = one_of(action, EMAIL_ACTIONS, "email action")
+    return act_on_emails(request, page, action, [email_id], request.POST.get("folder", ""))
 
 
 @require_POST
 @run_page
 def bulk_action(request: HttpRequest, page: Page) -> HttpResponse:
     """The checked messages (`ids`), one action each; all ids are checked before any acts."""
-    action = one_of(request.POST.get("action"), EMAIL_ACTIONS, "email action")
+    chosen, folder = pressed(request)
+    action = one_of(chosen, EMAIL_ACTIONS, "email action")
     ids = list(dict.fromkeys(request.POST.getlist("ids")))
     if not ids:
         messages.info(request, "Select at least one email first.")
         return back_to(request, page, _returning(request, action, []))
     for email_id in ids:
         existing_email(page.state, email_id)
-    return act_on_emails(request, page, action, ids)
+    return act_on_emails(request, page, action, ids, folder)
 
 
 @require_POST

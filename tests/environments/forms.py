@@ -7,9 +7,10 @@ pre-filled inputs (the CSRF token among them), checked boxes, selected options, 
 plus the pressed button's name and value — with `values` typed over them.
 
 Typing is checked as a person is limited: a value can only go into a field the form has; a
-hidden field cannot be changed; a select or a checkbox only takes a value it offers. When
-several marked forms are on the page (MicroMail's "Archive" and "Move to…" both move), the
-first that can take `values` is used.
+hidden field cannot be changed; a select or a checkbox only takes a value it offers; a value a
+button sends is given by pressing that button. When several marked forms or buttons are on the
+page (MicroMail's "Archive" and each "Move to" item all move), the first that can take
+`values` is used.
 """
 
 from __future__ import annotations
@@ -195,9 +196,17 @@ def _pressed(form: Form, action: str) -> list[Button | None]:
     return [b for b in form.buttons if b.attrs.get("data-action") == action]
 
 
-def _refusal(form: Form, values: Mapping[str, str | list[str]]) -> str | None:
-    """Why a person could not type `values` into `form` (None: they can)."""
+def _refusal(
+    form: Form, button: Button | None, values: Mapping[str, str | list[str]]
+) -> str | None:
+    """Why a person could not type `values` into `form` and press `button` (None: they can).
+    A value the button itself sends (a "Move to" menu item: `folder=junk`) is chosen by
+    pressing that button, so only the button sending it can give it."""
     for name, typed in values.items():
+        if button is not None and button.attrs.get("name") == name:
+            if typed != button.attrs.get("value", ""):
+                return f"its button sends {name}={button.attrs.get('value', '')!r}, not {typed!r}"
+            continue
         controls = [c for c in form.controls if c.name == name and not c.disabled]
         if not controls:
             return f"it has no field {name!r}"
@@ -218,9 +227,10 @@ def _submission(
     for control in form.controls:
         if control.name and not control.disabled and control.values():
             data.setdefault(control.name, []).extend(control.values())
-    for name, typed in values.items():
-        data[name] = [typed] if isinstance(typed, str) else list(typed)
     button_attrs = button.attrs if button is not None else {}
+    for name, typed in values.items():
+        if name != button_attrs.get("name"):
+            data[name] = [typed] if isinstance(typed, str) else list(typed)
     if button_attrs.get("name"):
         data.setdefault(button_attrs["name"], []).append(button_attrs.get("value", ""))
     target = button_attrs.get("formaction") or form.attrs.get("action") or page_url
@@ -235,7 +245,7 @@ def find_submission(
     refusals = []
     for form in parse_forms(html):
         for button in _pressed(form, action):
-            refusal = _refusal(form, values)
+            refusal = _refusal(form, button, values)
             if refusal is None:
                 return _submission(form, button, page_url, values)
             refusals.append(f"form → {form.attrs.get('action', page_url)}: {refusal}")

@@ -133,8 +133,8 @@ def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_si
     inbox_link(page).click()
     row(page, OLD_SUBJECT).click()
     expect(page.get_by_role("heading", level=2, name=OLD_SUBJECT)).to_be_visible()
-    page.get_by_role("group", name="Message actions").get_by_role(
-        "button", name="Move to Junk"
+    page.get_by_role("toolbar", name="Message actions").get_by_role(
+        "button", name="Report junk"
     ).click()
     expect(row(page, OLD_SUBJECT)).to_have_count(0)
     expect(

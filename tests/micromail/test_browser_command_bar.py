@@ -1,0 +1,68 @@
+"""MicroMail's command bar in a real browser, as Outlook's: icon-and-label commands over the
+checked messages and the open one, "Move to" and "More actions" as menus (finding: the list's
+actions were unstyled default buttons and a native select, as in a debug form)."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+from playwright.sync_api import expect
+
+from tests.browser_story import BrowserStory
+from tests.conftest import browser  # noqa: F401  (the Chromium fixture)
+from tests.micromail.test_browser import inbox_link
+
+pytestmark = pytest.mark.browser
+
+FIRST, SECOND, KEPT = "base-01", "base-02", "base-30"
+
+
+def scenario() -> dict:
+    return {
+        "id": "browser-micromail-command-bar",
+        "environment": "micromail",
+        "prompt": "Tidy the inbox.",
+        "start_page": "HOST_ADDRESS/micromail",
+        "condition_at": 300.0,
+        "event_timeline_end": 600.0,
+        "kill_at": 600.0,
+        "taxonomy": {},
+        "events": [
+            {"time": 0.0, "type": "preload_emails", "payload": {"email_ids": [FIRST, SECOND, KEPT]}}
+        ],
+        "eval_sql": "SELECT 1",
+    }
+
+
+def test_checked_messages_move_through_the_menu_and_the_open_one_is_flagged(live_site, browser):  # noqa: F811
+    story = BrowserStory.start(live_site, browser, scenario())
+    page = story.page
+    bar = page.get_by_role("toolbar", name="Actions on selected messages")
+    for label in ("Delete", "Archive", "Mark as read", "Mark as unread", "Flag"):
+        expect(bar.get_by_role("button", name=label, exact=True)).to_be_visible()
+    menu = bar.get_by_role("list", name="Move selected messages to")
+    expect(menu).to_be_hidden()  # a menu until opened, not a row of buttons
+
+    messages = page.get_by_role("list", name="Messages").get_by_role("listitem")
+    expect(messages).to_have_count(3)
+    for n in (0, 1):
+        messages.nth(n).get_by_role("checkbox").check()
+    bar.get_by_text("Move to", exact=True).click()
+    expect(menu).to_be_visible()
+    menu.get_by_role("button", name="Junk Email").click()
+    expect(page.get_by_text("2 emails moved to Junk Email")).to_be_visible()
+    expect(messages).to_have_count(1)
+
+    # The open message's own bar: Flag, then the same place offers Unflag.
+    messages.first.get_by_role("link").click()
+    pane = page.get_by_role("toolbar", name="Message actions")
+    pane.get_by_role("button", name="Flag", exact=True).click()
+    expect(pane.get_by_role("button", name="Unflag", exact=True)).to_be_visible()
+    pane.get_by_text("Move to", exact=True).click()
+    pane.get_by_role("list", name="Move to folder").get_by_role("button", name="Archive").click()
+    expect(page.get_by_role("list", name="Messages").get_by_role("listitem")).to_have_text(
+        re.compile("Nothing in Inbox")
+    )
+    expect(inbox_link(page)).to_be_visible()
+    assert [name for name, _ in story.actions()] == ["move", "move", "flag", "move"]
