@@ -3,6 +3,7 @@ and `new_email`), baselines, evaluation tables."""
 
 from __future__ import annotations
 
+from apps.kit import feeds
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.deciding import opening
 from apps.kit.tables import KEY, Table, named, tables
@@ -13,7 +14,8 @@ from apps.micromail.catalog import catalog_email, catalog_state
 from apps.micromail.state import ENVIRONMENT, Email, EmailState, Mail
 from events.registry import Environment, counted
 
-# Upstream stamps preloaded mail "five minutes before start", so the list reads "5 min ago".
+# Upstream stamps every preloaded mail "five minutes before start", so its list reads "5 min ago"
+# throughout; our catalog dates each message (`ageMinutes`), from minutes to days before.
 PRELOAD_AGE_S = 300.0
 
 # Counted right after the preload, by the core (upstream's names: eval_sql reads baseline_<name>).
@@ -33,8 +35,10 @@ BASELINES = counted(
 
 def make_email(mail: Mail, email_id: str, stamp: Stamp) -> tuple[Email, EmailState] | None:
     """A catalog message as it arrives: preloaded mail keeps its catalog read flag and is dated
-    five minutes before the start; new mail arrives unread, stamped with the event's time."""
-    arrived_at = stamp.at - PRELOAD_AGE_S if stamp.preloaded else stamp.at
+    its record's `ageMinutes` (else five minutes) before the start; new mail arrives unread,
+    stamped with the event's time."""
+    record = mail.catalog.table(ENVIRONMENT, "emails").get(email_id) or {}
+    arrived_at = feeds.arrived_at(record, stamp, default_age_s=PRELOAD_AGE_S)
     email = catalog_email(mail.catalog, email_id, arrived_at=arrived_at, self_email=mail.self_email)
     if email is None:
         return None

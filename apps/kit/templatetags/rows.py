@@ -16,6 +16,7 @@ changes, so a live page is pushed again then and a kept screen is not served pas
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
+from datetime import date
 from operator import attrgetter
 from typing import Any
 
@@ -27,11 +28,21 @@ from apps.kit.fragments import render_fragment
 
 register = template.Library()
 
-# style → (text, when it next changes)
-AGES: dict[str, tuple[Callable[[float, float], str], Callable[[float, float], float | None]]] = {
-    "compact": (simclock.compact_ago, simclock.units_changes_at),  # now · 5m · 2h · 3d · 1w
-    "long": (simclock.long_ago, simclock.units_changes_at),  # 3 hours ago · 2 weeks ago
-    "mail": (simclock.ago, simclock.ago_changes_at),  # just now · 5 min ago · 08:55
+# style → (text, when it next changes), of (at, now, the run's day zero)
+Age = Callable[[float, float, date], Any]
+AGES: dict[str, tuple[Age, Age]] = {
+    # now · 5m · 2h · 3d · 1w
+    "compact": (
+        lambda at, now, _: simclock.compact_ago(at, now),
+        lambda at, now, _: simclock.units_changes_at(at, now),
+    ),
+    # 3 hours ago · 2 weeks ago
+    "long": (
+        lambda at, now, _: simclock.long_ago(at, now),
+        lambda at, now, _: simclock.units_changes_at(at, now),
+    ),
+    # just now · 5 min ago · 08:55 · Yesterday 17:30 · Mon 16 Nov (a mail client's list)
+    "mail": (simclock.relative, simclock.relative_changes_at),
 }
 
 
@@ -40,8 +51,9 @@ def _age(page, at: float, style: str) -> str:
         text, changes_at = AGES[style]
     except KeyError:
         raise template.TemplateSyntaxError(f"ago={style!r}: allowed {', '.join(AGES)}") from None
-    page.changes_at(changes_at(at, page.now))
-    return text(at, page.now)
+    zero = simclock.day_zero(getattr(page, "run", None))
+    page.changes_at(changes_at(at, page.now, zero))
+    return text(at, page.now, zero)
 
 
 def _shared(context: template.Context) -> dict[str, Any]:
