@@ -1,11 +1,13 @@
 """Line charts as SVG paths: a value over the simulated session, or a longer made-up history
 (first drawn for MicroHood's price and portfolio charts; any value over time can use them).
 
-The 1D line is the real thing — the value at sampled simulated instants from the preload to
-`now`, ending exactly at the value of `now` — and it grows across the session's width as time
-passes. Longer ranges (1W…ALL) have no data behind them in any catalog: they are a deterministic
-walk (seeded by the chart's name, e.g. a symbol, and the range) that ends at the starting value,
-then the session's last value, so every range ends at the value shown above it.
+The 1D line is the real thing from the preload on — the value at sampled simulated instants up
+to `now`, ending exactly at the value of `now` — and it grows across the session's width as time
+passes. Before it, the day's earlier trading: no catalog has any, so, as for the longer ranges
+(1W…ALL), a deterministic walk (seeded by the chart's name, e.g. a symbol, and the range) that
+ends at the starting value. (Without it a run's first page drew a lone point: one vertical
+stroke over an empty box, which no trading app shows.) Every range ends at the value shown
+above it.
 """
 
 from __future__ import annotations
@@ -17,8 +19,17 @@ from dataclasses import dataclass
 
 WIDTH, HEIGHT = 680.0, 220.0
 SESSION_SAMPLES = 90
-HISTORY_POINTS = {"1W": 40, "1M": 22, "3M": 64, "YTD": 48, "1Y": 52, "ALL": 80}
-HISTORY_SWING = {"1W": 0.03, "1M": 0.06, "3M": 0.1, "YTD": 0.14, "1Y": 0.2, "ALL": 0.45}
+# Made-up history per range; "1D" is the day's trading before the run, as wide as its session.
+HISTORY_POINTS = {"1D": 60, "1W": 40, "1M": 22, "3M": 64, "YTD": 48, "1Y": 52, "ALL": 80}
+HISTORY_SWING = {
+    "1D": 0.006,
+    "1W": 0.03,
+    "1M": 0.06,
+    "3M": 0.1,
+    "YTD": 0.14,
+    "1Y": 0.2,
+    "ALL": 0.45,
+}
 
 
 @dataclass(frozen=True)
@@ -78,12 +89,21 @@ def chart(
 ) -> Chart:
     """The chart for a range: the live session for 1D, else history then today's value."""
     start = value_at(0.0)
-    if range_name == "1D":
-        return draw(session_samples(value_at, now), max(span, now), start)
     past = history(seed, range_name, round(start, 2))
+    if range_name == "1D":
+        session = max(span, now)
+        step = session / (len(past) - 1)
+        earlier = [(i * step, v) for i, v in enumerate(earlier_today(seed, start))]
+        live = [(session + t, v) for t, v in session_samples(value_at, now)]
+        return draw(earlier + live, 2 * session, start)
     values = [*past, value_at(now)]
     points = [(float(i), v) for i, v in enumerate(values)]
     return draw(points, float(len(values) - 1), values[0])
+
+
+def earlier_today(seed: str, start: float) -> tuple[float, ...]:
+    """The day's made-up values before the run, up to (not including) its start value."""
+    return history(seed, "1D", round(start, 2))[:-1]
 
 
 def sparkline(values: Sequence[float], width: float = 64.0, height: float = 24.0) -> str:

@@ -11,7 +11,7 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from apps.kit.charts import Chart, chart, session_samples, sparkline
+from apps.kit.charts import Chart, chart, earlier_today, session_samples, sparkline
 from apps.kit.derived import per_state
 from apps.microhood import state as account
 from apps.microhood.orders import next_fill_time, settle
@@ -63,8 +63,9 @@ def row(hood: Hood, symbol: str, now: float, detail: str = "", spark: bool = Fal
     delta, percent = account.change(hood, symbol, now)
     series = hood.prices[symbol]
     line = ""
-    if spark:
-        line = sparkline([v for _, v in session_samples(series.value_at, now, SPARK_SAMPLES)])
+    if spark:  # the day so far, as the 1D chart draws it
+        today = [v for _, v in session_samples(series.value_at, now, SPARK_SAMPLES)]
+        line = sparkline([*earlier_today(symbol, today[0]), *today])
     return Row(
         symbol=symbol,
         name=stock.name,

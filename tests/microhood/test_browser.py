@@ -53,3 +53,13 @@ def test_a_user_sees_the_jump_live_and_buys_through_the_ticket(live_site, browse
 
     # One action, one order: the scenario's eval_sql sees it filled at ≥ $42.20.
     assert [name for name, _ in story.report()] == ["place_order"]
+
+
+def test_at_the_run_start_the_1d_chart_draws_the_day_so_far(live_site, browser):  # noqa: F811
+    """Finding: the 1D chart at run start was one vertical stroke over an empty box."""
+    story = BrowserStory.start(live_site, browser, SCENARIO)  # virtual clock, at 0
+    chart = story.page.get_by_role("img", name=re.compile(r"^Portfolio value chart, 1D"))
+    line, whole = chart.locator("path.line").bounding_box(), chart.bounding_box()
+    assert line is not None and whole is not None
+    assert line["width"] >= whole["width"] * 0.45  # the day before the run: the left half
+    assert line["height"] > 10  # it moves
