@@ -4,6 +4,7 @@ from django.urls import include, path
 from django.views.generic import RedirectView
 
 from apps.control.urls import api_urlpatterns, flat_urlpatterns, run_urlpatterns
+from apps.kit.views import no_such_page
 from events.registry import all_environments
 
 # The one spelling of a run's URL prefix: every run URL is reverse()d from the patterns below.
@@ -23,5 +24,7 @@ urlpatterns = [
         for environment in all_environments()
         if environment.urlconf
     ],
+    # Any other address under an environment: its "does not exist" page, not Django's bare one.
+    path(f"{RUN_PREFIX}<str:environment>/<path:rest>", no_such_page),
     *flat_urlpatterns,
 ]

@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import math
 
-from django.http import HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
+from django.http import Http404, HttpRequest, HttpResponse, HttpResponseRedirect, JsonResponse
 from django.views.decorators.http import require_GET
 
 from apps.kit import live
 from apps.kit.links import environment_root
-from apps.kit.pages import run_for_token
+from apps.kit.pages import Page, run_for_token, run_page
 from events.clock import sim_now, wall_now
 from events.scheduler import fire_due
 
@@ -26,6 +26,13 @@ from events.scheduler import fire_due
 def run_home(request: HttpRequest, token: str) -> HttpResponse:
     """/r/<token>/ is the environment's home page (a bare prefix would be a dead end)."""
     return HttpResponseRedirect(environment_root(run_for_token(token)) + "/")
+
+
+@run_page
+def no_such_page(request: HttpRequest, page: Page, environment: str, rest: str) -> HttpResponse:
+    """Any other address under an environment: the run's own "does not exist" page, in the site's
+    shell with a way back (a link a page got wrong led to Django's bare "Not Found")."""
+    raise Http404(f"no page at {page.root}/{rest}")
 
 
 @require_GET

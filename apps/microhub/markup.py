@@ -4,12 +4,15 @@ Why our own and not a library: the text is our catalog's and what the user types
 (headings, paragraphs, bullet / numbered / task lists, fenced code, inline code, bold, italic,
 links) is all of it uses, and it needs no new dependency. Safe by construction: every piece of
 text is HTML-escaped before any markup is added, and a link keeps only an http(s), mailto or
-relative target — no raw HTML, no `javascript:` URLs.
+relative target — no raw HTML, no `javascript:` URLs. A relative target is resolved as GitHub
+does, against the folder of the file that holds it (`files`: the repository's blob URL of that
+folder): `docs/api.md` in the README opens that file's page, not a 404.
 """
 
 from __future__ import annotations
 
 import functools
+import posixpath
 import re
 from html import escape
 
@@ -25,42 +28,55 @@ ITALIC = re.compile(r"(?<![\w*])[*_]([^*_]+)[*_](?![\w*])")
 LINK = re.compile(r"\[([^\]]+)\]\(([^)\s]+)\)")
 
 
-def _link(match: re.Match) -> str:
-    text, target = match.group(1), match.group(2)
+def _target(target: str, files: str) -> str | None:
+    """Where a link goes (None: nowhere a page may link to)."""
     lowered = target.lower()
-    if lowered.startswith(("http://", "https://", "mailto:")) or ":" not in target:
-        return f'<a href="{target}" rel="nofollow noopener">{text}</a>'
-    return text
+    if lowered.startswith(("http://", "https://", "mailto:")):
+        return target
+    if ":" in target:
+        return None
+    if files and not target.startswith(("/", "#", "?")):
+        blob, _, folder = files.partition("/blob/")
+        path = posixpath.normpath(posixpath.join("/", folder, target)).lstrip("/")  # never above
+        return f"{blob}/blob/{path}"
+    return target
 
 
-def inline(text: str) -> str:
+def inline(text: str, files: str = "") -> str:
     """One line of escaped text with inline markup (code spans are left alone inside)."""
+
+    def link(match: re.Match) -> str:
+        text, target = match.group(1), _target(match.group(2), files)
+        return text if target is None else f'<a href="{target}" rel="nofollow noopener">{text}</a>'
+
     parts = CODE_SPAN.split(escape(text, quote=True))
     out = []
     for index, part in enumerate(parts):
         if index % 2:
             out.append(f"<code>{part}</code>")
         else:
-            part = LINK.sub(_link, part)
+            part = LINK.sub(link, part)
             part = BOLD.sub(r"<strong>\1</strong>", part)
             out.append(ITALIC.sub(r"<em>\1</em>", part))
     return "".join(out)
 
 
-def _list_item(text: str) -> str:
+def _list_item(text: str, files: str) -> str:
     task = TASK.fullmatch(text)
     if task:
         checked = " checked" if task.group(1).lower() == "x" else ""
         return (
             f'<li class="task"><input type="checkbox" disabled{checked} aria-label="done"> '
-            f"{inline(task.group(2))}</li>"
+            f"{inline(task.group(2), files)}</li>"
         )
-    return f"<li>{inline(text)}</li>"
+    return f"<li>{inline(text, files)}</li>"
 
 
 @functools.lru_cache(maxsize=1024)
-def render_markdown(text: str) -> SafeString:
-    """`text` as HTML (block by block); the same text is rendered once per process."""
+def render_markdown(text: str, files: str = "") -> SafeString:
+    """`text` as HTML (block by block); the same text is rendered once per process. `files`:
+    the blob URL of the folder holding the text, which its relative links are resolved in
+    (`…/blob/docs`); without it they are left as written."""
     html: list[str] = []
     paragraph: list[str] = []
     list_kind: str | None = None
@@ -68,7 +84,7 @@ def render_markdown(text: str) -> SafeString:
 
     def close_paragraph() -> None:
         if paragraph:
-            html.append(f"<p>{'<br>'.join(inline(line) for line in paragraph)}</p>")
+            html.append(f"<p>{'<br>'.join(inline(line, files) for line in paragraph)}</p>")
             paragraph.clear()
 
     def close_list() -> None:
@@ -98,7 +114,7 @@ def render_markdown(text: str) -> SafeString:
             close_paragraph()
             close_list()
             level = len(heading.group(1))
-            html.append(f"<h{level}>{inline(heading.group(2))}</h{level}>")
+            html.append(f"<h{level}>{inline(heading.group(2), files)}</h{level}>")
         elif bullet or numbered:
             close_paragraph()
             kind = "ul" if bullet else "ol"
@@ -106,7 +122,7 @@ def render_markdown(text: str) -> SafeString:
                 close_list()
                 html.append(f"<{kind}>")
                 list_kind = kind
-            html.append(_list_item((bullet or numbered).group(1)))
+            html.append(_list_item((bullet or numbered).group(1), files))
         elif not stripped:
             close_paragraph()
             close_list()

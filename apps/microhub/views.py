@@ -8,6 +8,8 @@ stale. Opening an issue marks it viewed: declared with the environment (`implici
 
 from __future__ import annotations
 
+import posixpath
+
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
@@ -67,10 +69,15 @@ def code(request: HttpRequest, page: Page, path: str = "") -> HttpResponse:
         crumbs=crumbs(path),
         entries=screens.folder_entries(hub, path),
         readme=readme,
-        readme_html=render_markdown(readme.content) if readme else "",
+        readme_html=render_markdown(readme.content, files_of(page, path)) if readme else "",
         latest=screens.latest_commit(hub),
         contributors=screens.contributors(hub)[:12],
     )
+
+
+def files_of(page: Page, folder: str) -> str:
+    """The blob URL of a folder: a Markdown file's relative links are resolved in it."""
+    return f"{page.root}/blob/{folder}"
 
 
 def crumbs(path: str) -> list[tuple[str, str]]:
@@ -92,7 +99,9 @@ def blob(request: HttpRequest, page: Page, path: str) -> HttpResponse:
         "code",
         file=found,
         crumbs=crumbs(path),
-        rendered=render_markdown(found.content) if markdown else "",
+        rendered=render_markdown(found.content, files_of(page, posixpath.dirname(path)))
+        if markdown
+        else "",
         lines=found.content.split("\n"),
     )
 

@@ -1,6 +1,7 @@
 """A real browser on a real server: an open inbox keeps its times current with no event firing.
 
-The run's timeline holds only its t=0 preload (mail that arrived 5 min before the start), so
+The run's timeline holds only its t=0 preload (its newest mail arrived `NEWEST_AGE_MIN` minutes
+before the start), so
 the clock alone changes the page: the shell's simulated clock and each row's "N min ago". At
 speed 4 a simulated minute is 15 wall seconds; the clock is first moved by hand to 09:00:48 and
 started there, so the minute turns 3 wall seconds after the start. Over the websocket the server
@@ -14,7 +15,7 @@ import urllib.request
 
 import pytest
 
-from tests.live.test_clock_push import api, quiet_scenario
+from tests.live.test_clock_push import NEWEST_AGE_MIN, api, quiet_scenario
 
 pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
 
@@ -51,7 +52,7 @@ def test_the_shell_clock_and_relative_times_advance_by_themselves(live_site, bro
     minute = int(shown["clock"].rsplit(":", 1)[1])
     ago = int(shown["ago"].split()[0])
     assert shown["clock"].endswith(f"09:{minute:02d}") and minute in (0, 1)
-    assert shown["ago"] == f"{ago} min ago" and ago == 5 + minute
+    assert shown["ago"] == f"{ago} min ago" and ago == NEWEST_AGE_MIN + minute
 
     page.wait_for_function(
         """([clock, ago]) => document.getElementById("sim-clock").innerText !== clock &&

@@ -1,8 +1,8 @@
 """Pages whose only change is the clock (a relative time, the shell clock) are pushed when it
 changes, over a real websocket to a real Daphne, with no timeline event firing.
 
-The cast: a MicroMail run whose timeline holds only its t=0 preload (mail that arrived 5 min
-before the start), so nothing but the clock can change its pages.
+The cast: a MicroMail run whose timeline holds only its t=0 preload (its newest mail arrived
+`NEWEST_AGE_MIN` minutes before the start), so nothing but the clock can change its pages.
 """
 
 from __future__ import annotations
@@ -27,11 +27,40 @@ WAIT_S = 20  # a simulated minute is 15 wall seconds at speed 4; the tests move 
 LIVE_DIV = re.compile(r'<div id="sentinel-live"[^>]*data-seq="(\d+)" data-due="([^"]*)"')
 
 
+RECENT_MAIL = "base-23"  # our catalog dates it minutes before the start: its row reads "N min ago"
+
+
+def with_recent_mail(scenario: dict) -> dict:
+    """`scenario` with RECENT_MAIL among its preloaded mail (the rest is hours or days old)."""
+    for event in scenario["events"]:
+        if event["type"] == "preload_emails":
+            event["payload"]["email_ids"] = [*event["payload"]["email_ids"], RECENT_MAIL]
+    return scenario
+
+
 def quiet_scenario() -> dict:
     """The scenario with nothing after its t=0 preload."""
     scenario = json.loads(SCENARIO.read_text())
     scenario["events"] = [e for e in scenario["events"] if e["time"] <= 0]
-    return scenario
+    return with_recent_mail(scenario)
+
+
+def newest_preloaded_age_min(scenario: dict) -> int:
+    """How many minutes before the start the scenario's newest preloaded mail arrived (its
+    catalog record's `ageMinutes`): what its inbox's first row reads, "N min ago"."""
+    ids = {
+        email_id
+        for event in scenario["events"]
+        if event["type"] == "preload_emails"
+        for email_id in event["payload"]["email_ids"]
+    }
+    catalog = settings.BASE_DIR / "fixtures" / "micromail" / "emails.jsonl"
+    records = [json.loads(line) for line in catalog.read_text().splitlines()]
+    return min(r["ageMinutes"] for r in records if r["id"] in ids or "*" in ids)
+
+
+NEWEST_AGE_MIN = newest_preloaded_age_min(quiet_scenario())
+assert NEWEST_AGE_MIN < 50, "the tests read the newest mail's age in minutes"
 
 
 api = control_api.post
@@ -64,7 +93,7 @@ def test_a_running_clock_pushes_the_turning_minute_without_any_event(live_site):
 
     assert message["type"] == "regions" and message["seq"] == seq
     assert shell_clock(message) != clock and message["next_change"] == due + 60
-    minutes = int((due + 300) // 60)  # the preload arrived 5 min before the start
+    minutes = int((due + NEWEST_AGE_MIN * 60) // 60)  # the newest preloaded mail's age
     assert f"{minutes} min ago" in regions(message)["message-list"]
     assert last_live_seq(run["id"]) == seq  # no event fired: the clock alone changed the page
 
@@ -87,6 +116,6 @@ def test_advancing_a_virtual_clock_past_the_minute_pushes(live_site):
         pushed_after = time.monotonic() - moved_at
 
     assert shell_clock(message).endswith("09:01") and message["next_change"] == 120.0
-    assert "6 min ago" in regions(message)["message-list"]
+    assert f"{NEWEST_AGE_MIN + 1} min ago" in regions(message)["message-list"]
     assert message["seq"] == seq == last_live_seq(run["id"])
     assert pushed_after < 5

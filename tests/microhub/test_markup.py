@@ -27,3 +27,15 @@ def test_raw_html_is_escaped_and_only_safe_links_are_kept():
 
 def test_lines_of_a_paragraph_keep_their_breaks():
     assert render_markdown("first\nsecond") == "<p>first<br>second</p>"
+
+
+def test_relative_links_open_the_file_they_name_in_the_folder_of_the_text():
+    """Finding: the README's `docs/api.md` link led to a bare 404."""
+    files = "/r/t/microhub/blob/"
+    assert 'href="/r/t/microhub/blob/docs/api.md"' in render_markdown("[api](docs/api.md)", files)
+    inside = "/r/t/microhub/blob/docs"
+    assert 'href="/r/t/microhub/blob/README.md"' in render_markdown("[up](../README.md)", inside)
+    assert 'href="/r/t/microhub/blob/x.md"' in render_markdown("[far](../../../x.md)", inside)
+    assert 'href="#usage"' in render_markdown("[usage](#usage)", files)  # anchors stay
+    assert 'href="https://example.com"' in render_markdown("[ext](https://example.com)", files)
+    assert 'href="docs/api.md"' in render_markdown("[api](docs/api.md)")  # no folder: as written

@@ -3,6 +3,8 @@ arrived is a 404, the forms perform their actions, and what opening an issue doe
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from apps.microhub.bench import sample_pages
@@ -31,6 +33,16 @@ def test_the_repository_page_shows_counts_files_and_the_readme(client, hub_url):
     assert 'aria-label="open issues">3<' in text  # i1, i3, i12 (i8 is closed)
     assert ">README.md<" in text and "<h1>Tandem</h1>" in text
     assert "2,186</strong> Commits" in text
+
+
+def test_every_link_of_the_readme_opens_a_page_of_the_repository(client, hub_url):
+    """Finding: the README's links to docs/ led to a bare 404."""
+    text = html(client.get(hub_url()))
+    readme = text[text.index("<h1>Tandem</h1>") :]
+    links = re.findall(r'href="(/r/[^"]+/blob/[^"]+)"', readme)
+    assert any(link.endswith("/blob/docs/api.md") for link in links)
+    for link in links:
+        assert client.get(link).status_code == 200, link
 
 
 def test_items_are_404_until_they_arrive_then_listed(client, hub_run, hub_url):
