@@ -22,7 +22,7 @@ MODEL = "scripted-1"
 # The condition "an email from Kevin Lee" holds at 40 s (10 wall s at speed 4); the no-op's
 # sender never writes. The judge says yes only on a change that adds the awaited mail's subject:
 # not his name, which is also on an older mail of his in the inbox, whose row changes whenever
-# its "5 min ago" turns into "6 min ago" (a look after that moment saw his name as new). The
+# its age label turns (a look after that moment saw his name as new). The
 # agents live in wall time, as the paper's (the harness never tells them the speed factor).
 JUDGE = {"yes_when_any": ["Expense reports: submission window closes early"]}
 WAIT_FOR = {

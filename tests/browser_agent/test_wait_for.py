@@ -5,7 +5,7 @@ The cast: *a distractor* (Ingrid Solberg's travel policy) arrives at t=20, *the 
 run's virtual clock by the same amount through the control API, so the scenario's events fire
 as the wait goes on, and the page is the server's real inbox converted to markdown.
 
-The shell's clock and the "5 min ago" labels also change once a simulated minute, giving
+The shell's clock and the "N min ago" labels also change once a simulated minute, giving
 blocks of their own (waiting.py says why they are kept): the assertions hold whatever the
 number of such blocks, and the judge answers on the target's name only.
 """
