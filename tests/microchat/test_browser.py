@@ -96,3 +96,15 @@ def test_a_user_sees_a_message_arrive_live_and_reads_and_likes_it(live_site, bro
 
     # Report back, then grade: the two actions, and only them.
     assert [name for name, _ in story.report()] == ["open_conversation", "react"]
+
+
+def test_a_chats_marks_sit_after_its_name_never_over_it(live_site, browser):  # noqa: F811
+    """Finding: the muted and meeting icons were drawn over the chat's name."""
+    story = BrowserStory.start(live_site, browser, "microchat-attachment-absolute-active")
+    page = story.page
+    row = page.locator("li.row").filter(has=page.get_by_role("img", name="Meeting chat")).first
+    mark, name = row.get_by_role("img", name="Meeting chat"), row.locator(".row-name")
+    mark_box, name_box = mark.bounding_box(), name.bounding_box()
+    assert mark_box is not None and name_box is not None
+    assert mark_box["x"] >= name_box["x"] + name_box["width"]  # after the (cut) name
+    assert abs(mark_box["y"] - name_box["y"]) < name_box["height"]  # on its line
