@@ -30,6 +30,7 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import shlex
 import shutil
 import signal
 import subprocess
@@ -38,6 +39,7 @@ import tempfile
 import threading
 import time
 import traceback
+from collections.abc import Mapping
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -180,6 +182,7 @@ class Harness:
     # /advance instead of waiting; "live": the clock moves with the wall, as for a real agent;
     # "fast_forward": live, and the agent's declared waits (its wait URL) skip ahead.
     clock: str = "live"
+    private_paths: tuple[Path, ...] = ()  # more folders of the project: the scenario library
     stopping: threading.Event = field(default_factory=threading.Event)
     _live: set = field(default_factory=set)
     _lock: threading.Lock = field(default_factory=threading.Lock)
@@ -187,6 +190,17 @@ class Harness:
     @property
     def speed_factor(self) -> float:
         return self.config.speed_factor
+
+    @property
+    def project_paths(self) -> tuple[Path, ...]:
+        """Folders no value of the agent's environment may name: the project, its Python, the
+        results and the scenario library (the answer key)."""
+        return (self.base_dir, Path(sys.prefix), self.results_root, *self.private_paths)
+
+    def builtin(self, module: str) -> list[str]:
+        """The command running a built-in agent, a module of this project: the project's folder
+        goes on its import path through its command line, never through its environment."""
+        return [sys.executable, "-c", LAUNCH_MODULE, str(self.base_dir), module]
 
     def tasks(self, listing: list[dict], trials: int = 1) -> list[Task]:
         tasks = []
@@ -226,26 +240,21 @@ class Harness:
         )
 
     def command_for(
-        self, task: Task, run: dict[str, Any], prompt: str, workspace: Path | None = None
+        self, task: Task, run: dict[str, Any], prompt: str, workspace: AgentWorkspace | None = None
     ) -> tuple[list[str] | str, bool, dict]:
         """The agent's command line, whether it is a shell line, and its environment; it runs
         in `workspace` (default: the task's folder), which its task-folder placeholders name."""
-        where = (workspace or task.folder).resolve()
-        env = dict(os.environ)
+        where = (workspace.path if workspace else task.folder).resolve()
+        env = agent_environment(os.environ, self.project_paths)
+        env["PWD"] = str(where)
         if self.agent or self.config.reference_agent:
-            # Built-in agents are modules of this project, run from the task's folder.
-            env["PYTHONPATH"] = os.pathsep.join(
-                filter(None, [str(self.base_dir), env.get("PYTHONPATH")])
-            )
             env["PYTHONUNBUFFERED"] = "1"  # output.txt shows each step as it happens
         if self.config.reference_agent:
             return self._reference_command(task, run, where), False, env
         if self.agent:
             condition = task.spec.get("condition_at")
             argv = [
-                sys.executable,
-                "-m",
-                "apps.bench.agents",
+                *self.builtin("apps.bench.agents"),
                 self.agent,
                 "--task-url",
                 run["task_url"],
@@ -280,10 +289,9 @@ class Harness:
             "__PYTHON__": sys.executable,
         }
         # `python` in the agent's command is the project's Python (the .venv's, with its
-        # packages), not whichever one the system has first on PATH.
-        env["PATH"] = os.pathsep.join(
-            filter(None, [str(Path(sys.executable).parent), env.get("PATH")])
-        )
+        # packages), not whichever one the system has first on PATH: the workspace's shims.
+        if workspace is not None:
+            env["PATH"] = os.pathsep.join(filter(None, [str(workspace.shims()), env["PATH"]]))
         env["SENTINEL_TASK_DIR"] = str(where)
         command, shell = self.config.agent_command(values)
         return command, shell, env
@@ -295,7 +303,7 @@ class Harness:
         costs and transcript complete) rather than being killed mid-call.
         """
         agent = self.config.reference_agent
-        argv = [sys.executable, "-m", "apps.browser_agent", *agent.arguments()]
+        argv = [*self.builtin("apps.browser_agent"), *agent.arguments()]
         argv += ["--task-url", run["task_url"], "--contact-url", run["contact_url"]]
         if self.clock == "fast_forward":
             argv += ["--wait-url", run["wait_url"]]
@@ -369,7 +377,7 @@ class Harness:
         # it can never write a result of its own (a forged results.json was taken as done).
         with AgentWorkspace(task.folder) as workspace:
             (workspace.path / "prompt.txt").write_text(prompt, encoding="utf-8")
-            command, shell, env = self.command_for(task, run, prompt, workspace.path)
+            command, shell, env = self.command_for(task, run, prompt, workspace)
             try:
                 process = subprocess.Popen(
                     reaper_command(command, shell, task.folder / OUTPUT),
@@ -581,6 +589,55 @@ def stop_agent(process: subprocess.Popen, agent_group: int | None) -> None:
         process.stdout.close()
 
 
+# Runs a module whose folder is given on the command line (`-c CODE FOLDER MODULE ARGS…`).
+LAUNCH_MODULE = (
+    "import runpy, sys; sys.path.insert(0, sys.argv.pop(1)); "
+    "runpy.run_module(sys.argv.pop(1), run_name='__main__', alter_sys=True)"
+)
+# Variables naming the harness's own setup, whatever their value: the agent has no use for them,
+# and some name the project without a path (DJANGO_SETTINGS_MODULE) or a secret (the control
+# token of a server given by SENTINEL_CONTROL_TOKEN).
+PROJECT_VARIABLES = frozenset(
+    {"PWD", "OLDPWD", "VIRTUAL_ENV", "VIRTUAL_ENV_PROMPT", "PYTHONPATH", "PYTHONHOME"}
+    | {"PYTHONSTARTUP", "PYTHONSAFEPATH", "PYTHONUSERBASE", "CONDA_PREFIX"}
+)
+PROJECT_PREFIXES = ("SENTINEL_", "DJANGO_", "PYTEST_", "COV_CORE_")
+PYTHON_NAMES = ("python", "python3")  # what the agent's PATH runs as the project's Python
+
+
+def path_names(paths: tuple[Path, ...] | list[Path]) -> tuple[str, ...]:
+    """Every spelling of `paths` a value could carry: as given and with links resolved."""
+    names = {str(p.absolute()) for p in paths} | {str(p.resolve()) for p in paths}
+    return tuple(sorted(n for n in names if n != os.sep))
+
+
+def without_project(search_path: str, names: tuple[str, ...]) -> str:
+    """A PATH-like value less its entries inside the project."""
+    kept = [e for e in search_path.split(os.pathsep) if e and not e.startswith(names)]
+    return os.pathsep.join(kept)
+
+
+def agent_environment(environ: Mapping[str, str], project: tuple[Path, ...]) -> dict[str, str]:
+    """The harness's environment less every trace of the project, for an agent: its variables
+    (PROJECT_VARIABLES, PROJECT_PREFIXES), PATH entries inside it, and any other variable whose
+    value names one of its folders. What an agent needs of the machine (HOME, a model's API
+    key, proxies, locale) passes. An agent that looks can still find the project (its own
+    command line names the Python it runs), so this is hygiene, not a sandbox: nothing hands
+    the agent the way to the answer key (README, "Threat model")."""
+    names = path_names(project)
+    env = {}
+    for name, value in environ.items():
+        if name in PROJECT_VARIABLES or name.startswith(PROJECT_PREFIXES):
+            continue
+        if name == "PATH":
+            value = without_project(value, names)
+        elif any(n in value for n in names):
+            continue
+        env[name] = value
+    env.setdefault("PATH", "")
+    return env
+
+
 # What the harness writes in a task's folder; an agent's file of the same name is not copied.
 HARNESS_FILES = frozenset({RESULTS, ERROR, OUTPUT, EVENTS, "prompt.txt"})
 
@@ -592,16 +649,33 @@ class AgentWorkspace:
 
     def __init__(self, results: Path):
         self.results = results
-        self.path = Path(tempfile.mkdtemp(prefix="sentinel-agent-")).resolve()
+        # The agent's folder is `task` inside a folder of its own, beside its PATH's shims.
+        self.root = Path(tempfile.mkdtemp(prefix="sentinel-agent-")).resolve()
+        self.path = self.root / "task"
+        self.path.mkdir()
 
     def __enter__(self) -> AgentWorkspace:
         return self
+
+    def shims(self) -> Path:
+        """A folder beside the workspace where `python` and `python3` run the project's Python
+        by its absolute path: a link would not do (a virtualenv's Python finds its packages from
+        the path it was started by), and the project's own folder on PATH would name it."""
+        shims = self.root / "bin"
+        shims.mkdir(exist_ok=True)
+        for name in PYTHON_NAMES:
+            shim = shims / name
+            shim.write_text(
+                f'#!/bin/sh\nexec {shlex.quote(sys.executable)} "$@"\n', encoding="utf-8"
+            )
+            shim.chmod(0o755)
+        return shims
 
     def __exit__(self, *exc) -> None:
         try:
             self.copy_back()
         finally:
-            shutil.rmtree(self.path, ignore_errors=True)
+            shutil.rmtree(self.root, ignore_errors=True)
 
     def copy_back(self) -> None:
         for source in sorted(self.path.rglob("*")):

@@ -12,6 +12,8 @@ It follows the script embedded in its prompt as `[[script: step; step; ...]]`:
   forge                write a results.json of its own saying it passed
   flood MIB            write MIB mebibytes to stdout
   snoop                ask the control side for the answer key; the answers go to snoop.json
+  environ              write its environment, its working folder and what `python` on its
+                       PATH is to environ.json
   hang                 sleep forever
 """
 
@@ -117,11 +119,16 @@ def main() -> int:
                 "scenarios": ("GET", f"{base}/api/scenarios/"),
                 "advance": ("POST", f"{base}/advance?time=600"),
                 "status": ("GET", f"{base}/status"),
+                "scenario": ("GET", f"{base}/api/scenarios/bench-hostile/"),
+                "run advance": ("POST", f"{run_api}1/advance/"),
             }
             answers = {}
             for name, (method, url) in asked.items():
                 request = urllib.request.Request(
-                    url, method=method, data=b"{}" if method == "POST" else None
+                    url,
+                    method=method,
+                    data=b'{"time": 600}' if method == "POST" else None,
+                    headers={"Content-Type": "application/json"},
                 )
                 try:
                     with urllib.request.urlopen(request, timeout=10) as response:
@@ -130,6 +137,13 @@ def main() -> int:
                     answers[name] = error.code
             with open("snoop.json", "w") as f:
                 json.dump(answers, f)
+        elif verb == "environ":
+            python = subprocess.run(
+                ["python", "-c", "import sys; print(sys.prefix)"], capture_output=True, text=True
+            )
+            seen = {"env": dict(os.environ), "cwd": os.getcwd(), "python": python.stdout.strip()}
+            with open("environ.json", "w") as f:
+                json.dump(seen, f)
         elif verb == "hang":
             print("hanging", flush=True)
             while True:

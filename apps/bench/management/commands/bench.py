@@ -385,6 +385,7 @@ class Command(BaseCommand):
                     agent=agent,
                     retry_errors=retry_errors,
                     clock=cfg.clock,
+                    private_paths=(Path(settings.SENTINEL_SCENARIO_DIR),),
                 )
                 tasks = harness.tasks(listing, trials)
                 trials_note = f" ({len(listing)} scenarios × {trials} trials)" if trials > 1 else ""
@@ -484,7 +485,15 @@ class Command(BaseCommand):
                     raise _preflight_failed(problems)
                 clock = "live" if real_time else "virtual"
                 harnesses = {
-                    a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a, clock=clock)
+                    a: Harness(
+                        cfg,
+                        client,
+                        root / a,
+                        Path(settings.BASE_DIR),
+                        agent=a,
+                        clock=clock,
+                        private_paths=(Path(settings.SENTINEL_SCENARIO_DIR),),
+                    )
                     for a in CONTROL_AGENTS
                 }
                 tasks = {a: h.tasks(listing) for a, h in harnesses.items()}
