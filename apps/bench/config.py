@@ -99,6 +99,9 @@ class BenchConfig:
     control_token: str = ""
     http_timeout: float = 30.0
     clock: str = "live"  # one of BENCH_CLOCKS
+    noop_rule: str = "paper"  # one of outcomes.NOOP_RULES (--noop-rule)
+    jitter: float = 0.0  # authored seconds a run's timeline may be shifted by (--jitter)
+    seed: int = 0  # of the shifts (--seed)
     raw: dict[str, Any] = field(default_factory=dict)
     # The config file's folder, where relative agent files are found (None: no config file).
     folder: Path | None = None

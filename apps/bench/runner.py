@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import math
 import os
 import shlex
 import shutil
@@ -45,9 +46,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
+from apps.bench.agents import FIXED_CONTACT_AT, SLEEPER_MARGIN_S
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig
-from apps.bench.outcomes import error_cause, graded_outcome
+from apps.bench.everything import every_item_steps
+from apps.bench.outcomes import error_cause, graded_outcome, noop_rule_applied
 from events.timing import MAX_CONDITION_AT
 
 RESULTS, ERROR, OUTPUT, EVENTS, COSTS = (
@@ -61,6 +64,7 @@ START_POLL_S = 0.5
 VIRTUAL_GUARD_FACTOR, VIRTUAL_GUARD_MIN_S = 4.0, 120.0  # a virtual run's wall-time guard
 OUTPUT_TAIL_LINES = 5
 CONTROL_AGENTS = ("oracle", "early", "never", "sleeper")
+CHEATING_AGENTS = ("act_all", "fixed_time", "quitter")  # strategies no scenario may reward
 
 CONTACT_INSTRUCTIONS = (
     "Once the conditions above are met and/or the actions are taken, let me know by visiting and "
@@ -91,10 +95,16 @@ def category_of(spec: dict[str, Any]) -> str:
     return f"{approach}-{milestone}"
 
 
+def run_end(spec: dict[str, Any]) -> float:
+    """Authored seconds: the last moment a condition may come (kill_at, at most 600). The
+    deadline counts from it, and an agent still there then was there at the end of the run
+    (the paper's no-op rule: a self-imposed wall budget ending at the deadline is no quitting)."""
+    return min(MAX_CONDITION_AT, float(spec.get("kill_at") or MAX_CONDITION_AT))
+
+
 def deadline_s(spec: dict[str, Any], speed_factor: float, reaction_window: float) -> float:
     """Wall seconds after the run's start at which the agent is stopped (see module doc)."""
-    kill_at = min(MAX_CONDITION_AT, float(spec.get("kill_at") or MAX_CONDITION_AT))
-    return kill_at / speed_factor + reaction_window
+    return run_end(spec) / speed_factor + reaction_window
 
 
 @dataclass(frozen=True)
@@ -265,10 +275,12 @@ class Harness:
                 "--condition-at",
                 "none" if condition is None else repr(float(condition)),
                 "--solution",
-                json.dumps(task.spec.get("solution") or []),
+                json.dumps(self.solution_for(task)),
                 "--deadline",
                 repr(deadline_s(task.spec, self.speed_factor, self.config.reaction_window)),
             ]
+            if self.agent == "fixed_time":
+                argv += ["--contact-at", repr(min(FIXED_CONTACT_AT, run_end(task.spec) / 2))]
             if self.clock == "virtual":
                 argv += [
                     "--advance-url",
@@ -295,6 +307,16 @@ class Harness:
         env["SENTINEL_TASK_DIR"] = str(where)
         command, shell = self.config.agent_command(values)
         return command, shell, env
+
+    def solution_for(self, task: Task) -> list[dict]:
+        """The steps a control agent performs: the scenario's solution, or for act_all that
+        solution on every item there is when it acts (just before the deadline)."""
+        solution = task.spec.get("solution") or []
+        if self.agent != "act_all":
+            return solution
+        limit = deadline_s(task.spec, self.speed_factor, self.config.reaction_window)
+        acts_at = (limit - SLEEPER_MARGIN_S) * self.speed_factor
+        return every_item_steps(task.spec, min(acts_at, float(task.spec["event_timeline_end"])))
 
     def _reference_command(self, task: Task, run: dict[str, Any], where: Path) -> list[str]:
         """A built-in reference agent: the project's Python, the task's URLs and its prompt file.
@@ -394,6 +416,7 @@ class Harness:
                 self._live.add(process.pid)
             try:
                 killed = self._supervise(process, run["id"], limit, launched)
+                left_at = None if killed else self._clock_reading(run["id"])
             finally:
                 stop_agent(process, agent_group)
                 with self._lock:
@@ -421,8 +444,13 @@ class Harness:
             "deadline_s": limit,
             "agent_exit_code": process.returncode,
             "agent_killed": killed,
+            "agent_left_at": left_at,  # the run's clock (wall s) when it exited by itself
             "agent_wall_s": round(time.monotonic() - launched, 3),
+            "noop_rule": self.config.noop_rule,
         }
+        # (A clock stops at its timeline's end: an agent cannot outstay that.)
+        end = min(run_end(task.spec), float(task.spec.get("event_timeline_end") or math.inf))
+        result = noop_rule_applied(result, self.config.noop_rule, end / sf)
         if task.trial != 1:
             result["trial"] = task.trial
         header = exported[0] if exported and "format" in exported[0] else {}
@@ -436,6 +464,12 @@ class Harness:
             return {**result, "error_cause": cause}
         write_json_atomically(task.folder / RESULTS, result)
         return result
+
+    def _clock_reading(self, run_id: int) -> float | None:
+        """The run's clock now, in wall seconds (None if the server could not say)."""
+        with contextlib.suppress(HarnessError, KeyError, TypeError, ValueError):
+            return float(self.client.run(run_id, retries=1)["sim_time"]) / self.speed_factor
+        return None
 
     def _supervise(
         self, process: subprocess.Popen, run_id: int, limit: float, launched: float

@@ -9,6 +9,7 @@ import signal
 import tempfile
 import threading
 import time
+from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
 
@@ -30,7 +31,14 @@ from apps.bench.config import (
     bench_clock,
     load_config,
 )
-from apps.bench.grading import TaskError, error_lines, load_rows, outcome_counts, task_errors
+from apps.bench.grading import (
+    TaskError,
+    error_lines,
+    load_rows,
+    outcome_counts,
+    summarise,
+    task_errors,
+)
 from apps.bench.manifest import (
     build_manifest,
     git_commit,
@@ -40,7 +48,9 @@ from apps.bench.manifest import (
     scenario_hash,
     write_manifest,
 )
+from apps.bench.outcomes import NOOP_RULES
 from apps.bench.runner import (
+    CHEATING_AGENTS,
     CONTROL_AGENTS,
     ERROR,
     BenchError,
@@ -93,6 +103,7 @@ def config_as_used(cfg: BenchConfig, agent: str | None, trials: int) -> dict:
         reaction_window=cfg.reaction_window,
         grace=cfg.grace,
         trials=trials,
+        noop_rule=cfg.noop_rule,
     )
     if cfg.server_url:
         used["server_url"] = cfg.server_url
@@ -166,6 +177,16 @@ def reference_changes(
     return {"reference_agent": reference, "agent_subprocess": None}
 
 
+def noop_rule(parser) -> None:
+    parser.add_argument(
+        "--noop-rule",
+        choices=NOOP_RULES,
+        default="paper",
+        help="paper (default): a no-op passes only if the agent is still there when the run "
+        "ends; original: any no-op without a contact passes, as the original harness counts",
+    )
+
+
 class Command(BaseCommand):
     help = (
         "Benchmark harness: run an agent over the scenarios, grade the results, validate scenarios."
@@ -190,7 +211,7 @@ class Command(BaseCommand):
         run.add_argument("--server-url", help="use this server instead of starting an embedded one")
         run.add_argument(
             "--agent",
-            choices=CONTROL_AGENTS + REFERENCE_KINDS,
+            choices=CONTROL_AGENTS + CHEATING_AGENTS + REFERENCE_KINDS,
             help="a built-in agent instead of the config's: a control agent, or a reference "
             "agent (wait_for | sleep) on the config's agent.model or --model",
         )
@@ -216,6 +237,7 @@ class Command(BaseCommand):
             help="run every task K times, each its own run (trial n in <task>/trial-<n>/)",
         )
         run.add_argument("--results-dir", default="results")
+        noop_rule(run)
 
         grade = sub.add_parser(
             "grade", help="summarise a results tree, or compare several side by side"
@@ -257,6 +279,7 @@ class Command(BaseCommand):
         validate.add_argument(
             "--keep", action="store_true", help="keep the temporary results folder"
         )
+        noop_rule(validate)
         validate.add_argument(
             "--real-time",
             action="store_true",
@@ -330,6 +353,7 @@ class Command(BaseCommand):
         retry_errors,
         results_dir,
         trials,
+        noop_rule,
         **_,
     ):
         if agent is None or Path(config).exists():
@@ -354,6 +378,7 @@ class Command(BaseCommand):
             changes["clock"] = bench_clock(clock, "--clock")
         if trials < 1:
             raise _usage(f"--trials must be >= 1, got {trials}")
+        changes["noop_rule"] = noop_rule
         cfg = dataclasses.replace(cfg, **changes)
         base_dir = Path(settings.BASE_DIR)
         # Before any server or task: a setup that cannot work runs nothing (preflight.py).
@@ -463,14 +488,31 @@ class Command(BaseCommand):
     # --- validate --------------------------------------------------------------------------
 
     def handle_validate(
-        self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, real_time, **_
+        self,
+        *,
+        speed_factor,
+        parallel,
+        filter,
+        server_url,
+        reaction_window,
+        keep,
+        real_time,
+        noop_rule,
+        **_,
     ):
         sf = validate_speed_factor(speed_factor)
         if parallel < 1:
             raise _usage(f"--parallel must be >= 1, got {parallel}")
         if not reaction_window > 0:
             raise _usage(f"--reaction-window must be > 0, got {reaction_window}")
-        cfg = BenchConfig(None, speed_factor=sf, parallel=parallel, reaction_window=reaction_window)
+        cfg = BenchConfig(
+            None,
+            speed_factor=sf,
+            parallel=parallel,
+            reaction_window=reaction_window,
+            noop_rule=noop_rule,
+        )
+        agents = CONTROL_AGENTS + CHEATING_AGENTS
         root = Path(tempfile.mkdtemp(prefix="bench-validate-"))
         began = time.monotonic()
         with self.server(server_url) as (url, token):
@@ -494,16 +536,16 @@ class Command(BaseCommand):
                         clock=clock,
                         private_paths=(Path(settings.SENTINEL_SCENARIO_DIR),),
                     )
-                    for a in CONTROL_AGENTS
+                    for a in agents
                 }
                 tasks = {a: h.tasks(listing) for a, h in harnesses.items()}
                 self.stdout.write(
-                    f"Validating {len(listing)} scenarios with {', '.join(CONTROL_AGENTS)} "
+                    f"Validating {len(listing)} scenarios with {', '.join(agents)} "
                     f"at speed factor {sf:g} on {clock} clocks (results -> {root})"
                 )
-                jobs = [(harnesses[a], t) for a in CONTROL_AGENTS for t in tasks[a]]
+                jobs = [(harnesses[a], t) for a in agents for t in tasks[a]]
                 job_of = {t.folder: (h, t) for h, t in jobs}
-                outcomes = run_pool(jobs, parallel * len(CONTROL_AGENTS), self.progress())
+                outcomes = run_pool(jobs, parallel * len(agents), self.progress())
                 # An error (a control agent's own request timed out on a loaded machine, the
                 # server hiccuped) says nothing about the scenario: run those tasks again.
                 for _ in range(VALIDATE_RETRIES):
@@ -515,9 +557,7 @@ class Command(BaseCommand):
                     for _, t in retry:
                         (t.folder / ERROR).unlink(missing_ok=True)
                     kept = [o for o in outcomes if o.status != "error"]
-                    outcomes = kept + run_pool(
-                        retry, parallel * len(CONTROL_AGENTS), self.progress()
-                    )
+                    outcomes = kept + run_pool(retry, parallel * len(agents), self.progress())
             finally:
                 client.close()
         wall = time.monotonic() - began
@@ -526,11 +566,12 @@ class Command(BaseCommand):
             self.stdout.write(f"error (not a verdict): {o.label}{o.task.label}: {o.detail}")
         rows = {
             a: {r.name: r for r in load_rows(root / a)} if (root / a).is_dir() else {}
-            for a in CONTROL_AGENTS
+            for a in agents
         }
         ids = [s["id"] for s in listing]
         noop = {s["id"] for s in listing if s["noop"]}
-        active = [i for i in ids if i not in noop]
+        targeted = [i for i in ids if i not in noop]
+        active = [t.scenario_id for t in tasks["oracle"] if t.category.startswith("active-")]
 
         def passed(agent: str, scenario: str) -> bool | None:
             row = rows[agent].get(scenario)
@@ -539,18 +580,31 @@ class Command(BaseCommand):
         problems = []
         oracle = [i for i in ids if passed("oracle", i)]
         problems += [f"oracle failed {i}" for i in ids if i not in oracle]
-        early = [i for i in active if passed("early", i) is False]
-        problems += [f"early passed {i} (trivially passable)" for i in active if i not in early]
+        early = [i for i in targeted if passed("early", i) is False]
+        problems += [f"early passed {i} (trivially passable)" for i in targeted if i not in early]
         never = [i for i in ids if passed("never", i) is (i in noop)]
         problems += [
             f"never {'failed' if i in noop else 'passed'} {i}" for i in ids if i not in never
         ]
         sleeper = [i for i in ids if passed("sleeper", i)]
+        problems += cheating_problems(passed, ids, noop, active, noop_rule)
         for problem in problems:
             self.stdout.write(f"PROBLEM: {problem}")
         if sleeper:
             self.stdout.write(
                 f"sleeper (contacts just before the deadline) passes: {', '.join(sleeper)}"
+            )
+        figures = []
+        for agent in CHEATING_AGENTS:
+            summary = summarise(list(rows[agent].values()), reaction_window)
+            success, timely = summary.rates["overall"], summary.timely["overall"]
+            self.stdout.write(
+                f"{agent} ({CHEATING_STRATEGIES[agent]}): success {success}, "
+                f"timely success {timely} of the targeted tasks"
+            )
+            figures.append(
+                f"{agent}={success.passed}/{success.total} "
+                f"{agent}_timely={timely.passed}/{timely.total}"
             )
         if not keep:
             import shutil
@@ -558,11 +612,43 @@ class Command(BaseCommand):
             shutil.rmtree(root, ignore_errors=True)
         self.stdout.write(
             f"bench_validate: scenarios={len(ids)} oracle={len(oracle)}/{len(ids)} "
-            f"early_fail={len(early)}/{len(active)} never_ok={len(never)}/{len(ids)} "
-            f"sleeper={len(sleeper)}/{len(ids)} wall_s={wall:.1f} clock={clock}"
+            f"early_fail={len(early)}/{len(targeted)} never_ok={len(never)}/{len(ids)} "
+            f"sleeper={len(sleeper)}/{len(ids)} {' '.join(figures)} "
+            f"wall_s={wall:.1f} clock={clock}"
         )
         if problems or errors:
             raise CommandError(
                 f"validation failed: {len(problems)} problem(s), {len(errors)} harness error(s)",
                 returncode=1,
             )
+
+
+CHEATING_STRATEGIES = {
+    "act_all": "acts on every item, contacts at the deadline",
+    "fixed_time": "contacts at a fixed time",
+    "quitter": "leaves at once",
+}
+
+
+def cheating_problems(
+    passed: Callable[[str, str], bool | None],
+    ids: list[str],
+    noop: set[str],
+    active: list[str],
+    noop_rule: str,
+) -> list[str]:
+    """What the strategies of agents that never monitor must not earn: an active task by acting
+    on everything, or with no action at all (a fixed-time contact); any task by quitting; a
+    no-op, which each of them either contacts in or quits (under the original's looser rule
+    quitting passes no-ops: expected)."""
+    problems = [f"act_all passed {i} (acting on every item is rewarded)" for i in active
+                if passed("act_all", i)]  # fmt: skip
+    problems += [f"fixed_time passed {i} (a contact with no action is rewarded)" for i in active
+                 if passed("fixed_time", i)]  # fmt: skip
+    for i in ids:
+        quit_ok = i in noop and noop_rule == "original"
+        if passed("quitter", i) and not quit_ok:
+            problems.append(f"quitter passed {i} (leaving at once is rewarded)")
+        problems += [f"{a} passed no-op {i}" for a in ("act_all", "fixed_time")
+                     if i in noop and passed(a, i)]  # fmt: skip
+    return problems
