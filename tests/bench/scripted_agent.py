@@ -5,6 +5,7 @@ It follows the script embedded in its prompt as `[[script: step; step; ...]]`:
   action NAME EMAIL    POST /r/<token>/actions {"action": NAME, "payload": {"email_id": EMAIL}}
   sleep SECONDS
   contact              GET then POST the contact URL
+  post-contact         POST the contact form only (no GET: a contact all the same)
   costs IN OUT CALLS [upstream]   write costs.json (upstream: prompt_/completion_tokens keys)
   spawn                start a child that sleeps forever; its pid goes to child.pid
   escape               start a sleeper in a session of its own, its parent gone (a double
@@ -73,6 +74,10 @@ def main() -> int:
                 "application/x-www-form-urlencoded",
             )
             print("contacted", flush=True)
+        elif verb == "post-contact":
+            message = urllib.parse.urlencode({"message": "done"}).encode()
+            fetch(contact_url, message, "application/x-www-form-urlencoded")
+            print("contacted by POST only", flush=True)
         elif verb == "costs":
             keys = (
                 ("prompt_tokens", "completion_tokens")
