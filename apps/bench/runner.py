@@ -28,9 +28,11 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import json
 import math
 import os
+import random
 import shlex
 import shutil
 import signal
@@ -51,7 +53,7 @@ from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig
 from apps.bench.everything import every_item_steps
 from apps.bench.outcomes import error_cause, graded_outcome, noop_rule_applied
-from events.timing import MAX_CONDITION_AT
+from events.timing import MAX_CONDITION_AT, MIN_CONDITION_AT
 
 RESULTS, ERROR, OUTPUT, EVENTS, COSTS = (
     "results.json",
@@ -102,6 +104,46 @@ def run_end(spec: dict[str, Any]) -> float:
     return min(MAX_CONDITION_AT, float(spec.get("kill_at") or MAX_CONDITION_AT))
 
 
+def shift_bounds(spec: dict[str, Any]) -> tuple[float, float]:
+    """How far a scenario's timeline may move: its condition stays in [10, 600] s, as authored
+    ones are, and its first entry after the t=0 preload stays after it."""
+    low, high = -math.inf, math.inf
+    condition = spec.get("condition_at")
+    if condition is not None:
+        low, high = MIN_CONDITION_AT - condition, MAX_CONDITION_AT - condition
+    later = [float(e["time"]) for e in spec.get("events") or [] if float(e["time"]) > 0]
+    if later:
+        low = max(low, -min(later) / 2)
+    return low, high
+
+
+def timeline_shift(spec: dict[str, Any], jitter: float, seed: int, trial: int) -> float:
+    """The seconds one trial of a scenario is shifted by (`--jitter`): uniform in ±`jitter`,
+    within its bounds, drawn from the seed, the scenario and the trial alone, so a resumed or
+    reordered benchmark plays every trial as before."""
+    low, high = shift_bounds(spec)
+    draw = random.Random(f"{seed}/{spec['id']}/{trial}")
+    return round(draw.uniform(max(-jitter, low), min(jitter, high)), 3)
+
+
+def shifted(spec: dict[str, Any], by: float) -> dict[str, Any]:
+    """The scenario with its whole timeline `by` seconds later: every entry after the t=0
+    preload, the condition, kill_at and the timeline's end move together, so what happens,
+    when it is graded and how long the agent has are the scenario's own, at another time."""
+    events = [
+        {**e, "time": float(e["time"]) + by} if float(e["time"]) > 0 else e
+        for e in spec.get("events") or []
+    ]
+    condition = spec.get("condition_at")
+    return {
+        **spec,
+        "events": events,
+        "condition_at": None if condition is None else condition + by,
+        "kill_at": float(spec["kill_at"]) + by,
+        "event_timeline_end": float(spec["event_timeline_end"]) + by,
+    }
+
+
 def deadline_s(spec: dict[str, Any], speed_factor: float, reaction_window: float) -> float:
     """Wall seconds after the run's start at which the agent is stopped (see module doc)."""
     return run_end(spec) / speed_factor + reaction_window
@@ -115,6 +157,8 @@ class Task:
     folder: Path
     reference: str = ""  # how the server names it: the id, or the path for a repeated id
     trial: int = 1
+    shift: float | None = None  # --jitter: `spec` is the scenario shifted by this many seconds
+    authored: dict[str, Any] | None = None  # the scenario as the library has it, when shifted
 
     @property
     def category(self) -> str:
@@ -220,10 +264,16 @@ class Harness:
             spec = self.client.scenario(reference)
             name = Path(reference).stem if entry.get("duplicate_of") else spec["id"]
             folder = self.results_root / spec["environment"] / name
-            tasks += [
-                Task(spec["id"], spec["environment"], spec, trial_folder(folder, n), reference, n)
-                for n in range(1, trials + 1)
-            ]
+            for n in range(1, trials + 1):
+                task = Task(
+                    spec["id"], spec["environment"], spec, trial_folder(folder, n), reference, n
+                )
+                if self.config.jitter > 0:
+                    by = timeline_shift(spec, self.config.jitter, self.config.seed, n)
+                    task = dataclasses.replace(
+                        task, spec=shifted(spec, by), shift=by, authored=spec
+                    )
+                tasks.append(task)
         return tasks
 
     def should_skip(self, task: Task) -> str | None:
@@ -388,7 +438,9 @@ class Harness:
 
     def _run_task(self, task: Task) -> dict[str, Any]:
         sf = self.speed_factor
-        run = self.client.create_run(task.reference or task.scenario_id, sf, clock_mode=self.clock)
+        # A shifted scenario is played as sent; the others by their name in the library.
+        scenario = task.spec if task.shift is not None else task.reference or task.scenario_id
+        run = self.client.create_run(scenario, sf, clock_mode=self.clock)
         prompt = augment_prompt(
             run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"]
         )
@@ -453,6 +505,8 @@ class Harness:
         result = noop_rule_applied(result, self.config.noop_rule, end / sf)
         if task.trial != 1:
             result["trial"] = task.trial
+        if task.shift is not None:
+            result["timeline_shift"] = task.shift
         header = exported[0] if exported and "format" in exported[0] else {}
         result["catalog_hash"] = (header.get("run") or {}).get("catalog_hash")
         cause = error_cause(verdict, process.returncode, killed)

@@ -60,7 +60,12 @@ from apps.bench.runner import (
     discover,
     run_pool,
 )
-from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
+from events.timing import (
+    MAX_CONDITION_AT,
+    REACTION_WINDOW,
+    SpeedFactorError,
+    validate_speed_factor,
+)
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
 DEFAULT_CONFIG = "eval_config.yaml"
@@ -105,6 +110,8 @@ def config_as_used(cfg: BenchConfig, agent: str | None, trials: int) -> dict:
         trials=trials,
         noop_rule=cfg.noop_rule,
     )
+    if cfg.jitter > 0:
+        used.update(jitter=cfg.jitter, seed=cfg.seed)
     if cfg.server_url:
         used["server_url"] = cfg.server_url
     if agent:
@@ -135,7 +142,7 @@ def update_manifest(
             config=used,
             version=project_version(base_dir),
             commit=git_commit(base_dir),
-            scenarios={t.scenario_id: scenario_hash(t.spec) for t in tasks},
+            scenarios={t.scenario_id: scenario_hash(t.authored or t.spec) for t in tasks},
             catalog_hashes=sorted(
                 {str(r.result["catalog_hash"]) for r in rows if r.result.get("catalog_hash")}
             ),
@@ -238,6 +245,15 @@ class Command(BaseCommand):
         )
         run.add_argument("--results-dir", default="results")
         noop_rule(run)
+        run.add_argument(
+            "--jitter",
+            type=float,
+            default=0.0,
+            metavar="SECONDS",
+            help="shift each run's whole timeline by up to ±SECONDS (simulated), drawn per "
+            "scenario and trial from --seed, so repeated trials do not share one trigger time",
+        )
+        run.add_argument("--seed", type=int, default=0, help="of the --jitter shifts (default 0)")
 
         grade = sub.add_parser(
             "grade", help="summarise a results tree, or compare several side by side"
@@ -354,6 +370,8 @@ class Command(BaseCommand):
         results_dir,
         trials,
         noop_rule,
+        jitter,
+        seed,
         **_,
     ):
         if agent is None or Path(config).exists():
@@ -378,7 +396,11 @@ class Command(BaseCommand):
             changes["clock"] = bench_clock(clock, "--clock")
         if trials < 1:
             raise _usage(f"--trials must be >= 1, got {trials}")
-        changes["noop_rule"] = noop_rule
+        if not 0 <= jitter <= MAX_CONDITION_AT:  # also rejects NaN
+            raise _usage(
+                f"--jitter must be between 0 and {MAX_CONDITION_AT:g} seconds, got {jitter}"
+            )
+        changes.update(noop_rule=noop_rule, jitter=jitter, seed=seed)
         cfg = dataclasses.replace(cfg, **changes)
         base_dir = Path(settings.BASE_DIR)
         # Before any server or task: a setup that cannot work runs nothing (preflight.py).
@@ -432,6 +454,8 @@ class Command(BaseCommand):
         reference = cfg.reference_agent
         label = agent or (f"{reference.kind} on {reference.model}" if reference else None)
         used = config_as_used(cfg, agent, trials)
+        if cfg.jitter > 0:  # what the seed drew: each trial's shift of its timeline
+            used["timeline_shifts"] = {t.label: t.shift for t in tasks}
         record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=used)
         errors = task_errors(run_dir) if run_dir.is_dir() else []
         update_manifest(name, run_dir, used, tasks, started_at, base_dir, errors)
