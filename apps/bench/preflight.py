@@ -20,7 +20,7 @@ from pathlib import Path
 import httpx
 
 from apps.bench.config import BenchConfig, ReferenceAgent
-from apps.bench.runner import PYTHON_NAMES, path_names, without_project
+from apps.bench.runner import PYTHON_NAMES, path_names, project_python, without_project
 
 PLACEHOLDERS = (
     "__TASK_URL__",
@@ -59,7 +59,7 @@ def _static(arg: str, base_dir: Path) -> str:
 
 def _agent_path(base_dir: Path) -> str:
     """The agent's PATH less the project's own folders (runner.agent_environment)."""
-    return without_project(os.environ.get("PATH", ""), path_names((base_dir, Path(sys.prefix))))
+    return without_project(os.environ.get("PATH", ""), path_names((base_dir, *project_python())))
 
 
 def _program(word: str, folder: Path | None, base_dir: Path) -> tuple[str | None, str | None]:

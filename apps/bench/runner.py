@@ -249,7 +249,7 @@ class Harness:
     def project_paths(self) -> tuple[Path, ...]:
         """Folders no value of the agent's environment may name: the project, its Python, the
         results and the scenario library (the answer key)."""
-        return (self.base_dir, Path(sys.prefix), self.results_root, *self.private_paths)
+        return (self.base_dir, *project_python(), self.results_root, *self.private_paths)
 
     def builtin(self, module: str) -> list[str]:
         """The command running a built-in agent, a module of this project: the project's folder
@@ -693,6 +693,12 @@ PROJECT_PREFIXES = ("SENTINEL_", "DJANGO_", "PYTEST_", "COV_CORE_")
 PYTHON_NAMES = ("python", "python3")  # what the agent's PATH runs as the project's Python
 
 
+def project_python() -> tuple[Path, ...]:
+    """The project's Python when it is a virtualenv of its own; a system Python's prefix
+    (`/usr`) is the machine's, which the agent needs."""
+    return (Path(sys.prefix),) if sys.prefix != sys.base_prefix else ()
+
+
 def path_names(paths: tuple[Path, ...] | list[Path]) -> tuple[str, ...]:
     """Every spelling of `paths` a value could carry: as given and with links resolved."""
     names = {str(p.absolute()) for p in paths} | {str(p.resolve()) for p in paths}
@@ -701,7 +707,12 @@ def path_names(paths: tuple[Path, ...] | list[Path]) -> tuple[str, ...]:
 
 def without_project(search_path: str, names: tuple[str, ...]) -> str:
     """A PATH-like value less its entries inside the project."""
-    kept = [e for e in search_path.split(os.pathsep) if e and not e.startswith(names)]
+    inside = tuple(n + os.sep for n in names)
+    kept = [
+        e
+        for e in search_path.split(os.pathsep)
+        if e and e not in names and not e.startswith(inside)
+    ]
     return os.pathsep.join(kept)
 
 

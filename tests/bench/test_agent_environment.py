@@ -42,3 +42,8 @@ def test_a_folder_reached_through_a_link_is_named_either_way(tmp_path):
     link.symlink_to(real)
     env = agent_environment({"A": f"{real}/x", "B": f"{link}/y", "C": "/usr"}, (link,))
     assert env == {"C": "/usr", "PATH": ""}
+
+
+def test_a_path_entry_is_inside_a_folder_only_below_it():
+    env = agent_environment({"PATH": "/srv/sentinel-tools/bin:/srv/sentinel/bin"}, PROJECT)
+    assert env["PATH"] == "/srv/sentinel-tools/bin"
