@@ -64,4 +64,6 @@ def noop_rule_applied(result: dict[str, Any], rule: str, run_end: float) -> dict
     ):
         return result
     quit = f"the agent left at {left:.2f} s, before the run's end at {run_end:.2f} s"
-    return {**result, "success": False, "detail": f"{result.get('detail', '')}; {quit}"}
+    # The server cannot see the agent's process: its verdict (and `replay`'s) stays a pass.
+    detail = f"{result.get('detail', '')}; {quit}"
+    return {**result, "success": False, "detail": detail, "server_success": True}

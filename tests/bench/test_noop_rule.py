@@ -13,7 +13,7 @@ END = 150.0  # wall seconds
 def test_a_quitter_fails_a_no_op_under_the_papers_rule():
     quitter = {**PASSED_NOOP, "agent_killed": False, "agent_left_at": 0.4}
     graded = noop_rule_applied(quitter, "paper", END)
-    assert graded["success"] is False
+    assert graded["success"] is False and graded["server_success"] is True
     assert graded["detail"].endswith("the agent left at 0.40 s, before the run's end at 150.00 s")
 
 
