@@ -7,8 +7,9 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
    caps its output), cwd = a fresh temporary folder of its own that `__TASK_DIR__` names
    (upstream's agents write costs.json there; it is copied into the task's result folder
    afterwards, never a file named like the harness's own), a file named beside the config
-   file passed by its absolute path (`python my_agent.py` works), the project's Python first
-   on PATH, stdout+stderr to output.txt (the first and last 8 MiB);
+   file passed by its absolute path (`python my_agent.py` works: `python` on its PATH is a
+   shim running the project's Python), an environment naming no folder of the project
+   (`agent_environment`), stdout+stderr to output.txt (the first and last 8 MiB);
 3. the deadline counts from the run's *start* (the agent's first visit to the task URL; before
    that, from launch): `min(MAX_CONDITION_AT, kill_at) / sf + reaction_window`, which is
    `kill_at_wall(sf)` for every benchmark scenario (their kill_at is 630) and lets short test
@@ -17,9 +18,10 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
    group and whatever is left under it (a `setsid()` grandchild included), so no background
    process survives into the next task;
 5. evaluate, save the log (events.jsonl, in `export_run`'s format: `import_run` reads it),
-   close the run, write results.json last — its presence means "done". A task whose outcome is
-   an error (outcomes.py: ours or the setup's, not the agent's) writes error.txt instead, never
-   a failed result.
+   close the run, apply the no-op rule (outcomes.py: under the paper's, an agent that left
+   before the run's end fails a no-op), write results.json last — its presence means "done". A
+   task whose outcome is an error (outcomes.py: ours or the setup's, not the agent's) writes
+   error.txt instead, never a failed result.
 
 `--trials k` runs every task k times, each its own run: trial 1 in `<env>/<id>/`, trial n in
 `<env>/<id>/trial-<n>/`, so a result set run once can be given more trials later.
@@ -722,7 +724,7 @@ def agent_environment(environ: Mapping[str, str], project: tuple[Path, ...]) -> 
     value names one of its folders. What an agent needs of the machine (HOME, a model's API
     key, proxies, locale) passes. An agent that looks can still find the project (its own
     command line names the Python it runs), so this is hygiene, not a sandbox: nothing hands
-    the agent the way to the answer key (README, "Threat model")."""
+    the agent the way to the answer key (README, "What an agent can reach")."""
     names = path_names(project)
     env = {}
     for name, value in environ.items():
