@@ -183,6 +183,7 @@ def play(argv: list[str] | None = None) -> int:
         contact(args.contact_url, "the condition was met")
     elif args.agent == "fixed_time":  # its time never comes: a live agent is stopped first
         clock.wait_until(end)
+    # (quitter: it opened its task, and that is all.)
     log(f"{args.agent}: leaving")
     return 0
 

@@ -63,7 +63,7 @@ def noop_rule_applied(result: dict[str, Any], rule: str, run_end: float) -> dict
         or left >= run_end
     ):
         return result
-    quit = f"the agent left at {left:.2f} s, before the run's end at {run_end:.2f} s"
+    early = f"the agent left at {left:.2f} s, before the run's end at {run_end:.2f} s"
     # The server cannot see the agent's process: its verdict (and `replay`'s) stays a pass.
-    detail = f"{result.get('detail', '')}; {quit}"
+    detail = f"{result.get('detail', '')}; {early}"
     return {**result, "success": False, "detail": detail, "server_success": True}
