@@ -665,14 +665,16 @@ def cheating_problems(
     on everything, or with no action at all (a fixed-time contact); any task by quitting; a
     no-op, which each of them either contacts in or quits (under the original's looser rule
     quitting passes no-ops: expected)."""
-    problems = [f"act_all passed {i} (acting on every item is rewarded)" for i in active
-                if passed("act_all", i)]  # fmt: skip
-    problems += [f"fixed_time passed {i} (a contact with no action is rewarded)" for i in active
-                 if passed("fixed_time", i)]  # fmt: skip
-    for i in ids:
-        quit_ok = i in noop and noop_rule == "original"
-        if passed("quitter", i) and not quit_ok:
-            problems.append(f"quitter passed {i} (leaving at once is rewarded)")
-        problems += [f"{a} passed no-op {i}" for a in ("act_all", "fixed_time")
-                     if i in noop and passed(a, i)]  # fmt: skip
+    why = {
+        "act_all": "acting on every item is rewarded",
+        "fixed_time": "a contact with no action is rewarded",
+    }
+    problems = [f"{a} passed {i} ({why[a]})" for a in why for i in active if passed(a, i)]
+    problems += [f"{a} passed no-op {i}" for a in why for i in sorted(noop) if passed(a, i)]
+    quitting_passes = noop if noop_rule == "original" else set()
+    problems += [
+        f"quitter passed {i} (leaving at once is rewarded)"
+        for i in ids
+        if passed("quitter", i) and i not in quitting_passes
+    ]
     return problems
