@@ -91,6 +91,17 @@ def start_clock(run: Run, *, wall: float | None = None) -> Run:
     return run
 
 
+def require_virtual_clock(run: Run) -> None:
+    """Refuse to move a clock that belongs to the wall: a live or fast-forward run graded on a
+    clock its holder could jump would report any reaction time it liked (the control API's
+    `/advance` asks this; tests and `bench_scale` position runs through `advance` itself)."""
+    if run.clock_mode != ClockMode.VIRTUAL:
+        raise LifecycleError(
+            f"/advance moves only a virtual clock: run {run.pk} has a {run.clock_mode} clock, "
+            "which moves with the wall (create the run with clock_mode 'virtual' to step it)"
+        )
+
+
 def advance(run: Run, to: float) -> FireResult:
     """Move a manual clock to simulated time `to` (authored seconds) and fire what is due."""
     run.refresh_from_db()

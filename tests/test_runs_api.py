@@ -94,6 +94,20 @@ def test_actions_over_http_are_validated_and_logged(api):
     assert wrong_type.status_code == 400 and "'n'" in wrong_type.json()["detail"]
 
 
+@pytest.mark.parametrize("clock_mode", ["live", "fast_forward"])
+def test_advance_refuses_a_clock_that_moves_with_the_wall(api, clock_mode):
+    """A live run's clock belongs to the wall: whoever could jump it (before its start, too)
+    would choose the reaction time the run is graded on."""
+    run = create(api, clock_mode=clock_mode)
+    response = api.post(f"/api/runs/{run['id']}/advance/", {"time": 31}, format="json")
+    assert response.status_code == 409
+    assert (
+        f"/advance moves only a virtual clock: run {run['id']} has a {clock_mode} clock"
+        in (response.json()["detail"])
+    )
+    assert api.get(f"/api/runs/{run['id']}/").json()["status"] == "ready"  # untouched
+
+
 @pytest.mark.django_db(transaction=True)
 def test_twenty_concurrent_runs_are_isolated(api):
     runs = [create(api, clock_mode="virtual") for _ in range(20)]

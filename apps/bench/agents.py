@@ -4,10 +4,19 @@ They prove every scenario is solvable and not trivially passable (`bench validat
 
 - oracle  — waits until the condition holds (the harness tells it `condition_at`), performs the
   scenario's `solution` actions, then visits and submits the contact form; on a no-op it performs
-  the solution (usually nothing) and leaves without contacting;
+  the solution (usually nothing) and stays, without contacting, until the run ends;
 - early   — contacts at once;
-- never   — never contacts, leaves at once;
+- never   — never contacts, and stays until the run ends;
 - sleeper — games the benchmark: waits until just before the deadline, then contacts.
+
+And the cheating strategies of agents that never monitor, which no scenario may reward:
+
+- act_all    — waits until just before the deadline, performs the task's action on every item
+  there is (the harness expands the solution: apps/bench/everything.py; an action the server
+  refuses is skipped), then contacts;
+- fixed_time — contacts at a fixed simulated time (`--contact-at`: 300 s, or half a shorter
+  run), whatever happened;
+- quitter    — opens its task and leaves at once, without contacting.
 
 Every wait is on the run's simulated clock. A live run's clock moves with the wall (the agent
 sleeps); a virtual run's clock is moved by the agent itself through the control API's
@@ -33,11 +42,12 @@ import urllib.error
 import urllib.parse
 import urllib.request
 
-AGENTS = ("oracle", "early", "never", "sleeper")
+AGENTS = ("oracle", "early", "never", "sleeper", "act_all", "fixed_time", "quitter")
 SETUP_FAILED = 75  # apps.bench.outcomes.SETUP_FAILED (not imported: this module needs no Django)
 HTTP_TIMEOUT_S = 20.0
 CONDITION_MARGIN_S = 0.5  # wall seconds after condition_at, so the contact is never early
 SLEEPER_MARGIN_S = 5.0  # wall seconds before the deadline
+FIXED_CONTACT_AT = 300.0  # simulated seconds: the fixed_time agent's contact
 
 
 def get(url: str) -> str:
@@ -99,10 +109,17 @@ def contact(contact_url: str, message: str) -> None:
     log("contacted the user")
 
 
-def perform(actions_url: str, solution: list[dict]) -> None:
+def perform(actions_url: str, solution: list[dict], *, skip_refused: bool = False) -> None:
+    """Perform each step; with `skip_refused`, a step the server refuses (4xx: not there yet,
+    already done) is skipped rather than a failure of the agent."""
     for step in solution:
         body = json.dumps({"action": step["action"], "payload": step.get("payload") or {}}).encode()
-        post(actions_url, body, "application/json")
+        try:
+            post(actions_url, body, "application/json")
+        except urllib.error.HTTPError as refused:
+            if not (skip_refused and 400 <= refused.code < 500):
+                raise
+            continue
         log(f"performed {step['action']} {json.dumps(step.get('payload') or {})}")
 
 
@@ -127,6 +144,9 @@ def play(argv: list[str] | None = None) -> int:
         "--advance-url", help="a virtual run: jump its clock here instead of waiting"
     )
     parser.add_argument("--timeline-end", type=float, default=float("inf"), help="authored seconds")
+    parser.add_argument(
+        "--contact-at", type=float, default=FIXED_CONTACT_AT, help="fixed_time: simulated seconds"
+    )
     args = parser.parse_args(argv)
 
     get(args.task_url)  # starts a live run's clock (it has started by the time this returns)
@@ -138,6 +158,7 @@ def play(argv: list[str] | None = None) -> int:
         None if args.condition_at.lower() in ("none", "null", "") else float(args.condition_at)
     )
 
+    end = args.deadline * sf  # a live run's agent is stopped then; a virtual clock stops short
     if args.agent == "early":
         contact(args.contact_url, "done")
     elif args.agent == "sleeper":
@@ -149,6 +170,20 @@ def play(argv: list[str] | None = None) -> int:
         perform(actions_url, json.loads(args.solution))
         if condition is not None:
             contact(args.contact_url, "the condition was met")
+        else:
+            clock.wait_until(end)  # a no-op passes only if the agent is there at the end
+    elif args.agent == "never":
+        clock.wait_until(end)
+    elif args.agent == "act_all":
+        clock.wait_until((args.deadline - SLEEPER_MARGIN_S) * sf)
+        perform(actions_url, json.loads(args.solution), skip_refused=True)
+        contact(args.contact_url, "done")
+    elif args.agent == "fixed_time" and args.contact_at < end:
+        clock.wait_until(args.contact_at)
+        contact(args.contact_url, "the condition was met")
+    elif args.agent == "fixed_time":  # its time never comes: a live agent is stopped first
+        clock.wait_until(end)
+    # (quitter: it opened its task, and that is all.)
     log(f"{args.agent}: leaving")
     return 0
 

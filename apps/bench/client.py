@@ -55,9 +55,11 @@ class ControlClient:
         return self.request("GET", f"/api/scenarios/{scenario_id}/")
 
     def create_run(
-        self, scenario_id: str, speed_factor: float, clock_mode: str = "live"
+        self, scenario: str | dict[str, Any], speed_factor: float, clock_mode: str = "live"
     ) -> dict[str, Any]:
-        body = {"scenario": scenario_id, "speed_factor": speed_factor, "clock_mode": clock_mode}
+        """A run of the library's scenario named `scenario`, or of a whole scenario given."""
+        key = "scenario_json" if isinstance(scenario, dict) else "scenario"
+        body = {key: scenario, "speed_factor": speed_factor, "clock_mode": clock_mode}
         return self.request("POST", "/api/runs/", json=body)
 
     def run(self, run_id: int, *, retries: int = RETRIES) -> dict[str, Any]:

@@ -8,10 +8,10 @@ Ours: `parallel`, `prices`, `reaction_window`, `grace`, `control_token`, `http_t
 `agent_subprocess`: `{kind: wait_for | sleep, model, base_url, api_key_env, max_steps,
 max_tokens, max_wall}`.
 Placeholders: __TASK_URL__, __TASK_PROMPT__, __BASE_DIR__, __CONTACT_URL__, and ours:
-__PYTHON__ (the project's Python, with its packages), __TASK_DIR__ (the task's result folder)
+__PYTHON__ (the project's Python, with its packages), __TASK_DIR__ (the agent's folder)
 and __WAIT_URL__ (the run's wait URL: skips its clock on a fast_forward run).
-The agent runs in its task's result folder, as upstream's did (agents write `costs.json` there);
-an argument of a list command naming a file beside the config file (`my_agent.py`) is given
+The agent runs in a fresh folder of its own (runner.AgentWorkspace: agents write `costs.json`
+there, as upstream's did in the task's folder, and it is copied back); an argument of a list command naming a file beside the config file (`my_agent.py`) is given
 as that file's absolute path, so the README's `["python", "my_agent.py", ...]` finds it.
 """
 
@@ -99,6 +99,9 @@ class BenchConfig:
     control_token: str = ""
     http_timeout: float = 30.0
     clock: str = "live"  # one of BENCH_CLOCKS
+    noop_rule: str = "paper"  # one of outcomes.NOOP_RULES (--noop-rule)
+    jitter: float = 0.0  # authored seconds a run's timeline may be shifted by (--jitter)
+    seed: int = 0  # of the shifts (--seed)
     raw: dict[str, Any] = field(default_factory=dict)
     # The config file's folder, where relative agent files are found (None: no config file).
     folder: Path | None = None

@@ -5,8 +5,14 @@ paper's breakdown: success by category, reaction time of successful non-no-op ta
 from costs.json × prices, tool-call statistics and server-measured agent activity.
 
 Several result sets give the paper's comparison instead (one row per set), plus *timely
-success*: a pass whose reaction time is within a window, so an agent that contacts just before
-the deadline on every passive task does not look as good as one that reacts at once.
+success*: a targeted task passed with a reaction time within a window, so an agent that contacts
+just before the deadline on every passive task does not look as good as one that reacts at once.
+It is a rate over the targeted tasks only: a no-op has no condition to be timely for, and doing
+nothing must not score (its success is in the no-op column of the success table).
+
+The reaction time is the server's (`reaction_time` in the verdict): from the condition to the
+agent's first contact of either kind, a GET of the contact page or a POST of its form. Results
+without it (the original harness's) are given the same rule here (`reaction_time_of`).
 
 Times are those of results.json: simulated seconds ÷ the run's speed factor, i.e. wall seconds
 on a live clock (and what they would have been, on `bench validate`'s virtual clocks).
@@ -49,6 +55,7 @@ COLUMNS = (
     "tool_calls",
 )
 GROUPS = ("overall", "noop", "passive", "active", "absolute", "relative")
+TIMELY_GROUPS = tuple(g for g in GROUPS if g != "noop")  # timely success: targeted tasks only
 
 
 @dataclass
@@ -89,15 +96,13 @@ class Row:
         return not self.is_noop and group in self.category.split("-")
 
     def timely(self, window: float) -> bool:
-        """Passed and, on a targeted task, contacted within `window` s of the condition.
+        """A targeted task passed with a contact within `window` s of the condition.
 
-        A passed no-op is timely: it has no condition to be late for. A pass without a known
-        reaction time is not, since lateness cannot be ruled out.
+        Never a no-op, which has no condition to be timely for (timely rates leave no-ops out).
+        A pass without a known reaction time is not timely, since lateness cannot be ruled out.
         """
-        if not self.success:
+        if not self.success or self.is_noop:
             return False
-        if self.is_noop:
-            return True
         return self.reaction_time is not None and self.reaction_time <= window
 
     @property
@@ -128,6 +133,23 @@ def _int(value: Any) -> int | None:
     return int(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
 
 
+def first_contact(result: dict[str, Any]) -> float | None:
+    """When the agent first made contact, of either kind (a GET or a POST-only contact)."""
+    times = [result.get(k) for k in ("contact_get_time", "contact_post_time")]
+    return min((t for t in times if t is not None), default=None)
+
+
+def reaction_time_of(result: dict[str, Any]) -> float | None:
+    """A pass's reaction time: the server's verdict's own, so `bench grade` and the verdict
+    never differ; for a result without one (the original harness's), the same rule."""
+    if not result.get("success"):
+        return None
+    if "reaction_time" in result:
+        return result["reaction_time"]
+    stop, condition = first_contact(result), result.get("condition_at")
+    return None if stop is None or condition is None else stop - condition
+
+
 def load_rows(
     run_dir: Path,
     config: BenchConfig | None = None,
@@ -146,15 +168,13 @@ def load_rows(
             continue
         costs = _read_json(path.parent / COSTS)
         costs = costs if isinstance(costs, dict) else None
-        stop = result.get("contact_get_time")
+        stop = first_contact(result)
         condition = result.get("condition_at")
-        reaction = None
-        if result.get("success") and stop is not None and condition is not None:
-            reaction = stop - condition
-            if reaction < 0:
-                raise BenchError(
-                    f"{path}: negative reaction time {reaction:.2f} s on a successful task"
-                )
+        reaction = reaction_time_of(result)
+        if reaction is not None and reaction < 0:
+            raise BenchError(
+                f"{path}: negative reaction time {reaction:.2f} s on a successful task"
+            )
         category = result.get("category") or ("noop" if condition is None else "unknown")
         rows.append(
             Row(
@@ -270,7 +290,8 @@ def success_by_group(rows: list[Row]) -> dict[str, Rate]:
 
 
 def timely_by_group(rows: list[Row], window: float) -> dict[str, Rate]:
-    return rates_by_group(rows, lambda r: r.timely(window))
+    """Timely success per group, over the targeted tasks (the no-op group is empty)."""
+    return rates_by_group([r for r in rows if not r.is_noop], lambda r: r.timely(window))
 
 
 @dataclass(frozen=True)
@@ -505,8 +526,8 @@ def load_result_sets(
 CATEGORY_HEADERS = {"noop": "no-op"}
 
 
-def _rate_cells(rates: dict[str, Rate]) -> list[str]:
-    return [str(rates[g]) for g in GROUPS[1:]]
+def _rate_cells(rates: dict[str, Rate], groups: tuple[str, ...] = GROUPS) -> list[str]:
+    return [str(rates[g]) for g in groups[1:]]
 
 
 def stat_cells(values: list[float], fmt: Callable[[float], str]) -> list[str]:
@@ -540,8 +561,8 @@ TableCells = tuple[list[str], list[list[str]]]
 Summaries = list[tuple[ResultSet, Summary]]
 
 
-def _category_headers() -> list[str]:
-    return [CATEGORY_HEADERS.get(g, g) for g in GROUPS[1:]]
+def _category_headers(groups: tuple[str, ...] = GROUPS) -> list[str]:
+    return [CATEGORY_HEADERS.get(g, g) for g in groups[1:]]
 
 
 def success_table(summaries: Summaries) -> TableCells:
@@ -559,9 +580,10 @@ def success_table(summaries: Summaries) -> TableCells:
 
 
 def timely_table(summaries: Summaries) -> TableCells:
-    header = ["result set", "timely", *_category_headers()]
+    header = ["result set", "timely", *_category_headers(TIMELY_GROUPS)]
     return header, [
-        [rs.name, str(s.timely["overall"]), *_rate_cells(s.timely)] for rs, s in summaries
+        [rs.name, str(s.timely["overall"]), *_rate_cells(s.timely, TIMELY_GROUPS)]
+        for rs, s in summaries
     ]
 
 
@@ -584,11 +606,11 @@ def render_comparison(sets: list[ResultSet], window: float) -> str:
     named = ", ".join(f"{rs.name} (clock: {clocks(rs.rows)})" for rs in sets)
     out = [f"Comparing {len(sets)} result sets: {named}", ""]
     out.append(
-        f"Success by category (timely = passed with reaction time <= {window:g} s; "
-        "a passed no-op is timely)"
+        f"Success by category (timely = targeted tasks passed with reaction time <= {window:g} s;"
+        " no-ops apart)"
     )
     out += aligned(*success_table(summaries))
-    out += ["", f"Timely success by category (reaction time <= {window:g} s)"]
+    out += ["", f"Timely success by category (targeted tasks, reaction time <= {window:g} s)"]
     out += aligned(*timely_table(summaries))
     out += ["", "Cost per task (USD; costs.json tokens x config prices)"]
     out += aligned(*cost_table(summaries))
@@ -643,7 +665,7 @@ def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
         ]
 
     header = ["result_set", "tasks", "success_rate", "timely_success_rate"]
-    header += [f"success_{g}" for g in GROUPS[1:]] + [f"timely_{g}" for g in GROUPS[1:]]
+    header += [f"success_{g}" for g in GROUPS[1:]] + [f"timely_{g}" for g in TIMELY_GROUPS[1:]]
     for prefix in ("cost_usd", "tool_calls", "tokens"):
         header += [f"{prefix}_{h}" for h in STAT_HEADERS]
     header += ["unpriced_tasks", "reaction_n", "reaction_mean_s", "reaction_median_s"]
@@ -656,7 +678,7 @@ def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
         writer.writerow(
             [rs.name, s.total, fraction(s.rates["overall"]), fraction(s.timely["overall"])]
             + [fraction(s.rates[g]) for g in GROUPS[1:]]
-            + [fraction(s.timely[g]) for g in GROUPS[1:]]
+            + [fraction(s.timely[g]) for g in TIMELY_GROUPS[1:]]
             + stats(s.costs)
             + stats(s.tool_calls)
             + stats(s.total_tokens)

@@ -16,7 +16,10 @@ agent: it is never written as a result, never counted in a rate, and runs again 
    model endpoint cannot be reached or Chromium will not start; the control agents when one of
    their own requests fails or times out. A contact made stands: the task is graded.
 
-Everything else is graded by its verdict.
+Everything else is graded by its verdict, and a passed no-op by one more rule (`NOOP_RULES`):
+the paper's (the default) passes a no-op only if "the simulation ends while the agent is still
+working or monitoring", so an agent that left of its own accord before the run's end fails it;
+the original harness's passes any no-op without a contact (`--noop-rule original`).
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ from typing import Any
 
 SETUP_FAILED = 75  # os.EX_TEMPFAIL: an agent's way to say "my environment failed, not me"
 OUTCOMES = ("passed", "failed", "error")
+NOOP_RULES = ("paper", "original")
 
 
 def error_cause(verdict: dict[str, Any], exit_code: int | None, killed: bool) -> str | None:
@@ -43,3 +47,23 @@ def error_cause(verdict: dict[str, Any], exit_code: int | None, killed: bool) ->
 
 def graded_outcome(verdict: dict[str, Any]) -> str:
     return "passed" if verdict.get("success") else "failed"
+
+
+def noop_rule_applied(result: dict[str, Any], rule: str, run_end: float) -> dict[str, Any]:
+    """The result with `rule` applied to a passed no-op: under the paper's rule, an agent that
+    exited by itself before `run_end` (wall seconds; `agent_left_at` is when it did) fails it.
+    An agent the harness stopped, or whose leaving time is unknown, was there at the end."""
+    left = result.get("agent_left_at")
+    if (
+        rule == "original"
+        or result.get("category") != "noop"
+        or not result.get("success")
+        or result.get("agent_killed")
+        or left is None
+        or left >= run_end
+    ):
+        return result
+    early = f"the agent left at {left:.2f} s, before the run's end at {run_end:.2f} s"
+    # The server cannot see the agent's process: its verdict (and `replay`'s) stays a pass.
+    detail = f"{result.get('detail', '')}; {early}"
+    return {**result, "success": False, "detail": detail, "server_success": True}

@@ -20,6 +20,7 @@ from pathlib import Path
 import httpx
 
 from apps.bench.config import BenchConfig, ReferenceAgent
+from apps.bench.runner import PYTHON_NAMES, path_names, project_python, without_project
 
 PLACEHOLDERS = (
     "__TASK_URL__",
@@ -56,12 +57,12 @@ def _static(arg: str, base_dir: Path) -> str:
     return arg.replace("__BASE_DIR__", str(base_dir)).replace("__PYTHON__", sys.executable)
 
 
-def _agent_path() -> str:
-    """The agent's PATH: the project's Python first (runner.Harness.command_for)."""
-    return os.pathsep.join(filter(None, [str(Path(sys.executable).parent), os.environ.get("PATH")]))
+def _agent_path(base_dir: Path) -> str:
+    """The agent's PATH less the project's own folders (runner.agent_environment)."""
+    return without_project(os.environ.get("PATH", ""), path_names((base_dir, *project_python())))
 
 
-def _program(word: str, folder: Path | None) -> tuple[str | None, str | None]:
+def _program(word: str, folder: Path | None, base_dir: Path) -> tuple[str | None, str | None]:
     """(the program's path, or None) and a problem when it cannot be found."""
     if "/" in word:
         path = Path(word) if Path(word).is_absolute() else (folder or Path.cwd()) / word
@@ -73,7 +74,9 @@ def _program(word: str, folder: Path | None) -> tuple[str | None, str | None]:
                 f"agent_subprocess: {word}: not executable (chmod +x, or name its interpreter)",
             )
         return str(path), None
-    found = shutil.which(word, path=_agent_path())
+    if word in PYTHON_NAMES:  # the workspace's shims run the project's Python
+        return sys.executable, None
+    found = shutil.which(word, path=_agent_path(base_dir))
     if found is None:
         return None, f"agent_subprocess: {word}: no such program on PATH"
     return found, None
@@ -134,7 +137,7 @@ def command_problems(config: BenchConfig, base_dir: Path) -> list[str]:
         return problems
     first = args[0]
     if not (shell and (first in SHELL_WORDS or "=" in first)) and not PLACEHOLDER.search(first):
-        program, problem = _program(first, config.folder)
+        program, problem = _program(first, config.folder, base_dir)
         if problem:
             problems.append(problem)
         elif program:

@@ -505,8 +505,9 @@ def _unpriced_note(sets: list[ResultSet]) -> str:
 
 def _timely_note(window: float) -> str:
     return (
-        f'<p class="note">Timely: passed with a reaction time of at most {window:g} s (a passed '
-        "no-op is timely). Times are the run's simulated seconds ÷ its speed factor: wall "
+        f'<p class="note">Timely: a targeted task passed with a reaction time of at most '
+        f"{window:g} s, from the condition to the first contact of either kind; timely rates "
+        "leave no-ops out. Times are the run's simulated seconds ÷ its speed factor: wall "
         "seconds on a live clock.</p>"
     )
 
@@ -581,7 +582,7 @@ def task_facts(set_name: str, row: Row, window: float) -> list[tuple[str, str]]:
         set_name,
         row.category,
         "yes" if row.success else "no",
-        "yes" if row.timely(window) else "no",
+        "n/a" if row.is_noop else "yes" if row.timely(window) else "no",
         _opt(row.reaction_time),
         _opt(row.cost_usd, "${:.4f}"),
         "" if row.tool_calls is None else str(row.tool_calls),

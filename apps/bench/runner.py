@@ -7,8 +7,9 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
    caps its output), cwd = a fresh temporary folder of its own that `__TASK_DIR__` names
    (upstream's agents write costs.json there; it is copied into the task's result folder
    afterwards, never a file named like the harness's own), a file named beside the config
-   file passed by its absolute path (`python my_agent.py` works), the project's Python first
-   on PATH, stdout+stderr to output.txt (the first and last 8 MiB);
+   file passed by its absolute path (`python my_agent.py` works: `python` on its PATH is a
+   shim running the project's Python), an environment naming no folder of the project
+   (`agent_environment`), stdout+stderr to output.txt (the first and last 8 MiB);
 3. the deadline counts from the run's *start* (the agent's first visit to the task URL; before
    that, from launch): `min(MAX_CONDITION_AT, kill_at) / sf + reaction_window`, which is
    `kill_at_wall(sf)` for every benchmark scenario (their kill_at is 630) and lets short test
@@ -17,9 +18,10 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
    group and whatever is left under it (a `setsid()` grandchild included), so no background
    process survives into the next task;
 5. evaluate, save the log (events.jsonl, in `export_run`'s format: `import_run` reads it),
-   close the run, write results.json last — its presence means "done". A task whose outcome is
-   an error (outcomes.py: ours or the setup's, not the agent's) writes error.txt instead, never
-   a failed result.
+   close the run, apply the no-op rule (outcomes.py: under the paper's, an agent that left
+   before the run's end fails a no-op), write results.json last — its presence means "done". A
+   task whose outcome is an error (outcomes.py: ours or the setup's, not the agent's) writes
+   error.txt instead, never a failed result.
 
 `--trials k` runs every task k times, each its own run: trial 1 in `<env>/<id>/`, trial n in
 `<env>/<id>/trial-<n>/`, so a result set run once can be given more trials later.
@@ -28,8 +30,12 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import json
+import math
 import os
+import random
+import shlex
 import shutil
 import signal
 import subprocess
@@ -38,15 +44,18 @@ import tempfile
 import threading
 import time
 import traceback
+from collections.abc import Mapping
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
+from apps.bench.agents import FIXED_CONTACT_AT, SLEEPER_MARGIN_S
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig
-from apps.bench.outcomes import error_cause, graded_outcome
-from events.timing import MAX_CONDITION_AT
+from apps.bench.everything import every_item_steps
+from apps.bench.outcomes import error_cause, graded_outcome, noop_rule_applied
+from events.timing import MAX_CONDITION_AT, MIN_CONDITION_AT
 
 RESULTS, ERROR, OUTPUT, EVENTS, COSTS = (
     "results.json",
@@ -59,6 +68,7 @@ START_POLL_S = 0.5
 VIRTUAL_GUARD_FACTOR, VIRTUAL_GUARD_MIN_S = 4.0, 120.0  # a virtual run's wall-time guard
 OUTPUT_TAIL_LINES = 5
 CONTROL_AGENTS = ("oracle", "early", "never", "sleeper")
+CHEATING_AGENTS = ("act_all", "fixed_time", "quitter")  # strategies no scenario may reward
 
 CONTACT_INSTRUCTIONS = (
     "Once the conditions above are met and/or the actions are taken, let me know by visiting and "
@@ -89,10 +99,56 @@ def category_of(spec: dict[str, Any]) -> str:
     return f"{approach}-{milestone}"
 
 
+def run_end(spec: dict[str, Any]) -> float:
+    """Authored seconds: the last moment a condition may come (kill_at, at most 600). The
+    deadline counts from it, and an agent still there then was there at the end of the run
+    (the paper's no-op rule: a self-imposed wall budget ending at the deadline is no quitting)."""
+    return min(MAX_CONDITION_AT, float(spec.get("kill_at") or MAX_CONDITION_AT))
+
+
+def shift_bounds(spec: dict[str, Any]) -> tuple[float, float]:
+    """How far a scenario's timeline may move: its condition stays in [10, 600] s, as authored
+    ones are, and its first entry after the t=0 preload stays after it."""
+    low, high = -math.inf, math.inf
+    condition = spec.get("condition_at")
+    if condition is not None:
+        low, high = MIN_CONDITION_AT - condition, MAX_CONDITION_AT - condition
+    later = [float(e["time"]) for e in spec.get("events") or [] if float(e["time"]) > 0]
+    if later:
+        low = max(low, -min(later) / 2)
+    return low, high
+
+
+def timeline_shift(spec: dict[str, Any], jitter: float, seed: int, trial: int) -> float:
+    """The seconds one trial of a scenario is shifted by (`--jitter`): uniform in ±`jitter`,
+    within its bounds, drawn from the seed, the scenario and the trial alone, so a resumed or
+    reordered benchmark plays every trial as before."""
+    low, high = shift_bounds(spec)
+    draw = random.Random(f"{seed}/{spec['id']}/{trial}")
+    return round(draw.uniform(max(-jitter, low), min(jitter, high)), 3)
+
+
+def shifted(spec: dict[str, Any], by: float) -> dict[str, Any]:
+    """The scenario with its whole timeline `by` seconds later: every entry after the t=0
+    preload, the condition, kill_at and the timeline's end move together, so what happens,
+    when it is graded and how long the agent has are the scenario's own, at another time."""
+    events = [
+        {**e, "time": float(e["time"]) + by} if float(e["time"]) > 0 else e
+        for e in spec.get("events") or []
+    ]
+    condition = spec.get("condition_at")
+    return {
+        **spec,
+        "events": events,
+        "condition_at": None if condition is None else condition + by,
+        "kill_at": float(spec["kill_at"]) + by,
+        "event_timeline_end": float(spec["event_timeline_end"]) + by,
+    }
+
+
 def deadline_s(spec: dict[str, Any], speed_factor: float, reaction_window: float) -> float:
     """Wall seconds after the run's start at which the agent is stopped (see module doc)."""
-    kill_at = min(MAX_CONDITION_AT, float(spec.get("kill_at") or MAX_CONDITION_AT))
-    return kill_at / speed_factor + reaction_window
+    return run_end(spec) / speed_factor + reaction_window
 
 
 @dataclass(frozen=True)
@@ -103,6 +159,8 @@ class Task:
     folder: Path
     reference: str = ""  # how the server names it: the id, or the path for a repeated id
     trial: int = 1
+    shift: float | None = None  # --jitter: `spec` is the scenario shifted by this many seconds
+    authored: dict[str, Any] | None = None  # the scenario as the library has it, when shifted
 
     @property
     def category(self) -> str:
@@ -180,6 +238,7 @@ class Harness:
     # /advance instead of waiting; "live": the clock moves with the wall, as for a real agent;
     # "fast_forward": live, and the agent's declared waits (its wait URL) skip ahead.
     clock: str = "live"
+    private_paths: tuple[Path, ...] = ()  # more folders of the project: the scenario library
     stopping: threading.Event = field(default_factory=threading.Event)
     _live: set = field(default_factory=set)
     _lock: threading.Lock = field(default_factory=threading.Lock)
@@ -187,6 +246,17 @@ class Harness:
     @property
     def speed_factor(self) -> float:
         return self.config.speed_factor
+
+    @property
+    def project_paths(self) -> tuple[Path, ...]:
+        """Folders no value of the agent's environment may name: the project, its Python, the
+        results and the scenario library (the answer key)."""
+        return (self.base_dir, *project_python(), self.results_root, *self.private_paths)
+
+    def builtin(self, module: str) -> list[str]:
+        """The command running a built-in agent, a module of this project: the project's folder
+        goes on its import path through its command line, never through its environment."""
+        return [sys.executable, "-c", LAUNCH_MODULE, str(self.base_dir), module]
 
     def tasks(self, listing: list[dict], trials: int = 1) -> list[Task]:
         tasks = []
@@ -196,10 +266,16 @@ class Harness:
             spec = self.client.scenario(reference)
             name = Path(reference).stem if entry.get("duplicate_of") else spec["id"]
             folder = self.results_root / spec["environment"] / name
-            tasks += [
-                Task(spec["id"], spec["environment"], spec, trial_folder(folder, n), reference, n)
-                for n in range(1, trials + 1)
-            ]
+            for n in range(1, trials + 1):
+                task = Task(
+                    spec["id"], spec["environment"], spec, trial_folder(folder, n), reference, n
+                )
+                if self.config.jitter > 0:
+                    by = timeline_shift(spec, self.config.jitter, self.config.seed, n)
+                    task = dataclasses.replace(
+                        task, spec=shifted(spec, by), shift=by, authored=spec
+                    )
+                tasks.append(task)
         return tasks
 
     def should_skip(self, task: Task) -> str | None:
@@ -226,26 +302,21 @@ class Harness:
         )
 
     def command_for(
-        self, task: Task, run: dict[str, Any], prompt: str, workspace: Path | None = None
+        self, task: Task, run: dict[str, Any], prompt: str, workspace: AgentWorkspace | None = None
     ) -> tuple[list[str] | str, bool, dict]:
         """The agent's command line, whether it is a shell line, and its environment; it runs
         in `workspace` (default: the task's folder), which its task-folder placeholders name."""
-        where = (workspace or task.folder).resolve()
-        env = dict(os.environ)
+        where = (workspace.path if workspace else task.folder).resolve()
+        env = agent_environment(os.environ, self.project_paths)
+        env["PWD"] = str(where)
         if self.agent or self.config.reference_agent:
-            # Built-in agents are modules of this project, run from the task's folder.
-            env["PYTHONPATH"] = os.pathsep.join(
-                filter(None, [str(self.base_dir), env.get("PYTHONPATH")])
-            )
             env["PYTHONUNBUFFERED"] = "1"  # output.txt shows each step as it happens
         if self.config.reference_agent:
             return self._reference_command(task, run, where), False, env
         if self.agent:
             condition = task.spec.get("condition_at")
             argv = [
-                sys.executable,
-                "-m",
-                "apps.bench.agents",
+                *self.builtin("apps.bench.agents"),
                 self.agent,
                 "--task-url",
                 run["task_url"],
@@ -256,10 +327,12 @@ class Harness:
                 "--condition-at",
                 "none" if condition is None else repr(float(condition)),
                 "--solution",
-                json.dumps(task.spec.get("solution") or []),
+                json.dumps(self.solution_for(task)),
                 "--deadline",
                 repr(deadline_s(task.spec, self.speed_factor, self.config.reaction_window)),
             ]
+            if self.agent == "fixed_time":
+                argv += ["--contact-at", repr(min(FIXED_CONTACT_AT, run_end(task.spec) / 2))]
             if self.clock == "virtual":
                 argv += [
                     "--advance-url",
@@ -280,13 +353,22 @@ class Harness:
             "__PYTHON__": sys.executable,
         }
         # `python` in the agent's command is the project's Python (the .venv's, with its
-        # packages), not whichever one the system has first on PATH.
-        env["PATH"] = os.pathsep.join(
-            filter(None, [str(Path(sys.executable).parent), env.get("PATH")])
-        )
+        # packages), not whichever one the system has first on PATH: the workspace's shims.
+        if workspace is not None:
+            env["PATH"] = os.pathsep.join(filter(None, [str(workspace.shims()), env["PATH"]]))
         env["SENTINEL_TASK_DIR"] = str(where)
         command, shell = self.config.agent_command(values)
         return command, shell, env
+
+    def solution_for(self, task: Task) -> list[dict]:
+        """The steps a control agent performs: the scenario's solution, or for act_all that
+        solution on every item there is when it acts (just before the deadline)."""
+        solution = task.spec.get("solution") or []
+        if self.agent != "act_all":
+            return solution
+        limit = deadline_s(task.spec, self.speed_factor, self.config.reaction_window)
+        acts_at = (limit - SLEEPER_MARGIN_S) * self.speed_factor
+        return every_item_steps(task.spec, min(acts_at, float(task.spec["event_timeline_end"])))
 
     def _reference_command(self, task: Task, run: dict[str, Any], where: Path) -> list[str]:
         """A built-in reference agent: the project's Python, the task's URLs and its prompt file.
@@ -295,7 +377,7 @@ class Harness:
         costs and transcript complete) rather than being killed mid-call.
         """
         agent = self.config.reference_agent
-        argv = [sys.executable, "-m", "apps.browser_agent", *agent.arguments()]
+        argv = [*self.builtin("apps.browser_agent"), *agent.arguments()]
         argv += ["--task-url", run["task_url"], "--contact-url", run["contact_url"]]
         if self.clock == "fast_forward":
             argv += ["--wait-url", run["wait_url"]]
@@ -358,7 +440,9 @@ class Harness:
 
     def _run_task(self, task: Task) -> dict[str, Any]:
         sf = self.speed_factor
-        run = self.client.create_run(task.reference or task.scenario_id, sf, clock_mode=self.clock)
+        # A shifted scenario is played as sent; the others by their name in the library.
+        scenario = task.spec if task.shift is not None else task.reference or task.scenario_id
+        run = self.client.create_run(scenario, sf, clock_mode=self.clock)
         prompt = augment_prompt(
             run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"]
         )
@@ -369,7 +453,7 @@ class Harness:
         # it can never write a result of its own (a forged results.json was taken as done).
         with AgentWorkspace(task.folder) as workspace:
             (workspace.path / "prompt.txt").write_text(prompt, encoding="utf-8")
-            command, shell, env = self.command_for(task, run, prompt, workspace.path)
+            command, shell, env = self.command_for(task, run, prompt, workspace)
             try:
                 process = subprocess.Popen(
                     reaper_command(command, shell, task.folder / OUTPUT),
@@ -386,6 +470,7 @@ class Harness:
                 self._live.add(process.pid)
             try:
                 killed = self._supervise(process, run["id"], limit, launched)
+                left_at = None if killed else self._clock_reading(run["id"])
             finally:
                 stop_agent(process, agent_group)
                 with self._lock:
@@ -413,10 +498,17 @@ class Harness:
             "deadline_s": limit,
             "agent_exit_code": process.returncode,
             "agent_killed": killed,
+            "agent_left_at": left_at,  # the run's clock (wall s) when it exited by itself
             "agent_wall_s": round(time.monotonic() - launched, 3),
+            "noop_rule": self.config.noop_rule,
         }
+        # (A clock stops at its timeline's end: an agent cannot outstay that.)
+        end = min(run_end(task.spec), float(task.spec.get("event_timeline_end") or math.inf))
+        result = noop_rule_applied(result, self.config.noop_rule, end / sf)
         if task.trial != 1:
             result["trial"] = task.trial
+        if task.shift is not None:
+            result["timeline_shift"] = task.shift
         header = exported[0] if exported and "format" in exported[0] else {}
         result["catalog_hash"] = (header.get("run") or {}).get("catalog_hash")
         cause = error_cause(verdict, process.returncode, killed)
@@ -428,6 +520,12 @@ class Harness:
             return {**result, "error_cause": cause}
         write_json_atomically(task.folder / RESULTS, result)
         return result
+
+    def _clock_reading(self, run_id: int) -> float | None:
+        """The run's clock now, in wall seconds (None if the server could not say)."""
+        with contextlib.suppress(HarnessError, KeyError, TypeError, ValueError):
+            return float(self.client.run(run_id, retries=1)["sim_time"]) / self.speed_factor
+        return None
 
     def _supervise(
         self, process: subprocess.Popen, run_id: int, limit: float, launched: float
@@ -581,6 +679,66 @@ def stop_agent(process: subprocess.Popen, agent_group: int | None) -> None:
         process.stdout.close()
 
 
+# Runs a module whose folder is given on the command line (`-c CODE FOLDER MODULE ARGS…`).
+LAUNCH_MODULE = (
+    "import runpy, sys; sys.path.insert(0, sys.argv.pop(1)); "
+    "runpy.run_module(sys.argv.pop(1), run_name='__main__', alter_sys=True)"
+)
+# Variables naming the harness's own setup, whatever their value: the agent has no use for them,
+# and some name the project without a path (DJANGO_SETTINGS_MODULE) or a secret (the control
+# token of a server given by SENTINEL_CONTROL_TOKEN).
+PROJECT_VARIABLES = frozenset(
+    {"PWD", "OLDPWD", "VIRTUAL_ENV", "VIRTUAL_ENV_PROMPT", "PYTHONPATH", "PYTHONHOME"}
+    | {"PYTHONSTARTUP", "PYTHONSAFEPATH", "PYTHONUSERBASE", "CONDA_PREFIX"}
+)
+PROJECT_PREFIXES = ("SENTINEL_", "DJANGO_", "PYTEST_", "COV_CORE_")
+PYTHON_NAMES = ("python", "python3")  # what the agent's PATH runs as the project's Python
+
+
+def project_python() -> tuple[Path, ...]:
+    """The project's Python when it is a virtualenv of its own; a system Python's prefix
+    (`/usr`) is the machine's, which the agent needs."""
+    return (Path(sys.prefix),) if sys.prefix != sys.base_prefix else ()
+
+
+def path_names(paths: tuple[Path, ...] | list[Path]) -> tuple[str, ...]:
+    """Every spelling of `paths` a value could carry: as given and with links resolved."""
+    names = {str(p.absolute()) for p in paths} | {str(p.resolve()) for p in paths}
+    return tuple(sorted(n for n in names if n != os.sep))
+
+
+def without_project(search_path: str, names: tuple[str, ...]) -> str:
+    """A PATH-like value less its entries inside the project."""
+    inside = tuple(n + os.sep for n in names)
+    kept = [
+        e
+        for e in search_path.split(os.pathsep)
+        if e and e not in names and not e.startswith(inside)
+    ]
+    return os.pathsep.join(kept)
+
+
+def agent_environment(environ: Mapping[str, str], project: tuple[Path, ...]) -> dict[str, str]:
+    """The harness's environment less every trace of the project, for an agent: its variables
+    (PROJECT_VARIABLES, PROJECT_PREFIXES), PATH entries inside it, and any other variable whose
+    value names one of its folders. What an agent needs of the machine (HOME, a model's API
+    key, proxies, locale) passes. An agent that looks can still find the project (its own
+    command line names the Python it runs), so this is hygiene, not a sandbox: nothing hands
+    the agent the way to the answer key (README, "What an agent can reach")."""
+    names = path_names(project)
+    env = {}
+    for name, value in environ.items():
+        if name in PROJECT_VARIABLES or name.startswith(PROJECT_PREFIXES):
+            continue
+        if name == "PATH":
+            value = without_project(value, names)
+        elif any(n in value for n in names):
+            continue
+        env[name] = value
+    env.setdefault("PATH", "")
+    return env
+
+
 # What the harness writes in a task's folder; an agent's file of the same name is not copied.
 HARNESS_FILES = frozenset({RESULTS, ERROR, OUTPUT, EVENTS, "prompt.txt"})
 
@@ -592,16 +750,33 @@ class AgentWorkspace:
 
     def __init__(self, results: Path):
         self.results = results
-        self.path = Path(tempfile.mkdtemp(prefix="sentinel-agent-")).resolve()
+        # The agent's folder is `task` inside a folder of its own, beside its PATH's shims.
+        self.root = Path(tempfile.mkdtemp(prefix="sentinel-agent-")).resolve()
+        self.path = self.root / "task"
+        self.path.mkdir()
 
     def __enter__(self) -> AgentWorkspace:
         return self
+
+    def shims(self) -> Path:
+        """A folder beside the workspace where `python` and `python3` run the project's Python
+        by its absolute path: a link would not do (a virtualenv's Python finds its packages from
+        the path it was started by), and the project's own folder on PATH would name it."""
+        shims = self.root / "bin"
+        shims.mkdir(exist_ok=True)
+        for name in PYTHON_NAMES:
+            shim = shims / name
+            shim.write_text(
+                f'#!/bin/sh\nexec {shlex.quote(sys.executable)} "$@"\n', encoding="utf-8"
+            )
+            shim.chmod(0o755)
+        return shims
 
     def __exit__(self, *exc) -> None:
         try:
             self.copy_back()
         finally:
-            shutil.rmtree(self.path, ignore_errors=True)
+            shutil.rmtree(self.root, ignore_errors=True)
 
     def copy_back(self) -> None:
         for source in sorted(self.path.rglob("*")):

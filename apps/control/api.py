@@ -66,6 +66,7 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
         body = AdvanceSerializer(data=request_data(request))
         body.is_valid(raise_exception=True)
         run = self.get_object()
+        lifecycle.require_virtual_clock(run)
         fired = lifecycle.advance(run, body.validated_data["time"])
         data = self.get_serializer(run).data
         data["processed_events"] = [

@@ -16,7 +16,8 @@ from events.registry import UnknownEnvironment, get_environment
 
 def home(request: HttpRequest) -> HttpResponse:
     # With a token set, runs and their verdicts are a control matter: this public page lists
-    # them to a logged-in admin only (an agent's browser can open it, too).
+    # them to a logged-in admin only (an agent's browser can open it, too), and does not say
+    # where the scenario files, the answer key, lie on disk.
     runs_hidden = bool(settings.SENTINEL_CONTROL_TOKEN) and not request.user.is_staff
     context = {
         "environments": overview.environment_rows(),
@@ -25,7 +26,7 @@ def home(request: HttpRequest) -> HttpResponse:
         "runs": [] if runs_hidden else overview.recent_runs(),
         "runs_hidden": runs_hidden,
         "docs": [(slug, title) for slug, (_, title) in overview.DOCS.items()],
-        "scenario_dir": settings.SENTINEL_SCENARIO_DIR,
+        "scenario_dir": None if runs_hidden else settings.SENTINEL_SCENARIO_DIR,
         "browse_needs_staff": bool(settings.SENTINEL_CONTROL_TOKEN),
     }
     return render(request, "home/index.html", context)

@@ -5,6 +5,7 @@ It follows the script embedded in its prompt as `[[script: step; step; ...]]`:
   action NAME EMAIL    POST /r/<token>/actions {"action": NAME, "payload": {"email_id": EMAIL}}
   sleep SECONDS
   contact              GET then POST the contact URL
+  post-contact         POST the contact form only (no GET: a contact all the same)
   costs IN OUT CALLS [upstream]   write costs.json (upstream: prompt_/completion_tokens keys)
   spawn                start a child that sleeps forever; its pid goes to child.pid
   escape               start a sleeper in a session of its own, its parent gone (a double
@@ -12,6 +13,8 @@ It follows the script embedded in its prompt as `[[script: step; step; ...]]`:
   forge                write a results.json of its own saying it passed
   flood MIB            write MIB mebibytes to stdout
   snoop                ask the control side for the answer key; the answers go to snoop.json
+  environ              write its environment, its working folder and what `python` on its
+                       PATH is to environ.json
   hang                 sleep forever
 """
 
@@ -71,6 +74,10 @@ def main() -> int:
                 "application/x-www-form-urlencoded",
             )
             print("contacted", flush=True)
+        elif verb == "post-contact":
+            message = urllib.parse.urlencode({"message": "done"}).encode()
+            fetch(contact_url, message, "application/x-www-form-urlencoded")
+            print("contacted by POST only", flush=True)
         elif verb == "costs":
             keys = (
                 ("prompt_tokens", "completion_tokens")
@@ -117,11 +124,17 @@ def main() -> int:
                 "scenarios": ("GET", f"{base}/api/scenarios/"),
                 "advance": ("POST", f"{base}/advance?time=600"),
                 "status": ("GET", f"{base}/status"),
+                "scenario": ("GET", f"{base}/api/scenarios/bench-hostile/"),
+                "run advance": ("POST", f"{run_api}1/advance/"),
             }
             answers = {}
             for name, (method, url) in asked.items():
                 request = urllib.request.Request(
-                    url, method=method, data=b"{}" if method == "POST" else None
+                    url,
+                    method=method,
+                    data=b'{"time": 600}' if method == "POST" else None,
+                    # As its browser would ask, from its task's origin.
+                    headers={"Content-Type": "application/json", "Origin": base},
                 )
                 try:
                     with urllib.request.urlopen(request, timeout=10) as response:
@@ -130,6 +143,13 @@ def main() -> int:
                     answers[name] = error.code
             with open("snoop.json", "w") as f:
                 json.dump(answers, f)
+        elif verb == "environ":
+            python = subprocess.run(
+                ["python", "-c", "import sys; print(sys.prefix)"], capture_output=True, text=True
+            )
+            seen = {"env": dict(os.environ), "cwd": os.getcwd(), "python": python.stdout.strip()}
+            with open("environ.json", "w") as f:
+                json.dump(seen, f)
         elif verb == "hang":
             print("hanging", flush=True)
             while True:

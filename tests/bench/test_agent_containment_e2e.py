@@ -7,17 +7,19 @@ from __future__ import annotations
 
 import io
 import json
+import sys
+from pathlib import Path
 
 import pytest
 from django.core.management import call_command
 
 from apps.bench.runner import OUTPUT_CAP
-from tests.bench.conftest import shorten
+from tests.bench.conftest import REPO, shorten
 from tests.bench.test_harness_e2e import alive
 
 pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
-SCRIPT = "snoop; escape; forge; flood 24; costs 100 10 1"
+SCRIPT = "snoop; environ; escape; forge; flood 24; costs 100 10 1"
 
 
 @pytest.fixture
@@ -48,6 +50,18 @@ def test_a_hostile_agent_forges_nothing_leaves_nothing_and_is_capped(
     # The answer key is sealed: no run list, no scenario, no clock of its own to move.
     snooped = json.loads((folder / "snoop.json").read_text())
     assert all(code in (401, 403, 404) for code in snooped.values()), snooped
+    assert {"runs", "scenario", "run advance"} <= snooped.keys()
+    # No way to the answer key on disk: nothing in its environment names the project, its
+    # Python, its scenarios or the results, and it works outside all of them, yet `python`
+    # is the project's.
+    seen = json.loads((folder / "environ.json").read_text())
+    project = [REPO, Path(sys.prefix), results, hostile_scenario]
+    names = {str(p) for p in project} | {str(p.resolve()) for p in project}
+    leaks = {k: v for k, v in seen["env"].items() if any(n in v for n in names)}
+    assert not leaks, leaks
+    cwd = Path(seen["cwd"])
+    assert not any(cwd.is_relative_to(n) for n in names), cwd
+    assert seen["python"] == sys.prefix
     output = (folder / "output.txt").read_bytes()
     assert len(output) <= OUTPUT_CAP + 200
     assert output.startswith(b"opened ") and output.rstrip().endswith(b"flooded")

@@ -110,7 +110,7 @@ def test_success_and_timely_success_by_category_side_by_side(two_agents):
     assert rows["prompt"] == [
         "5",
         "80.0% (4/5)",
-        "80.0% (4/5)",
+        "75.0% (3/4)",  # timely: the targeted tasks only
         "100.0% (1/1)",
         "100.0% (2/2)",
         "50.0% (1/2)",
@@ -120,7 +120,7 @@ def test_success_and_timely_success_by_category_side_by_side(two_agents):
     assert rows["sleeper"] == [
         "5",
         "40.0% (2/5)",
-        "0.0% (0/5)",
+        "0.0% (0/4)",
         "0.0% (0/1)",
         "100.0% (2/2)",
         "0.0% (0/2)",
@@ -132,26 +132,25 @@ def test_success_and_timely_success_by_category_side_by_side(two_agents):
 def test_a_late_contact_is_a_success_but_not_a_timely_one(two_agents):
     text = grade(two_agents, "sleeper", "prompt")
     timely = table_rows(text, "Timely success by category")
-    # timely, no-op, passive, active, absolute, relative
+    # timely, passive, active, absolute, relative: no no-op, which has nothing to be timely for
     assert timely["sleeper"] == [
-        "0.0% (0/5)",
-        "0.0% (0/1)",
+        "0.0% (0/4)",
         "0.0% (0/2)",
         "0.0% (0/2)",
         "0.0% (0/2)",
         "0.0% (0/2)",
     ]
-    assert timely["prompt"][:3] == ["80.0% (4/5)", "100.0% (1/1)", "100.0% (2/2)"]
+    assert timely["prompt"][:3] == ["75.0% (3/4)", "100.0% (2/2)", "50.0% (1/2)"]
     # A window wide enough for one of the sleeper's reactions (77.5 s; the other is 117.5 s).
     wider = table_rows(grade(two_agents, "sleeper", "prompt", "--timely-window", "100"), "Success")
-    assert wider["sleeper"][1:3] == ["40.0% (2/5)", "20.0% (1/5)"]
+    assert wider["sleeper"][1:3] == ["40.0% (2/5)", "25.0% (1/4)"]
 
 
 def test_the_config_reaction_window_is_the_default_timely_window(two_agents):
     config = two_agents / "eval_config.yaml"
     config.write_text(config.read_text() + "reaction_window: 120\n")
     rows = table_rows(grade(two_agents, "prompt", "sleeper"), "Success by category")
-    assert rows["sleeper"][1:3] == ["40.0% (2/5)", "40.0% (2/5)"]
+    assert rows["sleeper"][1:3] == ["40.0% (2/5)", "50.0% (2/4)"]
 
 
 def test_cost_tool_calls_and_reaction_time_per_result_set(two_agents):
@@ -302,9 +301,9 @@ def test_the_comparison_report_shows_both_agents_and_links_transcripts(two_agent
     page.goto(report.as_uri())
     success = page.locator("table#success tbody tr")
     assert success.all_inner_texts() == [
-        "prompt\t5\t80.0% (4/5)\t80.0% (4/5)\t100.0% (1/1)\t100.0% (2/2)\t50.0% (1/2)"
+        "prompt\t5\t80.0% (4/5)\t75.0% (3/4)\t100.0% (1/1)\t100.0% (2/2)\t50.0% (1/2)"
         "\t100.0% (2/2)\t50.0% (1/2)",
-        "sleeper\t5\t40.0% (2/5)\t0.0% (0/5)\t0.0% (0/1)\t100.0% (2/2)\t0.0% (0/2)"
+        "sleeper\t5\t40.0% (2/5)\t0.0% (0/4)\t0.0% (0/1)\t100.0% (2/2)\t0.0% (0/2)"
         "\t50.0% (1/2)\t50.0% (1/2)",
     ]
     bars = page.locator("svg#plot-compare-success rect.mark")

@@ -5,7 +5,14 @@ from __future__ import annotations
 import pytest
 
 from apps.bench.config import ConfigError, load_config, parse_config
-from apps.bench.runner import Harness, Task, augment_prompt, category_of, deadline_s
+from apps.bench.runner import (
+    LAUNCH_MODULE,
+    Harness,
+    Task,
+    augment_prompt,
+    category_of,
+    deadline_s,
+)
 
 VALUES = {
     "__TASK_URL__": "http://h/r/t/start",
@@ -198,8 +205,9 @@ def test_a_reference_agent_is_configured_instead_of_a_command(tmp_path):
     harness = Harness(config, client=None, results_root=tmp_path, base_dir=tmp_path)
     run = {"task_url": "http://h/r/t/start", "contact_url": "http://h/r/t/contact"}
     argv, shell, env = harness.command_for(task, run, "the prompt")
-    assert not shell and argv[1:3] == ["-m", "apps.browser_agent"]
-    options = dict(zip(argv[3::2], argv[4::2], strict=False))
+    # The project's folder reaches the module by its command line, never its environment.
+    assert not shell and argv[1:5] == ["-c", LAUNCH_MODULE, str(tmp_path), "apps.browser_agent"]
+    options = dict(zip(argv[5::2], argv[6::2], strict=False))
     assert options == {
         "--kind": "wait_for",
         "--model": "gpt-4o",
@@ -212,7 +220,7 @@ def test_a_reference_agent_is_configured_instead_of_a_command(tmp_path):
         "--task-dir": str(task.folder.resolve()),  # and never the speed factor
         "--max-wall": repr(deadline_s(task.spec, 4.0, 30.0)),  # stops itself by the deadline
     }
-    assert str(tmp_path) in env["PYTHONPATH"].split(":")
+    assert "PYTHONPATH" not in env
 
 
 @pytest.mark.parametrize(

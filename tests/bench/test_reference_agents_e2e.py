@@ -30,7 +30,9 @@ WAIT_FOR = {
     "agent": [
         {
             "call": "wait_for",
-            "arguments": {"condition": "the awaited email arrives", "timeout": 16},
+            # Past its wall budget: on the no-op it watches until stopped, still monitoring
+            # when the run ends, as the paper's rule for a no-op asks (giving up early fails).
+            "arguments": {"condition": "the awaited email arrives", "timeout": 120},
         },
         {
             "when_last_result": "met: true",
@@ -67,9 +69,10 @@ def paper_scenarios(tmp_path, settings) -> Path:
         ("sender-absolute-passive", "ref-passive"),
         ("sender-absolute-noop", "ref-noop"),
     ):
-        # The agents' wall budget is the task's deadline (kill_at / speed + grace): 45 s, far
-        # more than either needs idle (about 15 s), so a fully loaded machine — a slow Chromium
-        # start, slow model turns — never cuts an agent short. The agents end when they are done.
+        # The agents' wall budget is the task's deadline (kill_at / speed + the reaction window):
+        # 50 s, far more than the passive task needs (about 15 s), so a fully loaded machine — a
+        # slow Chromium start, slow model turns — never cuts an agent short there. On the no-op
+        # wait_for watches until its budget ends; sleep reports wrongly after 14 s.
         data = shorten(source, new_id, "", kill_at=160.0, end=180.0)
         data["prompt"] = data["prompt"].removesuffix("\n[[script: ]]")
         (root / "micromail" / f"{new_id}.json").write_text(json.dumps(data))
@@ -146,7 +149,7 @@ def test_both_reference_agents_run_the_paper_experiment_and_compare(paper_scenar
     assert passive["success"] is True and noop["success"] is True
     assert passive["reaction_time"] < 20.0  # wall seconds after Kevin Lee's email arrived
     assert passive["contact_message"] == "The email you were waiting for has arrived."
-    assert noop["contact_get_time"] is None  # it waited, saw nothing, and left without reporting
+    assert noop["contact_get_time"] is None  # it watched to the end, saw nothing, never reported
     transcript = (tasks(results, "wait_for")["ref-passive"] / "transcript.jsonl").read_text()
     assert [json.loads(line)["tool"] for line in transcript.split("\n") if line][:2] == [
         "wait_for",

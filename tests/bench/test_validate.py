@@ -1,4 +1,5 @@
-"""`bench validate` runs the four control agents on every scenario and checks the verdicts."""
+"""`bench validate` runs the control agents and the cheating strategies on every scenario and
+checks the verdicts."""
 
 from __future__ import annotations
 
@@ -26,11 +27,23 @@ def validate(*args: str) -> list[str]:
 
 def test_validate_proves_the_short_scenarios_solvable_and_not_trivially_passable(bench_scenarios):
     lines = validate("--parallel", "10")
+    # The cheating strategies earn nothing they should not: act_all passes no active task
+    # (bench-active's eval_sql rejects flagging a distractor), fixed_time no active task and
+    # quitter nothing, not even the no-op it left (the paper's rule). Passive passes at the
+    # deadline are the sleeper's (timely only here: these conditions sit just before it).
     assert re.fullmatch(
         r"bench_validate: scenarios=6 oracle=6/6 early_fail=5/5 never_ok=6/6 sleeper=\d/6 "
-        r"wall_s=[\d.]+ clock=virtual",
+        r"act_all=\d/6 act_all_timely=\d/5 fixed_time=\d/6 fixed_time_timely=\d/5 "
+        r"quitter=0/6 quitter_timely=0/5 wall_s=[\d.]+ clock=virtual",
         lines[-1],
     )
+    assert not [line for line in lines if line.startswith("PROBLEM")]
+    assert any(line.startswith("quitter (leaves at once): success 0.0% (0/6)") for line in lines)
+
+
+def test_under_the_original_rule_quitting_passes_the_no_ops(bench_scenarios):
+    lines = validate("--parallel", "10", "--filter", "noop", "--noop-rule", "original")
+    assert "quitter=1/1" in lines[-1], lines[-1]
 
 
 def verdicts(lines: list[str]) -> dict[tuple[str, str], bool]:
@@ -59,5 +72,5 @@ def test_virtual_clocks_give_the_verdicts_of_live_clocks_at_speed_4(tmp_path, se
     live = validate("--keep", "--real-time")
 
     assert virtual[-1].endswith("clock=virtual") and live[-1].endswith("clock=live")
-    assert len(verdicts(virtual)) == 8
+    assert len(verdicts(virtual)) == 14  # seven agents
     assert verdicts(virtual) == verdicts(live)

@@ -3,11 +3,13 @@ config file, and `python` is the project's Python."""
 
 from __future__ import annotations
 
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 
 from apps.bench.config import load_config
-from apps.bench.runner import Harness, Task, output_tail
+from apps.bench.runner import AgentWorkspace, Harness, Task, output_tail
 
 
 def test_a_script_beside_the_config_is_passed_by_its_path(tmp_path):
@@ -34,10 +36,21 @@ def test_python_is_the_projects_and_the_placeholders_name_it(tmp_path):
     harness = Harness(load_config(tmp_path / "eval_config.yaml"), None, tmp_path, tmp_path)
     task = Task("t", "micromail", {}, tmp_path / "micromail" / "t")
     run = {"task_url": "u", "contact_url": "c", "wait_url": "w"}
-    argv, _, env = harness.command_for(task, run, "prompt")
-    assert argv == [sys.executable, "-c", "pass", str(task.folder.resolve())]
-    assert env["PATH"].split(":")[0] == str(Path(sys.executable).parent)
-    assert env["SENTINEL_TASK_DIR"] == str(task.folder.resolve())
+    with AgentWorkspace(task.folder) as workspace:
+        argv, _, env = harness.command_for(task, run, "prompt", workspace)
+        assert argv == [sys.executable, "-c", "pass", str(workspace.path)]
+        assert env["SENTINEL_TASK_DIR"] == str(workspace.path)
+        # `python` on the agent's PATH is the project's, run by a shim outside the project.
+        python = shutil.which("python", path=env["PATH"])
+        assert python is not None and not python.startswith(str(Path(sys.prefix)))
+        ran = subprocess.run(
+            ["python", "-c", "import sys; print(sys.prefix)"],
+            env=env,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+        assert ran.stdout.strip() == sys.prefix
 
 
 def test_the_last_lines_of_the_output_say_why(tmp_path):

@@ -156,6 +156,7 @@ def test_with_a_control_token_the_home_page_lists_runs_to_admins_only(
     run = lifecycle.create_run(tally_spec(), clock_mode=ClockMode.VIRTUAL)
     public = client.get("/").content.decode()
     assert 'id="runs"' not in public and "log in" in public
+    assert str(settings.SENTINEL_SCENARIO_DIR) not in public  # nor where the answer key lies
     assert 'id="runs"' in admin_client.get("/").content.decode()
     settings.SENTINEL_CONTROL_TOKEN = ""
     assert f"/admin/events/run/{run.pk}/change/" in client.get("/").content.decode()

@@ -15,6 +15,7 @@ import urllib.request
 
 import pytest
 
+from tests import control_api
 from tests.live.test_clock_push import NEWEST_AGE_MIN, api, quiet_scenario
 
 pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
@@ -38,7 +39,7 @@ def scenario_events(base_url: str, run_id: int) -> list[dict]:
 @pytest.mark.parametrize("transport", ["websocket", "polling"])
 def test_the_shell_clock_and_relative_times_advance_by_themselves(live_site, browser, transport):
     run = api(live_site, "/api/runs/", {"scenario_json": quiet_scenario(), "speed_factor": 4})
-    api(live_site, f"/api/runs/{run['id']}/advance/", {"time": STARTS_AT})
+    control_api.position(run["id"], STARTS_AT)
     api(live_site, f"/api/runs/{run['id']}/start/")
     context = browser.new_context(viewport={"width": 1100, "height": 420})
     if transport == "polling":

@@ -81,7 +81,7 @@ def shell_clock(message: dict) -> str:
 
 def test_a_running_clock_pushes_the_turning_minute_without_any_event(live_site):
     run = api(live_site, "/api/runs/", {"scenario_json": quiet_scenario(), "speed_factor": 4})
-    api(live_site, f"/api/runs/{run['id']}/advance/", {"time": 50})  # 09:00:50: near the turn
+    control_api.position(run["id"], 50)  # 09:00:50: near the turn
     api(live_site, f"/api/runs/{run['id']}/start/")  # runs on from 50, 2.5 wall s to 09:01
     url = f"/r/{run['token']}/micromail/?folder=inbox"
     seq, due, clock = open_page(live_site, url)  # due: 60, or 120 on a very slow machine

@@ -9,6 +9,7 @@ import signal
 import tempfile
 import threading
 import time
+from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
 
@@ -30,7 +31,14 @@ from apps.bench.config import (
     bench_clock,
     load_config,
 )
-from apps.bench.grading import TaskError, error_lines, load_rows, outcome_counts, task_errors
+from apps.bench.grading import (
+    TaskError,
+    error_lines,
+    load_rows,
+    outcome_counts,
+    summarise,
+    task_errors,
+)
 from apps.bench.manifest import (
     build_manifest,
     git_commit,
@@ -40,7 +48,9 @@ from apps.bench.manifest import (
     scenario_hash,
     write_manifest,
 )
+from apps.bench.outcomes import NOOP_RULES
 from apps.bench.runner import (
+    CHEATING_AGENTS,
     CONTROL_AGENTS,
     ERROR,
     BenchError,
@@ -50,7 +60,12 @@ from apps.bench.runner import (
     discover,
     run_pool,
 )
-from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
+from events.timing import (
+    MAX_CONDITION_AT,
+    REACTION_WINDOW,
+    SpeedFactorError,
+    validate_speed_factor,
+)
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
 DEFAULT_CONFIG = "eval_config.yaml"
@@ -93,7 +108,10 @@ def config_as_used(cfg: BenchConfig, agent: str | None, trials: int) -> dict:
         reaction_window=cfg.reaction_window,
         grace=cfg.grace,
         trials=trials,
+        noop_rule=cfg.noop_rule,
     )
+    if cfg.jitter > 0:
+        used.update(jitter=cfg.jitter, seed=cfg.seed)
     if cfg.server_url:
         used["server_url"] = cfg.server_url
     if agent:
@@ -124,7 +142,7 @@ def update_manifest(
             config=used,
             version=project_version(base_dir),
             commit=git_commit(base_dir),
-            scenarios={t.scenario_id: scenario_hash(t.spec) for t in tasks},
+            scenarios={t.scenario_id: scenario_hash(t.authored or t.spec) for t in tasks},
             catalog_hashes=sorted(
                 {str(r.result["catalog_hash"]) for r in rows if r.result.get("catalog_hash")}
             ),
@@ -166,6 +184,16 @@ def reference_changes(
     return {"reference_agent": reference, "agent_subprocess": None}
 
 
+def noop_rule(parser) -> None:
+    parser.add_argument(
+        "--noop-rule",
+        choices=NOOP_RULES,
+        default="paper",
+        help="paper (default): a no-op passes only if the agent is still there when the run "
+        "ends; original: any no-op without a contact passes, as the original harness counts",
+    )
+
+
 class Command(BaseCommand):
     help = (
         "Benchmark harness: run an agent over the scenarios, grade the results, validate scenarios."
@@ -190,7 +218,7 @@ class Command(BaseCommand):
         run.add_argument("--server-url", help="use this server instead of starting an embedded one")
         run.add_argument(
             "--agent",
-            choices=CONTROL_AGENTS + REFERENCE_KINDS,
+            choices=CONTROL_AGENTS + CHEATING_AGENTS + REFERENCE_KINDS,
             help="a built-in agent instead of the config's: a control agent, or a reference "
             "agent (wait_for | sleep) on the config's agent.model or --model",
         )
@@ -216,6 +244,16 @@ class Command(BaseCommand):
             help="run every task K times, each its own run (trial n in <task>/trial-<n>/)",
         )
         run.add_argument("--results-dir", default="results")
+        noop_rule(run)
+        run.add_argument(
+            "--jitter",
+            type=float,
+            default=0.0,
+            metavar="SECONDS",
+            help="shift each run's whole timeline by up to ±SECONDS (simulated), drawn per "
+            "scenario and trial from --seed, so repeated trials do not share one trigger time",
+        )
+        run.add_argument("--seed", type=int, default=0, help="of the --jitter shifts (default 0)")
 
         grade = sub.add_parser(
             "grade", help="summarise a results tree, or compare several side by side"
@@ -257,6 +295,7 @@ class Command(BaseCommand):
         validate.add_argument(
             "--keep", action="store_true", help="keep the temporary results folder"
         )
+        noop_rule(validate)
         validate.add_argument(
             "--real-time",
             action="store_true",
@@ -330,6 +369,9 @@ class Command(BaseCommand):
         retry_errors,
         results_dir,
         trials,
+        noop_rule,
+        jitter,
+        seed,
         **_,
     ):
         if agent is None or Path(config).exists():
@@ -354,6 +396,11 @@ class Command(BaseCommand):
             changes["clock"] = bench_clock(clock, "--clock")
         if trials < 1:
             raise _usage(f"--trials must be >= 1, got {trials}")
+        if not 0 <= jitter <= MAX_CONDITION_AT:  # also rejects NaN
+            raise _usage(
+                f"--jitter must be between 0 and {MAX_CONDITION_AT:g} seconds, got {jitter}"
+            )
+        changes.update(noop_rule=noop_rule, jitter=jitter, seed=seed)
         cfg = dataclasses.replace(cfg, **changes)
         base_dir = Path(settings.BASE_DIR)
         # Before any server or task: a setup that cannot work runs nothing (preflight.py).
@@ -385,6 +432,7 @@ class Command(BaseCommand):
                     agent=agent,
                     retry_errors=retry_errors,
                     clock=cfg.clock,
+                    private_paths=(Path(settings.SENTINEL_SCENARIO_DIR),),
                 )
                 tasks = harness.tasks(listing, trials)
                 trials_note = f" ({len(listing)} scenarios × {trials} trials)" if trials > 1 else ""
@@ -406,6 +454,8 @@ class Command(BaseCommand):
         reference = cfg.reference_agent
         label = agent or (f"{reference.kind} on {reference.model}" if reference else None)
         used = config_as_used(cfg, agent, trials)
+        if cfg.jitter > 0:  # what the seed drew: each trial's shift of its timeline
+            used["timeline_shifts"] = {t.label: t.shift for t in tasks}
         record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=used)
         errors = task_errors(run_dir) if run_dir.is_dir() else []
         update_manifest(name, run_dir, used, tasks, started_at, base_dir, errors)
@@ -462,14 +512,31 @@ class Command(BaseCommand):
     # --- validate --------------------------------------------------------------------------
 
     def handle_validate(
-        self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, real_time, **_
+        self,
+        *,
+        speed_factor,
+        parallel,
+        filter,
+        server_url,
+        reaction_window,
+        keep,
+        real_time,
+        noop_rule,
+        **_,
     ):
         sf = validate_speed_factor(speed_factor)
         if parallel < 1:
             raise _usage(f"--parallel must be >= 1, got {parallel}")
         if not reaction_window > 0:
             raise _usage(f"--reaction-window must be > 0, got {reaction_window}")
-        cfg = BenchConfig(None, speed_factor=sf, parallel=parallel, reaction_window=reaction_window)
+        cfg = BenchConfig(
+            None,
+            speed_factor=sf,
+            parallel=parallel,
+            reaction_window=reaction_window,
+            noop_rule=noop_rule,
+        )
+        agents = CONTROL_AGENTS + CHEATING_AGENTS
         root = Path(tempfile.mkdtemp(prefix="bench-validate-"))
         began = time.monotonic()
         with self.server(server_url) as (url, token):
@@ -484,17 +551,25 @@ class Command(BaseCommand):
                     raise _preflight_failed(problems)
                 clock = "live" if real_time else "virtual"
                 harnesses = {
-                    a: Harness(cfg, client, root / a, Path(settings.BASE_DIR), agent=a, clock=clock)
-                    for a in CONTROL_AGENTS
+                    a: Harness(
+                        cfg,
+                        client,
+                        root / a,
+                        Path(settings.BASE_DIR),
+                        agent=a,
+                        clock=clock,
+                        private_paths=(Path(settings.SENTINEL_SCENARIO_DIR),),
+                    )
+                    for a in agents
                 }
                 tasks = {a: h.tasks(listing) for a, h in harnesses.items()}
                 self.stdout.write(
-                    f"Validating {len(listing)} scenarios with {', '.join(CONTROL_AGENTS)} "
+                    f"Validating {len(listing)} scenarios with {', '.join(agents)} "
                     f"at speed factor {sf:g} on {clock} clocks (results -> {root})"
                 )
-                jobs = [(harnesses[a], t) for a in CONTROL_AGENTS for t in tasks[a]]
+                jobs = [(harnesses[a], t) for a in agents for t in tasks[a]]
                 job_of = {t.folder: (h, t) for h, t in jobs}
-                outcomes = run_pool(jobs, parallel * len(CONTROL_AGENTS), self.progress())
+                outcomes = run_pool(jobs, parallel * len(agents), self.progress())
                 # An error (a control agent's own request timed out on a loaded machine, the
                 # server hiccuped) says nothing about the scenario: run those tasks again.
                 for _ in range(VALIDATE_RETRIES):
@@ -506,9 +581,7 @@ class Command(BaseCommand):
                     for _, t in retry:
                         (t.folder / ERROR).unlink(missing_ok=True)
                     kept = [o for o in outcomes if o.status != "error"]
-                    outcomes = kept + run_pool(
-                        retry, parallel * len(CONTROL_AGENTS), self.progress()
-                    )
+                    outcomes = kept + run_pool(retry, parallel * len(agents), self.progress())
             finally:
                 client.close()
         wall = time.monotonic() - began
@@ -517,11 +590,12 @@ class Command(BaseCommand):
             self.stdout.write(f"error (not a verdict): {o.label}{o.task.label}: {o.detail}")
         rows = {
             a: {r.name: r for r in load_rows(root / a)} if (root / a).is_dir() else {}
-            for a in CONTROL_AGENTS
+            for a in agents
         }
         ids = [s["id"] for s in listing]
         noop = {s["id"] for s in listing if s["noop"]}
-        active = [i for i in ids if i not in noop]
+        targeted = [i for i in ids if i not in noop]
+        active = [t.scenario_id for t in tasks["oracle"] if t.category.startswith("active-")]
 
         def passed(agent: str, scenario: str) -> bool | None:
             row = rows[agent].get(scenario)
@@ -530,18 +604,31 @@ class Command(BaseCommand):
         problems = []
         oracle = [i for i in ids if passed("oracle", i)]
         problems += [f"oracle failed {i}" for i in ids if i not in oracle]
-        early = [i for i in active if passed("early", i) is False]
-        problems += [f"early passed {i} (trivially passable)" for i in active if i not in early]
+        early = [i for i in targeted if passed("early", i) is False]
+        problems += [f"early passed {i} (trivially passable)" for i in targeted if i not in early]
         never = [i for i in ids if passed("never", i) is (i in noop)]
         problems += [
             f"never {'failed' if i in noop else 'passed'} {i}" for i in ids if i not in never
         ]
         sleeper = [i for i in ids if passed("sleeper", i)]
+        problems += cheating_problems(passed, ids, noop, active, noop_rule)
         for problem in problems:
             self.stdout.write(f"PROBLEM: {problem}")
         if sleeper:
             self.stdout.write(
                 f"sleeper (contacts just before the deadline) passes: {', '.join(sleeper)}"
+            )
+        figures = []
+        for agent in CHEATING_AGENTS:
+            summary = summarise(list(rows[agent].values()), reaction_window)
+            success, timely = summary.rates["overall"], summary.timely["overall"]
+            self.stdout.write(
+                f"{agent} ({CHEATING_STRATEGIES[agent]}): success {success}, "
+                f"timely success {timely} of the targeted tasks"
+            )
+            figures.append(
+                f"{agent}={success.passed}/{success.total} "
+                f"{agent}_timely={timely.passed}/{timely.total}"
             )
         if not keep:
             import shutil
@@ -549,11 +636,45 @@ class Command(BaseCommand):
             shutil.rmtree(root, ignore_errors=True)
         self.stdout.write(
             f"bench_validate: scenarios={len(ids)} oracle={len(oracle)}/{len(ids)} "
-            f"early_fail={len(early)}/{len(active)} never_ok={len(never)}/{len(ids)} "
-            f"sleeper={len(sleeper)}/{len(ids)} wall_s={wall:.1f} clock={clock}"
+            f"early_fail={len(early)}/{len(targeted)} never_ok={len(never)}/{len(ids)} "
+            f"sleeper={len(sleeper)}/{len(ids)} {' '.join(figures)} "
+            f"wall_s={wall:.1f} clock={clock}"
         )
         if problems or errors:
             raise CommandError(
                 f"validation failed: {len(problems)} problem(s), {len(errors)} harness error(s)",
                 returncode=1,
             )
+
+
+CHEATING_STRATEGIES = {
+    "act_all": "acts on every item, contacts at the deadline",
+    "fixed_time": "contacts at a fixed time",
+    "quitter": "leaves at once",
+}
+
+
+def cheating_problems(
+    passed: Callable[[str, str], bool | None],
+    ids: list[str],
+    noop: set[str],
+    active: list[str],
+    noop_rule: str,
+) -> list[str]:
+    """What the strategies of agents that never monitor must not earn: an active task by acting
+    on everything, or with no action at all (a fixed-time contact); any task by quitting; a
+    no-op, which each of them either contacts in or quits (under the original's looser rule
+    quitting passes no-ops: expected)."""
+    why = {
+        "act_all": "acting on every item is rewarded",
+        "fixed_time": "a contact with no action is rewarded",
+    }
+    problems = [f"{a} passed {i} ({why[a]})" for a in why for i in active if passed(a, i)]
+    problems += [f"{a} passed no-op {i}" for a in why for i in sorted(noop) if passed(a, i)]
+    quitting_passes = noop if noop_rule == "original" else set()
+    problems += [
+        f"quitter passed {i} (leaving at once is rewarded)"
+        for i in ids
+        if passed("quitter", i) and i not in quitting_passes
+    ]
+    return problems
