@@ -84,3 +84,18 @@ def test_a_user_sees_an_event_arrive_opens_it_and_drags_another(live_site, brows
     assert [name for name, _ in actions] == ["view_event", "reschedule_event"]
     assert set(actions[1][1]) == {"event_id", "date", "time", "endTime"}
     assert actions[1][1]["date"] == "2025-09-19" and TODAY == "2025-09-18"
+
+
+@pytest.mark.parametrize("view", ["week", "day"])
+def test_the_time_grid_opens_with_its_top_hour_label_whole(live_site, browser, view):  # noqa: F811
+    """Finding: the grid opened scrolled exactly to an hour line, cutting that hour's label."""
+    story = BrowserStory.start(live_site, browser, scenario(), open_task=False)
+    page = story.page
+    page.goto(story.run["task_url"])
+    page.goto(page.url.split("?")[0] + f"?view={view}")
+    grid = page.locator("#tg-scroll")
+    page.wait_for_function("() => document.getElementById('tg-scroll').dataset.scrolled")
+    top = grid.bounding_box()["y"]
+    labels = [box for box in (s.bounding_box() for s in grid.locator(".hour span").all()) if box]
+    first = min((box for box in labels if box["y"] + box["height"] > top), key=lambda b: b["y"])
+    assert first["y"] >= top, "the top hour's label is cut by the grid's edge"

@@ -78,13 +78,15 @@
       "&time=" + pad(hour) + ":00&back=" + encodeURIComponent(main().getAttribute("data-back") || "");
   });
 
+  var LABEL_ROOM_PX = 12;
   function scrollGrid() {
     var grid = document.getElementById("tg-scroll");
     if (!grid || grid.dataset.scrolled) return;
     grid.dataset.scrolled = "1";
     var line = grid.querySelector(".now-line");
     var top = line ? parseInt(line.style.top, 10) - 3 * HOUR_PX : 8 * HOUR_PX;
-    grid.scrollTop = Math.max(top, 0);
+    // A little above the hour line, so that hour's label (drawn across the line) shows whole.
+    grid.scrollTop = Math.max(top - LABEL_ROOM_PX, 0);
   }
   document.addEventListener("DOMContentLoaded", scrollGrid);
   document.addEventListener("htmx:afterSettle", scrollGrid);
