@@ -158,6 +158,7 @@ def catalog_notification(
         at=at,
         order=order,
         target_post_id=record.get("targetPostId"),
+        company=str(record.get("company") or ""),
     )
     read = bool(record.get("isRead", False)) and stamp.preloaded
     return notification, NotificationState(is_read=read)

@@ -115,6 +115,7 @@ class Notification:
     at: float
     order: int
     target_post_id: str | None = None
+    company: str = ""  # a job notification's employer: its logo, not a person's face
 
 
 @dataclass(frozen=True)

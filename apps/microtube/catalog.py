@@ -159,6 +159,7 @@ def catalog_notification(
     if record is None:
         return None
     arrived_at = stamp.at - (1 + stamp.order) * HOUR if stamp.preloaded else stamp.at
+    channel = catalog_channel(tube, str(record.get("channel_id") or ""), stamp)
     notification = Notification(
         id=notification_id,
         type=str(record.get("type") or "upload"),
@@ -166,5 +167,7 @@ def catalog_notification(
         video_id=str(record.get("video_id") or ""),
         message=str(record.get("message", "")),
         arrived_at=float(arrived_at),
+        actor=str(record.get("actorName") or ""),
+        channel_name=channel.name if channel else "",
     )
     return notification, NotificationState(read=stamp.preloaded and bool(record.get("isRead")))

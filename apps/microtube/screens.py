@@ -162,7 +162,7 @@ def notifications(tube: Tube) -> tuple[NotificationRow, ...]:
             NotificationRow(
                 notification=n,
                 channel=channel,
-                channel_name=channel.name if channel else "MicroTube",
+                channel_name=channel.name if channel else n.channel_name or "MicroTube",
                 video=tube.videos.get(n.video_id),
                 read=state.read,
             )

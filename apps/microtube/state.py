@@ -102,6 +102,8 @@ class Notification:
     video_id: str
     message: str
     arrived_at: float = 0.0
+    actor: str = ""  # who did it, when not the channel (a viewer who commented): their avatar
+    channel_name: str = ""  # the catalog's, for a channel the run has not loaded
 
 
 @dataclass(frozen=True)
