@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from apps.bench.config import BenchConfig, input_tokens, output_tokens
+from apps.bench.judge import Ask, Judgement, judge_result
 from apps.bench.manifest import read_manifest
 from apps.bench.runner import COSTS, ERROR, RESULTS, BenchError, error_cause_of
 from apps.bench.stats import (
@@ -79,6 +80,7 @@ class Row:
     costs: dict[str, Any] | None = None
     folder: Path | None = None  # the task's result folder (transcript, screenshots, output)
     trial: int = 1  # bench run --trials: which of the task's runs this is
+    judgement: Judgement | None = None  # its report judged against the scenario's contact_rubric
 
     @property
     def label(self) -> str:
@@ -420,9 +422,47 @@ def render_table(
             else "N/A"
         ),
     ]
+    out += report_lines(rows)
     out += uncertainty_lines(rows, window)
     out += error_lines(errors or [])
     return "\n".join(out) + "\n"
+
+
+def judge_reports(rows: list[Row], ask: Ask | None, model: str) -> None:
+    """Judge every report that has a rubric (by `ask`'s model, else by its keywords)."""
+    for row in rows:
+        row.judgement = judge_result(row.result, row.folder, ask, model)
+
+
+@dataclass(frozen=True)
+class ReportCorrectness:
+    judged: Rate  # reports judged correct, of those judged
+    success_with_report: Rate  # passed with a correct report, of the tasks with a rubric
+    by: str  # who judged ("keywords", a model's name, or several)
+
+
+def report_correctness(rows: list[Row]) -> ReportCorrectness | None:
+    """None when no task of `rows` has a judged report."""
+    judged = [r for r in rows if r.judgement is not None]
+    if not judged:
+        return None
+    with_rubric = [r for r in rows if r.result.get("contact_rubric")]
+    correct = sum(r.judgement.correct for r in judged if r.judgement is not None)
+    both = sum(r.success and r.judgement is not None and r.judgement.correct for r in with_rubric)
+    judges = sorted({r.judgement.by for r in judged if r.judgement is not None})
+    return ReportCorrectness(
+        Rate(correct, len(judged)), Rate(both, len(with_rubric)), ", ".join(judges)
+    )
+
+
+def report_lines(rows: list[Row]) -> list[str]:
+    found = report_correctness(rows)
+    if found is None:
+        return []
+    return [
+        f"Reports judged correct ({found.by}): {found.judged}",
+        f"Success with a correct report (tasks with a contact rubric): {found.success_with_report}",
+    ]
 
 
 def _tool_stats(values: list[float]) -> str:

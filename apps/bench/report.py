@@ -42,6 +42,7 @@ from apps.bench.report_sections import (
     differences_section,
     errors_section,
     manifest_section,
+    reports_section,
     uncertainty_section,
 )
 from apps.bench.transcripts import has_transcript, relative_href, render_transcript_page
@@ -313,7 +314,7 @@ def render_report(
         f"<style>{STYLE}{SECTION_STYLE}</style></head><body>"
         f"<h1>Benchmark report: {escape(name)}</h1>"
         f"{manifest_section(rs)}{uncertainty_section(rs, window)}"
-        f'<div class="plots">{"".join(plots)}</div>{errors_section(rs)}'
+        f'<div class="plots">{"".join(plots)}</div>{errors_section(rs)}{reports_section(rs)}'
         f"<h2>Tasks</h2><pre>{escape(render_table(rows, rs.errors, window))}</pre>"
         f"<h2>Per task</h2>{_timely_note(window)}"
         f"{tasks_table([rs], window, links or {})}"
@@ -549,6 +550,7 @@ def render_comparison_report(
         f"<h2>Tool calls per task</h2>{tools}"
         f"<h2>Reaction time (passed targeted tasks)</h2>{reaction}"
         f"{''.join(errors_section(rs) for rs in sets)}"
+        f"{''.join(reports_section(rs) for rs in sets)}"
         f"<h2>Per task</h2>{tasks_table(sets, window, links or {})}"
         "</body></html>\n"
     )

@@ -18,6 +18,7 @@ from apps.bench.grading import (
     interval_table,
     outcome_counts,
     pass_k_line,
+    report_correctness,
 )
 
 SECTION_STYLE = """
@@ -105,6 +106,30 @@ def uncertainty_section(rs: ResultSet, window: float) -> str:
         f"{table('environments', environment_table(rs.rows, window))}"
         "<h2>By category</h2>"
         f"{table('categories', category_table(rs.rows, window))}"
+    )
+
+
+def reports_section(rs: ResultSet) -> str:
+    """Each judged report of the set: what the agent said, and whether it says what it must."""
+    found = report_correctness(rs.rows)
+    if found is None:
+        return ""
+    rows = "".join(
+        f'<tr class="{"ok" if r.judgement.correct else "fail"}">'
+        f"<td>{escape(r.environment)}/{escape(r.label)}</td>"
+        f"<td>{'passed' if r.success else 'failed'}</td>"
+        f"<td>{'correct' if r.judgement.correct else 'incorrect'}</td>"
+        f"<td>{escape(str(r.result.get('contact_message') or ''))}</td>"
+        f"<td>{escape(r.judgement.why)}</td></tr>"
+        for r in rs.rows
+        if r.judgement is not None
+    )
+    head = "".join(f"<th>{h}</th>" for h in ("task", "outcome", "report", "message", "why"))
+    return (
+        f"<h2>Reports of {escape(rs.name)} (judged by {escape(found.by)})</h2>"
+        f"<p>Reports judged correct: {found.judged}. Success with a correct report (tasks with "
+        f"a contact rubric): {found.success_with_report}.</p>"
+        f'<table class="reports"><thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>'
     )
 
 

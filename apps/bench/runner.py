@@ -509,6 +509,9 @@ class Harness:
             result["trial"] = task.trial
         if task.shift is not None:
             result["timeline_shift"] = task.shift
+        if task.spec.get("contact_rubric"):  # what `bench grade` judges the report against
+            result["contact_rubric"] = task.spec["contact_rubric"]
+            result["prompt"] = task.spec.get("prompt", "")
         header = exported[0] if exported and "format" in exported[0] else {}
         result["catalog_hash"] = (header.get("run") or {}).get("catalog_hash")
         cause = error_cause(verdict, process.returncode, killed)

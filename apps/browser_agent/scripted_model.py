@@ -15,7 +15,9 @@ not there.
 Requests offering `tools` are the agent loop's: the turn is the number of assistant messages
 already in the conversation, so a retried request gets the same answer and the server keeps no
 state per conversation. Requests without `tools` are wait_for's judge questions
-(`tools.judge_question`): the blocks after each `=== change N ===` line are the new changes.
+(`tools.judge_question`): the blocks after each `=== change N ===` line are the new changes; or
+`bench grade --judge`'s (apps/bench/judge.py), whose lines after `=== report ===` are judged
+(the same `judge.yes_when_any` rule: yes when a line holds one of its phrases).
 
 Token counts are made up but plausible and deterministic: a token per 4 characters of text
 (plus 4 per message), 765 per image, the prompt's stable prefix (everything before its last
@@ -42,7 +44,7 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 from typing import Any
 
-from apps.browser_agent.tools import JUDGE_CHANGE_PATTERN
+from apps.browser_agent.tools import JUDGE_CHANGE_PATTERN, REPORT_MARKER
 from sentinel_site.yaml_files import YamlFileError, read_yaml
 
 SCRIPT_KEYS = ("model", "agent", "judge", "failures")
@@ -110,7 +112,11 @@ class JudgeRule:
     format: str = "json"
 
     def answer(self, blocks: list[str]) -> str:
+        """On wait_for's question: whether a line the changes added holds a needle."""
         added = [line[1:] for block in blocks for line in block.splitlines() if line[:1] == "+"]
+        return self.answer_lines(added)
+
+    def answer_lines(self, added: list[str]) -> str:
         found = next((n for n in self.yes_when_any if any(n in line for line in added)), None)
         met = found is not None
         if met:
@@ -363,6 +369,9 @@ def agent_reply(script: Script, messages: list[dict[str, Any]]) -> dict[str, Any
 
 def judge_reply(script: Script, messages: list[dict[str, Any]]) -> dict[str, Any]:
     question = next((_parts(m)[0] for m in reversed(messages) if m.get("role") == "user"), "")
+    if REPORT_MARKER in question:  # bench grade --judge: the report is what is judged
+        report = question.split(REPORT_MARKER, 1)[1].splitlines()
+        return {"role": "assistant", "content": script.judge.answer_lines(report)}
     blocks = JUDGE_CHANGE_PATTERN.split(question)[1:]
     return {"role": "assistant", "content": script.judge.answer(blocks)}
 

@@ -137,6 +137,8 @@ JUDGE_PROMPT = (
 # Each block of a judge question starts with this header line (scripted_model reads them).
 JUDGE_CHANGE_HEADER = "=== change {number} ==="
 JUDGE_CHANGE_PATTERN = re.compile(r"^=== change \d+ ===$", re.MULTILINE)
+# In `bench grade --judge`'s question (apps/bench/judge.py), the agent's report follows this line.
+REPORT_MARKER = "=== report ==="
 
 
 def judge_question(condition: str, blocks: list[str]) -> str:

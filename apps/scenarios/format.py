@@ -60,6 +60,8 @@ class Scenario:
     annotator_notes: str = ""
     # Our extension: agent actions ({"action", "payload"}) that solve the task (oracle agent).
     solution: tuple[dict[str, Any], ...] = ()
+    # Our extension: what the agent's report must say (apps/bench/judge.py); {} when not judged.
+    contact_rubric: dict[str, Any] = field(default_factory=dict)
     is_dev: bool = False
     source: str = INLINE
 
@@ -225,6 +227,26 @@ def _solution(data: dict, environment: str, source: str) -> tuple[dict[str, Any]
     return tuple(steps)
 
 
+def _contact_rubric(data: dict, source: str) -> dict[str, Any]:
+    """What the agent's report must say (judged by `bench grade`: apps/bench/judge.py):
+    `{"rubric": "…", "must_mention": ["…"]}`, either or both."""
+    rubric = data.get("contact_rubric")
+    if rubric is None:
+        return {}
+    where = "contact_rubric"
+    rubric = _object(rubric, where, source)
+    unknown = sorted(set(rubric) - {"rubric", "must_mention"})
+    if unknown:
+        _fail(source, where, f"unknown keys {unknown}; allowed: rubric, must_mention")
+    text = _text(rubric.get("rubric", ""), f"{where}.rubric", source)
+    phrases = rubric.get("must_mention", [])
+    if not isinstance(phrases, list) or not all(isinstance(p, str) and p.strip() for p in phrases):
+        _fail(source, f"{where}.must_mention", "must be a list of non-empty strings")
+    if not text.strip() and not phrases:
+        _fail(source, where, "needs a rubric text or must_mention phrases (or both)")
+    return copy.deepcopy(rubric)
+
+
 def _taxonomy(data: dict, source: str) -> dict[str, Any]:
     taxonomy = _object(_require(data, "taxonomy", source, "an object"), "taxonomy", source)
     for key, allowed in TAXONOMY_CHOICES.items():
@@ -308,6 +330,7 @@ def parse_scenario(data: object, *, source: str = INLINE) -> Scenario:
         taxonomy=_taxonomy(data, source),
         annotator_notes=_text(data.get("annotator_notes", ""), "annotator_notes", source),
         solution=_solution(data, environment, source),
+        contact_rubric=_contact_rubric(data, source),
         is_dev=False,
         source=source,
     )

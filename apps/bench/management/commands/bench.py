@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import os
 import secrets
 import signal
 import tempfile
@@ -274,6 +275,21 @@ class Command(BaseCommand):
             help="timely success: passed with reaction time <= S seconds "
             "(default: the config's reaction_window, 30)",
         )
+        grade.add_argument(
+            "--judge",
+            metavar="MODEL",
+            help="judge each report that has a contact_rubric with this model (else by the "
+            "rubric's must_mention keywords)",
+        )
+        grade.add_argument(
+            "--judge-url", help="the judge's OpenAI-compatible base URL (default: OpenAI's)"
+        )
+        grade.add_argument(
+            "--judge-key-env",
+            default="OPENAI_API_KEY",
+            metavar="NAME",
+            help="environment variable holding the judge's API key (default OPENAI_API_KEY)",
+        )
         grade.add_argument("--task")
         grade.add_argument("--filter")
         grade.add_argument("--config", help=f"for prices (default: {DEFAULT_CONFIG} when present)")
@@ -476,9 +492,23 @@ class Command(BaseCommand):
     # --- grade -----------------------------------------------------------------------------
 
     def handle_grade(
-        self, *, names, csv, html, timely_window, task, filter, config, results_dir, **_
+        self,
+        *,
+        names,
+        csv,
+        html,
+        timely_window,
+        task,
+        filter,
+        config,
+        results_dir,
+        judge,
+        judge_url,
+        judge_key_env,
+        **_,
     ):
         from apps.bench import grading, report
+        from apps.bench.judge import JudgeError, model_asker
 
         if config is None and Path(DEFAULT_CONFIG).exists():
             config = DEFAULT_CONFIG
@@ -487,6 +517,16 @@ class Command(BaseCommand):
         if not window > 0:  # also rejects NaN
             raise _usage(f"--timely-window must be a positive number of seconds, got {window}")
         sets = grading.load_result_sets(Path(results_dir), names, cfg, task=task, filter=filter)
+        ask = (
+            model_asker(judge, judge_url, os.environ.get(judge_key_env) or "none")
+            if judge
+            else None
+        )
+        try:
+            for result_set in sets:
+                grading.judge_reports(result_set.rows, ask, judge or "")
+        except JudgeError as error:  # ours or the judge's, never the agent's: no figures
+            raise CommandError(f"bench grade --judge: {error}") from None
         if len(sets) == 1:  # one set: the upstream table, as before
             (one,) = sets
             text = (
