@@ -231,7 +231,7 @@ def _contact_rubric(data: dict, source: str) -> dict[str, Any]:
     """What the agent's report must say (judged by `bench grade`: apps/bench/judge.py):
     `{"rubric": "…", "must_mention": ["…"]}`, either or both."""
     rubric = data.get("contact_rubric")
-    if rubric is None:
+    if rubric is None or rubric == {}:  # {}: a run spec's "no rubric"
         return {}
     where = "contact_rubric"
     rubric = _object(rubric, where, source)
