@@ -78,8 +78,8 @@ def caption_lines(caption_slug: str, longest: int) -> list[str]:
 
 
 def _font_size(lines: list[str], width: float, largest: float) -> float:
-    """As large as fits `width` (heavy capitals run about 0.72 em wide)."""
-    return min(largest, width / (0.72 * max(len(line) for line in lines)))
+    """As large as fits `width` (heavy capitals run up to about 0.8 em wide)."""
+    return min(largest, width / (0.8 * max(len(line) for line in lines)))
 
 
 def _caption(
@@ -123,9 +123,10 @@ def wide(seed_slug: str, subject: str, caption_slug: str) -> bytes:
     lines = caption_lines(caption_slug, 12)
     body = [el("g", *scene, transform=f"translate(0 {-(PICTURE_HEIGHT - height) / 2:.0f})")]
     if lines:
-        size = _font_size(lines, width * 0.86, 64 if len(lines) < 3 else 50)
-        block = size * len(lines)
         at_top = rng.random() < 0.5
+        # Along the bottom, the words keep clear of the corner where a player sets the duration.
+        size = _font_size(lines, width * (0.9 if at_top else 0.68), 64 if len(lines) < 3 else 50)
+        block = size * len(lines)
         top = 14 if at_top else height - block - 26
         shade = [(0, "rgba(0,0,0,0.55)"), (1, "rgba(0,0,0,0)")]
         if not at_top:
@@ -163,7 +164,16 @@ def tall(seed_slug: str, subject: str, caption_slug: str) -> bytes:
                 width="110%",
                 height="110%",
             ),
-            el("clipPath", el("rect", x=left, y=0, width=side, height=side), id="subject-square"),
+            # The subject's square fades into the backdrop at its top and bottom (no hard edge).
+            el(
+                "mask",
+                el("rect", x=left, y=0, width=side, height=side, fill="url(#square-fade)"),
+                id="subject-square",
+            ),
+            linear_gradient(
+                "square-fade",
+                [(0, "#000000"), (0.14, "#ffffff"), (0.86, "#ffffff"), (1, "#000000")],
+            ),
             linear_gradient("foot", [(0, "rgba(0,0,0,0)"), (1, "rgba(0,0,0,0.55)")]),
         ),
         el(
@@ -174,7 +184,7 @@ def tall(seed_slug: str, subject: str, caption_slug: str) -> bytes:
         el("rect", width=width, height=height, fill="#000000", opacity=0.28),
         el(
             "g",
-            el("g", *scene, clip_path="url(#subject-square)"),
+            el("g", *scene, mask="url(#subject-square)"),
             transform=f"translate({-left * square:.1f} {frame_top:.1f}) scale({square:.4f})",
         ),
         el("rect", y=height * 0.72, width=width, height=height * 0.28, fill="url(#foot)"),
