@@ -20,8 +20,8 @@ import re
 from apps.media import images
 from apps.media.links import UNNAMED, seeded_random
 from apps.media.pictures import HEIGHT as PICTURE_HEIGHT
-from apps.media.pictures import WIDTH as PICTURE_WIDTH
 from apps.media.pictures import SCENES, check_subject
+from apps.media.pictures import WIDTH as PICTURE_WIDTH
 from apps.media.svg import document, el, linear_gradient, text
 
 WIDE = (480, 270)
@@ -29,16 +29,21 @@ TALL = (270, 480)
 CAPTION_WORDS = 3
 THUMBNAILS_KEPT = 1024
 FONT = "'Arial Black', 'Helvetica Neue', Impact, Arial, sans-serif"
-INK = ("#ffffff", "#ffe14d", "#ffffff", "#7df9ff")  # the colour of the highlighted line
+ACCENTS = ("#ffe14d", "#7df9ff", "#ff6b5c")  # the colour of the highlighted line
+
+
+def _words(text: str) -> frozenset[str]:
+    return frozenset(text.split())
+
+
 # Words a thumbnail never spends space on.
-SMALL_WORDS = frozenset(
+SMALL_WORDS = _words(
     "a an and are as at be but by for from how i in into is it its my of on or our so than that "
-    "the their this to up vs was we what when who why will with you your".split()
+    "the their this to up vs was we what when who why will with you your"
 )
 # Words a caption does not end on (they promise a word that was cut off).
-DANGLING = frozenset(
-    "about after before been can do does get go had has have one over own under use without "
-    "won".split()
+DANGLING = _words(
+    "about after before been can do does get go had has have one over own under use without won"
 )
 _WORD = re.compile(r"[A-Za-z0-9$%]+(?:'[A-Za-z]+)?")
 
@@ -87,7 +92,7 @@ def _caption(
 ) -> str:
     """The lines in heavy type, white with a dark outline and shadow; one line in an accent."""
     accent = rng.randrange(len(lines)) if len(lines) > 1 else -1
-    ink = rng.choice(INK[1:])
+    ink = rng.choice(ACCENTS)
     tilt = rng.choice((0, 0, -2, -3))
     rows = []
     for i, line in enumerate(lines):
