@@ -74,9 +74,11 @@ def audio_url(seed: str) -> str:
 
 
 @functools.lru_cache(maxsize=4096)
-def poster_url(seed: str, subject: str = "landscape") -> str:
-    """A video's animated poster (the picture of the same seed and subject, moving, 16:9)."""
-    return reverse("media:poster", kwargs={"subject": check_subject(subject), "slug": slug(seed)})
+def poster_url(seed: str, subject: str = "landscape", tall: bool = False) -> str:
+    """A video's animated poster (the picture of the same seed and subject, moving, 16:9; for a
+    short when `tall`, 9:16 in the portrait composition of its thumbnail)."""
+    kwargs = {"subject": check_subject(subject), "slug": slug(seed)}
+    return reverse("media:tall-poster" if tall else "media:poster", kwargs=kwargs)
 
 
 @functools.lru_cache(maxsize=4096)

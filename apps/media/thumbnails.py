@@ -145,19 +145,15 @@ def wide(seed_slug: str, subject: str, caption_slug: str) -> bytes:
     return document(width, height, f"{subject} {seed_slug}: {caption_slug}", *body, fit="slice")
 
 
-def tall(seed_slug: str, subject: str, caption_slug: str) -> bytes:
-    """The 9:16 thumbnail of a short: blurred scene behind, the subject sharp in the middle,
-    the caption stacked large above it."""
+def portrait(scene: list[str], subject_top: float) -> list[str]:
+    """A 3:2 scene composed for a 9:16 frame (TALL): the scene blown up and blurred behind, a
+    square from its middle sharp at `subject_top`, fading into it, a shade along the foot."""
     width, height = TALL
-    scene = SCENES[check_subject(subject)](seeded_random(seed_slug))
-    rng = seeded_random(caption_slug)
-    lines = caption_lines(caption_slug, 9)
     cover = height / PICTURE_HEIGHT  # the backdrop covers the frame's height
     side = PICTURE_HEIGHT  # a square from the middle of the scene
     square = width / side
     left = (PICTURE_WIDTH - side) / 2
-    frame_top = height * 0.36
-    body = [
+    return [
         el(
             "defs",
             el(
@@ -190,15 +186,25 @@ def tall(seed_slug: str, subject: str, caption_slug: str) -> bytes:
         el(
             "g",
             el("g", *scene, mask="url(#subject-square)"),
-            transform=f"translate({-left * square:.1f} {frame_top:.1f}) scale({square:.4f})",
+            transform=f"translate({-left * square:.1f} {subject_top:.1f}) scale({square:.4f})",
         ),
         el("rect", y=height * 0.72, width=width, height=height * 0.28, fill="url(#foot)"),
     ]
+
+
+def tall(seed_slug: str, subject: str, caption_slug: str) -> bytes:
+    """The 9:16 thumbnail of a short: blurred scene behind, the subject sharp in the middle,
+    the caption stacked large above it."""
+    width, height = TALL
+    scene = SCENES[check_subject(subject)](seeded_random(seed_slug))
+    rng = seeded_random(caption_slug)
+    lines = caption_lines(caption_slug, 9)[:4]
+    subject_top = height * 0.36
+    body = portrait(scene, subject_top)
     if lines:
-        size = _font_size(lines[:4], width * 0.9, 46)
-        block = size * len(lines[:4])
-        top = max(10.0, frame_top - block - 8)
-        body.append(_caption(lines[:4], rng, width / 2, top, size, "middle"))
+        size = _font_size(lines, width * 0.9, 46)
+        top = max(10.0, subject_top - size * len(lines) - 8)
+        body.append(_caption(lines, rng, width / 2, top, size, "middle"))
     return document(width, height, f"{subject} {seed_slug}: {caption_slug}", *body, fit="slice")
 
 

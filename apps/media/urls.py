@@ -13,6 +13,12 @@ urlpatterns = [
     path("pictures/<str:subject>/<str:slug>.svg", views.picture, name="picture"),
     path("posters/<str:subject>/<str:slug>.svg", views.poster, name="poster"),
     path(
+        "tall-posters/<str:subject>/<str:slug>.svg",
+        views.poster,
+        {"tall": True},
+        name="tall-poster",
+    ),
+    path(
         "thumbnails/<str:subject>/<str:seed>/<str:caption>.svg",
         views.thumbnail,
         {"shape": "wide"},

@@ -59,13 +59,14 @@ def audio(request: HttpRequest, slug: str) -> HttpResponse:
 
 
 @require_safe
-def poster(request: HttpRequest, subject: str, slug: str) -> HttpResponse:
-    """/media/posters/<subject>/<slug>.svg: the animated poster of a video (apps.media.posters)."""
+def poster(request: HttpRequest, subject: str, slug: str, tall: bool = False) -> HttpResponse:
+    """/media/posters/<subject>/<slug>.svg: the animated poster of a video (apps.media.posters);
+    /media/tall-posters/…: a short's, 9:16."""
     if subject not in pictures.SUBJECTS:
         return _not_found(
             f"unknown poster subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
         )
-    return _bad_slug(slug) or _served(request, posters.drawn_poster(subject, slug))
+    return _bad_slug(slug) or _served(request, posters.drawn_poster(subject, slug, tall))
 
 
 @require_safe

@@ -41,6 +41,7 @@ def test_the_shorts_page_lists_only_the_shorts_with_portrait_thumbnails(db):
     lifecycle.advance(run, 1.0)  # the short's player plays the next short, not a long video
     player = Client().get(root + "shorts/vid-short-pixel-01").content.decode()
     assert f'href="{root}shorts/vid-short-self-01"' in player
+    assert "/media/tall-posters/screenshot/vid-short-pixel-01.svg" in player  # a portrait player
 
 
 def test_without_shorts_the_page_falls_back_to_the_first_home_videos(tube_url):
@@ -49,6 +50,8 @@ def test_without_shorts_the_page_falls_back_to_the_first_home_videos(tube_url):
     assert f"/media/pictures/screenshot/{WALKTHROUGH}.svg" in shelf
     home = Client().get(tube_url()).content.decode()
     assert "yt-shorts-shelf" not in home
+    player = Client().get(tube_url(f"shorts/{WALKTHROUGH}")).content.decode()
+    assert f"/media/posters/screenshot/{WALKTHROUGH}.svg" in player  # as before
 
 
 def test_every_card_thumbnail_carries_its_caption(tube_url):

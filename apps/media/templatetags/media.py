@@ -98,15 +98,22 @@ def poster(
     width: int = 854,
     height: int = 480,
     label: str = "",
+    tall: bool = False,
     **options: str,
 ) -> SafeString:
-    """A video's animated poster: the picture of `seed` and `subject`, moving (16:9, looping)."""
+    """A video's animated poster: the picture of `seed` and `subject`, moving (16:9, looping;
+    9:16 in a short's portrait composition when `tall`)."""
     if subject not in pictures.SUBJECTS:
         raise template.TemplateSyntaxError(
             f"{{% poster %}} subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
         )
     return _img(
-        "poster", links.poster_url(seed, subject), width, height, label, options.get("class", "")
+        "poster",
+        links.poster_url(seed, subject, tall=bool(tall)),
+        width,
+        height,
+        label,
+        options.get("class", ""),
     )
 
 
