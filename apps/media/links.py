@@ -74,6 +74,18 @@ def audio_url(seed: str) -> str:
 
 
 @functools.lru_cache(maxsize=4096)
-def poster_url(seed: str, subject: str = "landscape") -> str:
-    """A video's animated poster (the picture of the same seed and subject, moving, 16:9)."""
-    return reverse("media:poster", kwargs={"subject": check_subject(subject), "slug": slug(seed)})
+def poster_url(seed: str, subject: str = "landscape", tall: bool = False) -> str:
+    """A video's animated poster (the picture of the same seed and subject, moving, 16:9; for a
+    short when `tall`, 9:16 in the portrait composition of its thumbnail)."""
+    kwargs = {"subject": check_subject(subject), "slug": slug(seed)}
+    return reverse("media:tall-poster" if tall else "media:poster", kwargs=kwargs)
+
+
+@functools.lru_cache(maxsize=4096)
+def thumbnail_url(seed: str, subject: str, caption: str, tall: bool = False) -> str:
+    """A video thumbnail: the picture of `seed` and `subject` with `caption`'s words set large
+    over it, 16:9 (or 9:16 for a short when `tall`). An empty caption draws no words; an
+    apostrophe is dropped rather than splitting its word ("Saturn's" → SATURNS)."""
+    words = caption.replace("'", "").replace("\u2019", "")
+    kwargs = {"subject": check_subject(subject), "seed": slug(seed), "caption": slug(words)}
+    return reverse("media:tall-thumbnail" if tall else "media:thumbnail", kwargs=kwargs)

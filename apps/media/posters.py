@@ -10,7 +10,7 @@ import functools
 import random
 from xml.sax.saxutils import escape
 
-from apps.media import images
+from apps.media import images, thumbnails
 from apps.media.links import seeded_random
 from apps.media.pictures import HEIGHT as PICTURE_HEIGHT
 from apps.media.pictures import SCENES, check_subject
@@ -126,7 +126,49 @@ def poster(slug: str, subject: str) -> bytes:
     return root.encode()
 
 
+def _push_in(width: float, height: float) -> str:
+    """The root viewBox closing in on the middle by a tenth and back (a portrait's camera)."""
+    start, close = (
+        f"0 0 {width} {height}",
+        f"{width * 0.05:.1f} {height * 0.05:.1f} {width * 0.9:.1f} {height * 0.9:.1f}",
+    )
+    return el(
+        "animate",
+        attributeName="viewBox",
+        values=f"{start};{close};{start}",
+        keyTimes="0;0.5;1",
+        calcMode="spline",
+        keySplines="0.42 0 0.58 1;0.42 0 0.58 1",
+        dur=f"{LOOP_S}s",
+        repeatCount="indefinite",
+    )
+
+
+def tall_poster(slug: str, subject: str) -> bytes:
+    """A short's animated poster, 9:16: its thumbnail's portrait composition (apps.media
+    thumbnails, the subject centred, no words) with the camera, light and motes of a poster."""
+    rng = seeded_random(slug)
+    scene = SCENES[check_subject(subject)](rng)
+    width, height = thumbnails.TALL
+    root = el(
+        "svg",
+        el("title", escape(f"{subject} {slug} (animated, portrait)")),
+        _push_in(width, height),
+        *thumbnails.portrait(scene, (height - width) / 2),
+        *_light_sweep(rng),
+        *_motes(rng),
+        xmlns="http://www.w3.org/2000/svg",
+        width=width,
+        height=height,
+        viewBox=f"0 0 {width} {height}",
+        preserveAspectRatio="xMidYMid slice",
+        role="img",
+    )
+    return root.encode()
+
+
 @functools.lru_cache(maxsize=POSTERS_KEPT)
-def drawn_poster(subject: str, slug: str) -> images.Image:
-    """The poster of `slug` showing `subject` (one of pictures.SUBJECTS), with its ETag."""
-    return images.tagged(poster(slug, subject))
+def drawn_poster(subject: str, slug: str, tall: bool = False) -> images.Image:
+    """The poster of `slug` showing `subject` (one of pictures.SUBJECTS), 9:16 when `tall`,
+    with its ETag."""
+    return images.tagged(tall_poster(slug, subject) if tall else poster(slug, subject))

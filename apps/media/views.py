@@ -7,7 +7,7 @@ from django.http import HttpRequest, HttpResponse, HttpResponseNotFound, HttpRes
 from django.views.decorators.http import require_safe
 
 from apps.media import audio as clips
-from apps.media import images, links, pictures, posters
+from apps.media import images, links, pictures, posters, thumbnails
 
 CACHE_FOREVER = "public, max-age=31536000, immutable"
 
@@ -59,10 +59,28 @@ def audio(request: HttpRequest, slug: str) -> HttpResponse:
 
 
 @require_safe
-def poster(request: HttpRequest, subject: str, slug: str) -> HttpResponse:
-    """/media/posters/<subject>/<slug>.svg: the animated poster of a video (apps.media.posters)."""
+def poster(request: HttpRequest, subject: str, slug: str, tall: bool = False) -> HttpResponse:
+    """/media/posters/<subject>/<slug>.svg: the animated poster of a video (apps.media.posters);
+    /media/tall-posters/…: a short's, 9:16."""
     if subject not in pictures.SUBJECTS:
         return _not_found(
             f"unknown poster subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
         )
-    return _bad_slug(slug) or _served(request, posters.drawn_poster(subject, slug))
+    return _bad_slug(slug) or _served(request, posters.drawn_poster(subject, slug, tall))
+
+
+@require_safe
+def thumbnail(
+    request: HttpRequest, shape: str, subject: str, seed: str, caption: str
+) -> HttpResponse:
+    """/media/thumbnails/<subject>/<seed>/<caption>.svg (16:9) and /media/tall-thumbnails/…
+    (9:16): a video's picture with its caption's words (apps.media.thumbnails)."""
+    if subject not in pictures.SUBJECTS:
+        return _not_found(
+            f"unknown thumbnail subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
+        )
+    return (
+        _bad_slug(seed)
+        or _bad_slug(caption)
+        or _served(request, thumbnails.drawn_thumbnail(shape, subject, seed, caption))
+    )

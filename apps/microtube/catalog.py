@@ -2,7 +2,8 @@
 
 Tables in `microtube/`: `channels.jsonl`, `videos.jsonl`, `comments.jsonl`,
 `notifications.jsonl`, in the original's record shapes (accepted as they are). Our catalog may
-add, per video, `thumbnailSubject` (the apps.media picture drawn for it), `publishedAgo`
+add, per video, `thumbnailSubject` (the apps.media picture drawn for it), `thumbnailText` (the
+words set large on its thumbnail; without it, the key words of the title), `publishedAgo`
 (seconds before the run) and `viewGrowth` / `likeGrowth`, and per channel `subscriberGrowth`
 and `ownerId`: `[[seconds after arrival, count], …]`, how a count climbs while a run lasts. A
 record without growth points keeps its catalogued count, which is the original's behaviour.
@@ -125,6 +126,7 @@ def catalog_video(tube: Tube, video_id: str, stamp: Stamp) -> Video | None:
         published_at=_published_at(record, stamp),
         arrived_at=float(stamp.at),
         uploaded=not stamp.preloaded,
+        thumbnail_text=str(record.get("thumbnailText") or ""),
     )
 
 

@@ -58,6 +58,20 @@ def home(tube: Tube) -> tuple[Card, ...]:
 
 
 SHORTS_SHOWN = 8
+SHELF_SHOWN = 5  # one row of Home's Shorts shelf
+
+
+@per_state()
+def home_videos(tube: Tube) -> tuple[Card, ...]:
+    """Home's grid: the videos that are not shorts (those have their shelf). The original's
+    catalog marks none, so there it is every video, as before."""
+    return tuple(c for c in home(tube) if not c.video.is_short)
+
+
+@per_state()
+def home_shorts(tube: Tube) -> tuple[Card, ...]:
+    """Home's Shorts shelf: the shorts, in Home order (none marked: no shelf)."""
+    return tuple(c for c in home(tube) if c.video.is_short)[:SHELF_SHOWN]
 
 
 @per_state()

@@ -58,6 +58,7 @@ class Video:
     published_at: float = 0.0  # simulated seconds (negative: before the run started)
     arrived_at: float = 0.0
     uploaded: bool = False  # arrived during the run (new_video), not preloaded
+    thumbnail_text: str = ""  # the words on its thumbnail ("" → the key words of the title)
 
     def view_count(self, now: float) -> int:
         return shown_count(self.views.value_at(now))

@@ -85,7 +85,13 @@ def feed(template: str, guide: str, **lists: Callable[[Tube], Any]):
     return view
 
 
-home = feed("home.html", "home", cards=screens.home, chips=screens.topics)
+home = feed(
+    "home.html",
+    "home",
+    cards=screens.home_videos,
+    shelf=screens.home_shorts,
+    chips=screens.topics,
+)
 subscriptions = feed("subscriptions.html", "subscriptions", cards=screens.subscriptions)
 history = feed("history.html", "history", cards=screens.history)
 you = feed(

@@ -7,8 +7,8 @@ from __future__ import annotations
 import pytest
 from django.test import Client
 
-from apps.media import links
 from apps.kit.links import environment_root
+from apps.media import links
 from apps.scenarios.library import get_scenario
 from events import lifecycle
 

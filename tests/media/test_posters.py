@@ -73,3 +73,17 @@ def test_the_tag_renders_one_img_and_names_the_allowed_subjects():
     )
     with pytest.raises(TemplateSyntaxError, match="allowed"):
         Template('{% load media %}{% poster "x" subject="volcano" %}').render(Context())
+
+
+def test_a_short_has_a_9_by_16_poster_in_the_portrait_of_its_thumbnail():
+    assert links.poster_url("vid-short-paw-01", "pet", tall=True) == (
+        "/media/tall-posters/pet/vid-short-paw-01.svg"
+    )
+    root = parsed(posters.tall_poster("vid-short-paw-01", "pet"))
+    assert (root.get("width"), root.get("height")) == ("270", "480")
+    assert any(a.get("attributeName") == "viewBox" for a in root.findall(f".//{SVG}animate"))
+    assert posters.tall_poster("vid-short-paw-01", "pet") == posters.tall_poster(
+        "vid-short-paw-01", "pet"
+    )
+    response = Client().get("/media/tall-posters/pet/vid-short-paw-01.svg")
+    assert response.status_code == 200 and b'height="480"' in response.content

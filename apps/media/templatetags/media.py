@@ -4,6 +4,7 @@
     {% logo name size=40 %}               a company / team mark
     {% banner seed %}                     a wide cover (CSS makes it 100% wide)
     {% picture seed subject="landscape" width=480 height=320 label="…" %}
+    {% thumbnail seed subject="landscape" title="…" tall=False %}   a video's, with its words
 
 Each renders one <img> with its width and height set (no layout shift while it loads). The
 label only ever goes into the alt attribute, escaped. Optional `class="…"` adds classes.
@@ -15,7 +16,7 @@ from django import template
 from django.utils.html import format_html
 from django.utils.safestring import SafeString
 
-from apps.media import links, pictures
+from apps.media import links, pictures, thumbnails
 
 register = template.Library()
 
@@ -97,13 +98,44 @@ def poster(
     width: int = 854,
     height: int = 480,
     label: str = "",
+    tall: bool = False,
     **options: str,
 ) -> SafeString:
-    """A video's animated poster: the picture of `seed` and `subject`, moving (16:9, looping)."""
+    """A video's animated poster: the picture of `seed` and `subject`, moving (16:9, looping;
+    9:16 in a short's portrait composition when `tall`)."""
     if subject not in pictures.SUBJECTS:
         raise template.TemplateSyntaxError(
             f"{{% poster %}} subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
         )
     return _img(
-        "poster", links.poster_url(seed, subject), width, height, label, options.get("class", "")
+        "poster",
+        links.poster_url(seed, subject, tall=bool(tall)),
+        width,
+        height,
+        label,
+        options.get("class", ""),
     )
+
+
+@register.simple_tag
+def thumbnail(
+    seed: str,
+    subject: str = "landscape",
+    title: str = "",
+    caption: str = "",
+    width: int = 320,
+    height: int = 180,
+    tall: bool = False,
+    label: str = "",
+    **options: str,
+) -> SafeString:
+    """A video thumbnail: the picture of `seed` and `subject` with `caption` (else the key words
+    of `title`) in large type drawn into the image (16:9; 9:16 when `tall`, for a short). The words are in the
+    picture, not the page's text, so a page reading its title once still reads it once."""
+    if subject not in pictures.SUBJECTS:
+        raise template.TemplateSyntaxError(
+            f"{{% thumbnail %}} subject {subject!r}: allowed {', '.join(pictures.SUBJECTS)}"
+        )
+    src = links.thumbnail_url(seed, subject, caption or thumbnails.headline(title), tall=bool(tall))
+    classes = f"{'tall' if tall else 'wide'} {options.get('class', '')}"
+    return _img("thumbnail", src, width, height, label, classes)
