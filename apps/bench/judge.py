@@ -13,13 +13,12 @@ results (`judgement.json`), so a published figure can be audited and re-judged.
 from __future__ import annotations
 
 import json
-import re
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from apps.browser_agent.tools import REPORT_MARKER  # the message under judgement follows it
+from apps.browser_agent.tools import REPORT_MARKER, judge_verdict  # (the report follows it)
 
 JUDGEMENT = "judgement.json"
 # A question is idempotent: a rate limit or a dropped connection is asked again, a wrong URL
@@ -76,21 +75,13 @@ def judge_prompt(task_prompt: str, rubric: dict[str, Any], message: str) -> str:
 
 def read_answer(answer: str) -> tuple[bool, str]:
     """(correct, why) from a judge's answer: JSON {"correct"|"met": bool, "why"}, or text
-    starting yes/no. JudgeError when it is neither."""
-    found = re.search(r"\{.*\}", answer, re.DOTALL)
-    if found:
-        try:
-            data = json.loads(found.group(0))
-        except json.JSONDecodeError:
-            data = None
-        if isinstance(data, dict):
-            verdict = data.get("correct", data.get("met"))
-            if isinstance(verdict, bool):
-                return verdict, str(data.get("why", ""))
-    word = answer.strip().split(maxsplit=1)[0].strip(".:,!").lower() if answer.strip() else ""
-    if word in ("yes", "no"):
-        return word == "yes", answer.strip()
-    raise JudgeError(f"the judge's answer is neither JSON with 'correct' nor yes/no: {answer!r}")
+    starting yes/no. JudgeError when it is neither: no verdict is made up for the agent."""
+    verdict = judge_verdict(answer, keys=("correct", "met"))
+    if verdict is None:
+        raise JudgeError(
+            f"the judge's answer is neither JSON with 'correct' nor yes/no: {answer!r}"
+        )
+    return verdict
 
 
 def by_model(ask: Ask, model: str, task_prompt: str, rubric: dict[str, Any], message: str):

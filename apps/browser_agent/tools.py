@@ -155,21 +155,32 @@ def judge_question(condition: str, blocks: list[str]) -> str:
 _YES_NO = re.compile(r"^\W*(yes|no)\b\W*(.*)", re.IGNORECASE | re.DOTALL)
 
 
-def parse_judge_answer(text: str) -> tuple[bool, str]:
-    """The judge's JSON `{"met", "why"}` (also inside a code fence), or "yes/no: why"; an
-    answer that is neither counts as not met, so a confused judge keeps the agent waiting."""
+def judge_verdict(text: str, keys: tuple[str, ...] = ("met",)) -> tuple[bool, str] | None:
+    """A judge's verdict and reason: its JSON `{<key>: bool, "why"}` (the first of `keys` it
+    has; also inside a code fence), or "yes/no: why"; None when the answer is neither."""
     found = re.search(r"\{.*\}", text, re.DOTALL)
     if found:
         try:
             answer = json.loads(found.group(0))
         except json.JSONDecodeError:
             answer = None
-        if isinstance(answer, dict) and isinstance(answer.get("met"), bool):
-            return answer["met"], str(answer.get("why") or "").strip()
+        if isinstance(answer, dict):
+            verdict = next((answer[k] for k in keys if isinstance(answer.get(k), bool)), None)
+            if verdict is not None:
+                return verdict, str(answer.get("why") or "").strip()
     plain = _YES_NO.match(text.strip())
     if plain:
         return plain.group(1).lower() == "yes", plain.group(2).strip()
-    return False, f"the judge's answer was neither yes nor no: {text.strip()[:200]!r}"
+    return None
+
+
+def parse_judge_answer(text: str) -> tuple[bool, str]:
+    """wait_for's reading of its judge: an answer that is neither JSON nor yes/no counts as not
+    met, so a confused judge keeps the agent waiting."""
+    return judge_verdict(text) or (
+        False,
+        f"the judge's answer was neither yes nor no: {text.strip()[:200]!r}",
+    )
 
 
 class ModelJudge:

@@ -28,8 +28,13 @@ def _camera(rng: random.Random) -> str:
     width, height = WIDTH * zoom, HEIGHT * zoom
     x = rng.uniform(0, WIDTH - width)
     y = top + rng.uniform(0, HEIGHT - height)
-    start = f"0 {top:.1f} {WIDTH} {HEIGHT}"
-    close = f"{x:.1f} {y:.1f} {width:.1f} {height:.1f}"
+    return _viewbox_loop(
+        f"0 {top:.1f} {WIDTH} {HEIGHT}", f"{x:.1f} {y:.1f} {width:.1f} {height:.1f}"
+    )
+
+
+def _viewbox_loop(start: str, close: str) -> str:
+    """The root viewBox easing from `start` to `close` and back, over one loop."""
     return el(
         "animate",
         attributeName="viewBox",
@@ -128,19 +133,9 @@ def poster(slug: str, subject: str) -> bytes:
 
 def _push_in(width: float, height: float) -> str:
     """The root viewBox closing in on the middle by a tenth and back (a portrait's camera)."""
-    start, close = (
+    return _viewbox_loop(
         f"0 0 {width} {height}",
         f"{width * 0.05:.1f} {height * 0.05:.1f} {width * 0.9:.1f} {height * 0.9:.1f}",
-    )
-    return el(
-        "animate",
-        attributeName="viewBox",
-        values=f"{start};{close};{start}",
-        keyTimes="0;0.5;1",
-        calcMode="spline",
-        keySplines="0.42 0 0.58 1;0.42 0 0.58 1",
-        dur=f"{LOOP_S}s",
-        repeatCount="indefinite",
     )
 
 
