@@ -36,6 +36,17 @@ class LiveRenderActed(ActionRejected):
         super().__init__("a live re-render never acts", status=409)
 
 
+@dataclass(frozen=True)
+class Probe:
+    """A page rendered on a state folded in memory, at simulated second `at`, for a run that
+    need not be stored (apps.kit.probe): read-only like time travel, nothing logged or done."""
+
+    run: Run
+    state: Any
+    at: float
+    root: str
+
+
 def run_for_token(token: str) -> Run:
     run = Run.objects.open_by_token(token)
     if run is None:
@@ -166,13 +177,17 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
     def wrapper(request: HttpRequest, token: str, *args, **kwargs) -> HttpResponse:
         past = getattr(request, "sentinel_time_travel", None)
         if past is not None:
-            # Set only by the staff-only admin viewer (apps.replay), never by a /r/ URL.
+            # Set only by the staff-only admin viewer (apps.replay) and by a probe render
+            # (apps.kit.probe), never by a /r/ URL.
             if request.method != "GET":
                 return HttpResponseNotAllowed(["GET"])
+            # A probe (apps.kit.probe) brings the state it folded in memory; the replay viewer
+            # names a log position of a stored run.
+            state = past.state if isinstance(past, Probe) else state_at(past.run, past.seq)
             page = Page(
                 request=request,
                 run=past.run,
-                state=state_at(past.run, past.seq),
+                state=state,
                 now=past.at,
                 read_only=True,
                 base=past.root,

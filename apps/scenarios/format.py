@@ -62,6 +62,14 @@ class Scenario:
     solution: tuple[dict[str, Any], ...] = ()
     is_dev: bool = False
     source: str = INLINE
+    # Our extension: the page the prompt tells the agent to watch ("keep an eye on the jobs
+    # page"), same form as start_page; "" when it is the start page.
+    watch_page: str = ""
+
+    @property
+    def watched_page(self) -> str:
+        """Where the trigger must show: the declared watch page, else the start page."""
+        return self.watch_page or self.start_page
 
     @property
     def is_noop(self) -> bool:
@@ -272,6 +280,17 @@ def _condition_at(data: dict, kill_at: float, end: float, source: str) -> float 
     return condition_at
 
 
+def _watch_page(data: dict, environment: str, source: str) -> str:
+    """Optional; one of the environment's pages on our site, written as start_page is."""
+    if "watch_page" not in data:
+        return ""
+    page = _text(data["watch_page"], "watch_page", source, non_empty=True)
+    root = f"HOST_ADDRESS/{environment}"
+    if page != root and not page.startswith((root + "/", root + "?", root + "#")):
+        _fail(source, "watch_page", f"must be a page of {environment}: {root}/…, got {page!r}")
+    return page
+
+
 # --- public API --------------------------------------------------------------------------------
 
 
@@ -290,6 +309,7 @@ def parse_scenario(data: object, *, source: str = INLINE) -> Scenario:
         "start_page",
         source,
     )
+    watch_page = _watch_page(data, environment, source)
     end, kill_at = _timeline_bounds(data, source)
     condition_at = _condition_at(data, kill_at, end, source)
     eval_sql = _text(data.get("eval_sql", ""), "eval_sql", source)
@@ -310,6 +330,7 @@ def parse_scenario(data: object, *, source: str = INLINE) -> Scenario:
         solution=_solution(data, environment, source),
         is_dev=False,
         source=source,
+        watch_page=watch_page,
     )
 
 

@@ -1,0 +1,81 @@
+"""The text a person sees on a rendered page: what "the page changed" means to a watcher.
+
+Used to check that a scenario's trigger shows on the page its prompt names
+(apps.scenarios.watching), and to push a live re-render only when it reads differently
+(apps.kit.consumers). Markup, attributes, scripts, hidden elements and the shell's own clock
+are not text a watcher compares: the clock changes every minute whatever happens.
+"""
+
+from __future__ import annotations
+
+import re
+from html.parser import HTMLParser
+
+# Never shown as text: the head, scripts and styles, templates, the icon sprite's symbols.
+_SKIPPED = frozenset({"head", "script", "style", "template", "noscript", "symbol", "title"})
+_VOID = frozenset(
+    {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "wbr"}
+)
+# The shell's simulated clock (templates/site/base.html) reads the time, not what happened.
+CLOCK_ID = "sim-clock"
+_SPACE = re.compile(r"\s+")
+
+
+class _Text(HTMLParser):
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.parts: list[str] = []
+        self.open: list[str] = []  # tags open inside a skipped element, outermost first
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        if tag in _VOID:
+            return
+        if self.open:
+            self.open.append(tag)
+            return
+        named = dict(attrs)
+        if (
+            tag in _SKIPPED
+            or "hidden" in named
+            or named.get("aria-hidden") == "true"
+            or named.get("id") == CLOCK_ID
+        ):
+            self.open.append(tag)
+        elif tag in ("br", "p", "div", "li", "tr", "h1", "h2", "h3", "h4", "section"):
+            self.parts.append(" ")
+
+    def handle_startendtag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        pass  # self-closing: holds no text
+
+    def handle_endtag(self, tag: str) -> None:
+        if self.open:
+            # Close up to the matching tag (HTML lets some end tags be left out).
+            if tag in self.open:
+                while self.open and self.open.pop() != tag:
+                    pass
+            return
+        self.parts.append(" ")
+
+    def handle_data(self, data: str) -> None:
+        if not self.open:
+            self.parts.append(data)
+
+
+def visible_text(html: str) -> str:
+    """The page's (or fragment's) text in document order, whitespace collapsed to one space."""
+    parser = _Text()
+    parser.feed(html)
+    parser.close()
+    return _SPACE.sub(" ", "".join(parser.parts)).strip()
+
+
+def text_difference(before: str, after: str, *, width: int = 60) -> str:
+    """Where two texts first differ, as a short one-line excerpt of each ("" when equal)."""
+    if before == after:
+        return ""
+    start = next(
+        (i for i, (a, b) in enumerate(zip(before, after, strict=False)) if a != b),
+        min(len(before), len(after)),
+    )
+    lo = max(0, start - 20)
+    return f"before …{before[lo : lo + width]!r}… after …{after[lo : lo + width]!r}…"
