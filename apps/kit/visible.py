@@ -36,8 +36,7 @@ class _Text(HTMLParser):
         named = dict(attrs)
         if (
             tag in _SKIPPED
-            or "hidden" in named
-            or named.get("aria-hidden") == "true"
+            or "hidden" in named  # aria-hidden text is still seen: only `hidden` hides
             or named.get("id") == CLOCK_ID
         ):
             self.open.append(tag)

@@ -47,12 +47,16 @@ BASELINES = counted(
     }
 )
 
-deliver_events = Delivery(
-    "events",
-    lambda agenda, event_id, stamp: catalog_event(agenda.catalog, event_id),
-    states="event_states",
-    fresh=EventState,
-)
+
+def delivered_event(agenda: Agenda, event_id: str, stamp) -> tuple[Any, EventState] | None:
+    """The catalog event, marked as a new invitation unless it is part of the starting world."""
+    event = catalog_event(agenda.catalog, event_id)
+    if event is None:
+        return None
+    return event, EventState(arrived_during_run=not stamp.preloaded)
+
+
+deliver_events = Delivery("events", delivered_event, states="event_states")
 # A catalog task comes with its catalogued completion.
 deliver_tasks = Delivery(
     "tasks",
