@@ -25,6 +25,7 @@ JUST_BEFORE = 0.01  # simulated seconds before condition_at: the page as the age
 
 @dataclass(frozen=True)
 class WatchCheck:
+    scenario: str  # where the scenario comes from (its file), for reports
     page: str  # the watched page, as the scenario writes it
     condition_at: float
     changes: bool
@@ -43,12 +44,13 @@ def watch_check(
     *,
     spec: dict[str, Any] | None = None,
     catalog_dir=None,
+    source: str = "",
 ) -> WatchCheck:
     """Render `page` just before and at `condition_at` of the timeline `events`
     ({time, type, payload}, in order) and say whether its visible text changes."""
 
     def result(changes: bool, detail: str) -> WatchCheck:
-        return WatchCheck(page, condition_at, changes, detail)
+        return WatchCheck(source, page, condition_at, changes, detail)
 
     try:
         environment = get_environment(environment_name)
@@ -76,6 +78,8 @@ def watch_check(
         before, after = text_at(condition_at - JUST_BEFORE), text_at(condition_at)
     except NotRendered as error:
         return result(False, f"cannot render: {error}")
+    except Exception as error:  # a view failing on this timeline: report it, check the others
+        return result(False, f"cannot render: {type(error).__name__}: {error}")
     shown = page or "the start page"
     if before == after:
         return result(
@@ -90,6 +94,12 @@ def watch_check(
     )
 
 
+def unseen_triggers(scenarios: Iterable[Scenario], *, catalog_dir=None) -> list[WatchCheck]:
+    """The checks that fail, one per targeted scenario whose watched page does not change."""
+    checks = (check_watched(scenario, catalog_dir=catalog_dir) for scenario in scenarios)
+    return [check for check in checks if check is not None and not check.changes]
+
+
 def check_watched(scenario: Scenario, *, catalog_dir=None) -> WatchCheck | None:
     """`watch_check` for a parsed scenario; None for a no-op or a dev scenario (no trigger)."""
     if scenario.is_dev or scenario.condition_at is None:
@@ -102,4 +112,5 @@ def check_watched(scenario: Scenario, *, catalog_dir=None) -> WatchCheck | None:
         scenario.event_timeline_end,
         spec=scenario.to_run_spec(),
         catalog_dir=catalog_dir,
+        source=scenario.source,
     )

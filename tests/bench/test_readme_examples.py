@@ -103,6 +103,6 @@ def test_the_readme_validate_command_proves_every_scenario(tmp_path):
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr
     assert re.fullmatch(
         r"bench_validate: scenarios=100 oracle=100/100 early_fail=80/80 never_ok=100/100 "
-        r"sleeper=39/100 wall_s=[\d.]+ clock=virtual",
+        r"sleeper=39/100 unseen=0/80 wall_s=[\d.]+ clock=virtual",
         done.stdout.strip().splitlines()[-1],
     )

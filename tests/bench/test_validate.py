@@ -28,6 +28,7 @@ def test_validate_proves_the_short_scenarios_solvable_and_not_trivially_passable
     lines = validate("--parallel", "10")
     assert re.fullmatch(
         r"bench_validate: scenarios=6 oracle=6/6 early_fail=5/5 never_ok=6/6 sleeper=\d/6 "
+        r"unseen=\d/5 "
         r"wall_s=[\d.]+ clock=virtual",
         lines[-1],
     )

@@ -50,6 +50,8 @@ from apps.bench.runner import (
     discover,
     run_pool,
 )
+from apps.scenarios.library import library, scenario_root
+from apps.scenarios.watching import WatchCheck, unseen_triggers
 from events.timing import REACTION_WINDOW, SpeedFactorError, validate_speed_factor
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
@@ -461,6 +463,17 @@ class Command(BaseCommand):
 
     # --- validate --------------------------------------------------------------------------
 
+    def unseen_triggers(self, listing: list[dict]) -> list[WatchCheck]:
+        """Scenarios whose watched page does not change at condition_at, reported (not failed:
+        the original's files run unchanged). Checked on this checkout's copy of each file, by
+        its path; a scenario only the server has is not checked."""
+        local = library(scenario_root()).by_path
+        found = [local[s["path"]] for s in listing if s.get("path") in local]
+        unseen = unseen_triggers(found)
+        for check in unseen:
+            self.stdout.write(f"unseen trigger: {check.scenario}: {check.detail}")
+        return unseen
+
     def handle_validate(
         self, *, speed_factor, parallel, filter, server_url, reaction_window, keep, real_time, **_
     ):
@@ -537,6 +550,7 @@ class Command(BaseCommand):
             f"never {'failed' if i in noop else 'passed'} {i}" for i in ids if i not in never
         ]
         sleeper = [i for i in ids if passed("sleeper", i)]
+        unseen = self.unseen_triggers(listing)
         for problem in problems:
             self.stdout.write(f"PROBLEM: {problem}")
         if sleeper:
@@ -550,7 +564,8 @@ class Command(BaseCommand):
         self.stdout.write(
             f"bench_validate: scenarios={len(ids)} oracle={len(oracle)}/{len(ids)} "
             f"early_fail={len(early)}/{len(active)} never_ok={len(never)}/{len(ids)} "
-            f"sleeper={len(sleeper)}/{len(ids)} wall_s={wall:.1f} clock={clock}"
+            f"sleeper={len(sleeper)}/{len(ids)} unseen={len(unseen)}/{len(active)} "
+            f"wall_s={wall:.1f} clock={clock}"
         )
         if problems or errors:
             raise CommandError(
