@@ -9,11 +9,13 @@ agent gets it (a stored run, the test client) to show that the check sees what t
 from __future__ import annotations
 
 import dataclasses
+import io
 import json
 from pathlib import Path
 
 import pytest
 from django.conf import settings
+from django.core.management import call_command
 from django.test import Client
 
 from apps.kit.links import start_page_path
@@ -79,3 +81,18 @@ def test_the_check_sees_what_the_agent_sees():
         texts.append(visible_text(client.get(url).content.decode()))
     assert texts[0] != texts[1]
     assert "7 results" in texts[0] and "8 results" in texts[1]
+
+
+def test_checkscenarios_names_a_scenario_whose_trigger_does_not_show(tmp_path):
+    data = json.loads((OUR_SCENARIOS / "microdin" / "jobs-absolute-passive.json").read_text())
+    del data["watch_page"]
+    (tmp_path / "microdin").mkdir()
+    (tmp_path / "microdin" / "jobs.json").write_text(json.dumps(data, indent=2))
+    out = io.StringIO()
+    call_command("checkscenarios", str(tmp_path), stdout=out)
+    lines = out.getvalue().splitlines()
+    assert any(
+        line.startswith("unseen: ") and "jobs.json: the watched page HOST_ADDRESS/microdin " in line
+        for line in lines
+    ), lines
+    assert "watched pages: 0 of 1 targeted scenarios change visibly at condition_at" in lines

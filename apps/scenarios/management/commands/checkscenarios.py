@@ -1,7 +1,7 @@
 """`manage.py checkscenarios [DIR]`: which scenario files the library serves, and which not, why.
 
 One line per problem (a file failing validation, a file repeating another's id), then a
-summary, then how the targeted scenarios' condition times spread: a line per 100-second bin
+summary, then whether each trigger shows (below), then how the targeted scenarios' condition times spread: a line per 100-second bin
 (count and share) and a verdict. Exit 1 when a file fails validation or when one bin holds
 more than 25 % of the targeted scenarios (the paper samples condition times uniformly in
 [10, 600] s); a repeated id is reported but still runs by its path, as the original
@@ -45,8 +45,6 @@ class Command(BaseCommand):
             f"{len(loaded.by_path)} scenario files load from {root} "
             f"({len(loaded.by_id)} ids); {len(invalid)} invalid, {len(duplicates)} repeat an id"
         )
-        spread = condition_spread(loaded.by_path.values())
-        self._print_spread(spread)
         unseen = unseen_triggers(loaded.by_path.values())
         for check in unseen:
             self.stdout.write(f"unseen: {check.scenario}: {check.detail}")
@@ -55,6 +53,8 @@ class Command(BaseCommand):
             f"watched pages: {targeted - len(unseen)} of {targeted} targeted scenarios "
             "change visibly at condition_at"
         )
+        spread = condition_spread(loaded.by_path.values())
+        self._print_spread(spread)
         if invalid:
             raise CommandError(f"{len(invalid)} scenario file(s) failed validation", returncode=1)
         if spread.crowded:
