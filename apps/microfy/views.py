@@ -104,7 +104,7 @@ def track(request: HttpRequest, page: Page, track_id: str) -> HttpResponse:
         "more_by_artist": [
             t for t in screens.artist_tracks(music, song.artist_id) if t.id != track_id
         ],
-        "user_playlists": tuple(music.user_playlists.values()),
+        "user_playlists": music.own_playlists(),
         "lyrics": [block.split("\n") for block in song.lyrics.split("\n\n") if block.strip()],
     }
     return render_screen(request, page, "microfy/track.html", context)
