@@ -7,6 +7,7 @@ the environment's own view, through `@run_page`, read-only like the replay viewe
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from datetime import UTC, datetime
 from typing import Any
 
@@ -15,8 +16,9 @@ from django.urls import Resolver404, resolve
 
 from apps.kit import links
 from apps.kit.pages import Probe
+from events.catalog import load_catalog
 from events.models import Run
-from events.registry import get_environment
+from events.registry import EMPTY, LoggedEvent, get_environment
 
 PROBE_TOKEN = "probe"  # never a stored run's token (those are long random strings)
 
@@ -29,6 +31,26 @@ def probe_run(environment: str, spec: dict[str, Any], *, day_zero: datetime | No
     """An unsaved run of `environment` playing `spec`, only for rendering its pages."""
     created = day_zero or datetime(2025, 1, 6, tzinfo=UTC)
     return Run(token=PROBE_TOKEN, environment=environment, scenario=spec, created_at=created)
+
+
+def state_at_time(
+    environment: str,
+    events: Iterable[Mapping[str, Any]],
+    at: float,
+    *,
+    event_timeline_end: float = float("inf"),
+    catalog_dir=None,
+) -> Any:
+    """The state a run of the timeline `events` ({time, type, payload}, in order) has at
+    simulated second `at`, folded in memory as the engine folds a log (nothing stored)."""
+    env = get_environment(environment)
+    logged = [
+        LoggedEvent(seq, float(e["time"]), "scenario", e["type"], e.get("payload") or {})
+        for seq, e in enumerate(events, 1)
+        if float(e["time"]) <= min(at, event_timeline_end)
+    ]
+    state, _ = env.fold(env.initial_state(load_catalog(catalog_dir)), logged, EMPTY)
+    return state
 
 
 def environment_path(page_url: str, environment: str) -> str:

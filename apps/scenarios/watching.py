@@ -14,11 +14,16 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from apps.kit.probe import NotRendered, environment_path, probe_run, render_probe
+from apps.kit.probe import (
+    NotRendered,
+    environment_path,
+    probe_run,
+    render_probe,
+    state_at_time,
+)
 from apps.kit.visible import text_difference, visible_text
 from apps.scenarios.format import Scenario
-from events.catalog import load_catalog
-from events.registry import EMPTY, LoggedEvent, UnknownEnvironment, get_environment
+from events.registry import UnknownEnvironment, get_environment
 
 JUST_BEFORE = 0.01  # simulated seconds before condition_at: the page as the agent last saw it
 
@@ -63,15 +68,16 @@ def watch_check(
     except NotRendered as error:
         return result(False, str(error))
     run = probe_run(environment_name, spec or {})
-    timeline = [
-        LoggedEvent(seq, float(entry["time"]), "scenario", entry["type"], entry["payload"] or {})
-        for seq, entry in enumerate(events, 1)
-        if float(entry["time"]) <= event_timeline_end
-    ]
-    initial = environment.initial_state(load_catalog(catalog_dir))
+    timeline = list(events)
 
     def text_at(at: float) -> str:
-        state, _ = environment.fold(initial, [e for e in timeline if e.at <= at], EMPTY)
+        state = state_at_time(
+            environment_name,
+            timeline,
+            at,
+            event_timeline_end=event_timeline_end,
+            catalog_dir=catalog_dir,
+        )
         return visible_text(render_probe(run, state, at, path))
 
     try:
