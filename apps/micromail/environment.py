@@ -4,13 +4,14 @@ and `new_email`), baselines, evaluation tables."""
 from __future__ import annotations
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
 from apps.kit.tables import KEY, Table, named, tables
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
 from apps.micromail.catalog import catalog_email, catalog_state
-from apps.micromail.state import ENVIRONMENT, Email, EmailState, Mail
+from apps.micromail.state import ENVIRONMENT, FOLDER_TITLES, FOLDERS, Email, EmailState, Mail
 from events.registry import Environment, counted
 
 # Upstream stamps preloaded mail "five minutes before start", so the list reads "5 min ago".
@@ -91,6 +92,22 @@ def unread(mail: Mail, email_id: str) -> bool:
     return mail.has(email_id) and not mail.states[email_id].is_read
 
 
+# The numbers shown in more than one place (apps.kit.counts): the folder pane's badges (Inbox
+# under Favorites and again in the account's folders), every other folder its item count.
+SHOWN_COUNTS = (
+    ShownCount("inbox unread", lambda mail, now: mailbox.unread_count(mail), ("Inbox {n} unread",)),
+    *(
+        ShownCount(
+            f"{folder} items",
+            lambda mail, now, folder=folder: mailbox.folder_badges(mail)[folder],
+            (f"{FOLDER_TITLES[folder]} {{n}} items",),
+        )
+        for folder in FOLDERS
+        if folder != "inbox"
+    ),
+)
+
+
 MICROMAIL = Environment(
     name=ENVIRONMENT,
     title="MicroMail",
@@ -105,4 +122,5 @@ MICROMAIL = Environment(
         opening("mailbox", "email", "open_email", "email_id", applies=unread),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

@@ -40,4 +40,6 @@ def test_every_declared_count_reads_the_same_on_every_sample_page(name, now):
     problems = [p for path, text in texts for p in disagreements(counts, state, now, path, text)]
     assert problems == []
     shown = set().union(*(appearances(counts, state, path, text) for path, text in texts))
-    assert shown == {count.name for count in counts}, "declared but shown on no sample page"
+    # A zero is often not written at all (no badge): only a count that is not may go unseen.
+    nonzero = {count.name for count in counts if count.value(state, now)}
+    assert nonzero <= shown, "declared, not zero, and shown on no sample page"
