@@ -43,7 +43,6 @@ BASELINES = counted(
 )
 
 
-
 def _not_a_strangers_profile(network: Network, path: str) -> bool:
     """Another member's profile shows their own connections."""
     return not path.startswith("in/") or path == f"in/{network.me.id}/"
