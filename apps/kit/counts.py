@@ -16,7 +16,7 @@ from typing import Any, Generic, TypeVar
 
 S = TypeVar("S")
 
-_NUMBER = r"(?<![\d,.])(\d[\d,]*)"  # a whole number, never the tail of one
+_NUMBER = r"(?<![\d,.])(?P<n>\d[\d,]*)"  # a whole number, never the tail of one
 
 
 def _everywhere(state: Any, path: str) -> bool:
@@ -28,20 +28,37 @@ class ShownCount(Generic[S]):
     """A number and every phrase that shows it: `{n}` in a phrase stands for the number (as
     written: "1,325"); phrases are regular expressions over a page's visible text
     (apps.kit.visible). `on(state, path)`: the pages where the phrases mean this number (a
-    stranger's profile also says "157 connections")."""
+    stranger's profile also says "157 connections"). A number that belongs to what the page
+    shows (the shares of the stock on screen) reads the page's path too: `value_on(state, now,
+    path)` instead of `value`; one of many (a list of positions, "MRDN 15 shares") names what
+    it counts in the phrase, `{key}`, read by `value_of(state, now, key)`."""
 
     name: str
     value: Callable[[S, float], int]
     phrases: tuple[str, ...]
     on: Callable[[S, str], bool] = field(default=_everywhere)
+    value_on: Callable[[S, float, str], int] | None = None
+    value_of: Callable[[S, float, str], int] | None = None
+
+    def value_at(self, state: S, now: float, path: str) -> int:
+        if self.value_on is not None:
+            return self.value_on(state, now, path)
+        return self.value(state, now)
 
     def patterns(self) -> list[re.Pattern[str]]:
-        return [re.compile(phrase.replace("{n}", _NUMBER)) for phrase in self.phrases]
+        return [
+            re.compile(phrase.replace("{n}", _NUMBER).replace("{key}", r"(?P<key>[A-Za-z][\w.-]*)"))
+            for phrase in self.phrases
+        ]
 
 
-def shown_numbers(text: str, pattern: re.Pattern[str]) -> list[int]:
-    """Every number `pattern` finds in `text`, as an int ("1,325" → 1325)."""
-    return [int(match.group(1).replace(",", "")) for match in pattern.finditer(text)]
+def shown_numbers(text: str, pattern: re.Pattern[str]) -> list[tuple[str, int]]:
+    """Every (key, number) `pattern` finds in `text`, the number as an int ("1,325" → 1325),
+    the key "" unless the phrase names one."""
+    return [
+        (match.groupdict().get("key") or "", int(match.group("n").replace(",", "")))
+        for match in pattern.finditer(text)
+    ]
 
 
 def disagreements(
@@ -52,9 +69,12 @@ def disagreements(
     for count in counts:
         if not count.on(state, path):
             continue
-        value = count.value(state, now)
         for pattern in count.patterns():
-            for shown in shown_numbers(text, pattern):
+            for key, shown in shown_numbers(text, pattern):
+                if key and count.value_of is not None:
+                    value = count.value_of(state, now, key)
+                else:
+                    value = count.value_at(state, now, path)
                 if shown != value:
                     problems.append(
                         f"{path or '(home)'}: {count.name} is {value:,}, "
