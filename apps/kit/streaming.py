@@ -39,10 +39,16 @@ def shown_count(value: float, step: int = 1) -> int:
     return math.floor(value / step + 0.5) * step
 
 
-def showing(page: Any, series: Waypoints, step: int = 1) -> float:
+def showing(page: Any, series: Waypoints, step: int = 1, *, refresh: float | None = None) -> float:
     """The value of `series` at the page's `now`; the page (`apps.kit.pages.Page`) is rendered
-    again when the value, rounded to `step`, next reads differently."""
-    page.changes_at(series.next_change(page.now, step=step))
+    again when the value, rounded to `step`, next reads differently — or, with `refresh`
+    (simulated seconds), an open page takes the new value up only at its next refresh, as a
+    video feed's view counts do (a reload shows it at once)."""
+    change = series.next_change(page.now, step=step)
+    if refresh is None:
+        page.changes_at(change)
+    else:
+        page.refreshes_at(change, refresh)
     return series.value_at(page.now)
 
 

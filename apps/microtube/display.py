@@ -65,10 +65,16 @@ def subscribers_text(value: float) -> str:
     return "1 subscriber" if shown_count(value) == 1 else f"{compact(value, digits=3)} subscribers"
 
 
+# YouTube refreshes view and subscriber counts on an open page every few minutes, never live:
+# a reload shows the count of the moment, a watching agent is not woken by every tick.
+COUNT_REFRESH_S = 300.0
+
+
 def moving(page: Any, series: Waypoints, *, digits: int | None = None) -> float:
-    """The value of `series` at the page's `now`; the page is rendered again when its compact
-    text next changes."""
-    return showing(page, series, step=count_step(series.value_at(page.now), digits=digits))
+    """The value of `series` at the page's `now`; an open page shows its compact text anew at
+    the refresh after it changes."""
+    step = count_step(series.value_at(page.now), digits=digits)
+    return showing(page, series, step=step, refresh=COUNT_REFRESH_S)
 
 
 def ago(at: float, now: float) -> str:

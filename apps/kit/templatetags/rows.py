@@ -40,7 +40,7 @@ def _age(page, at: float, style: str) -> str:
         text, changes_at = AGES[style]
     except KeyError:
         raise template.TemplateSyntaxError(f"ago={style!r}: allowed {', '.join(AGES)}") from None
-    page.changes_at(changes_at(at, page.now))
+    page.ages_at(changes_at(at, page.now))
     return text(at, page.now)
 
 
