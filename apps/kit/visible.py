@@ -22,13 +22,17 @@ _SPACE = re.compile(r"\s+")
 
 
 class _Text(HTMLParser):
-    def __init__(self) -> None:
+    def __init__(self, skip_ids: tuple[str, ...] = (CLOCK_ID,), pictures: bool = False) -> None:
         super().__init__(convert_charrefs=True)
         self.parts: list[str] = []
         self.open: list[str] = []  # tags open inside a skipped element, outermost first
+        self.skip_ids = skip_ids
+        self.pictures = pictures  # an image's address is what it shows: part of the signature
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
         if tag in _VOID:
+            if tag == "img" and self.pictures and not self.open:
+                self.parts.append(f" [img {dict(attrs).get('src') or ''}] ")
             return
         if self.open:
             self.open.append(tag)
@@ -37,7 +41,7 @@ class _Text(HTMLParser):
         if (
             tag in _SKIPPED
             or "hidden" in named  # aria-hidden text is still seen: only `hidden` hides
-            or named.get("id") == CLOCK_ID
+            or named.get("id") in self.skip_ids
         ):
             self.open.append(tag)
         elif tag in ("br", "p", "div", "li", "tr", "h1", "h2", "h3", "h4", "section"):
@@ -63,6 +67,15 @@ class _Text(HTMLParser):
 def visible_text(html: str) -> str:
     """The page's (or fragment's) text in document order, whitespace collapsed to one space."""
     parser = _Text()
+    parser.feed(html)
+    parser.close()
+    return _SPACE.sub(" ", "".join(parser.parts)).strip()
+
+
+def visible_signature(html: str) -> str:
+    """What a person sees of `html`: its text, the shell's clock included, and the pictures it
+    shows. A live push that would not change it is not sent (apps.kit.consumers)."""
+    parser = _Text(skip_ids=(), pictures=True)
     parser.feed(html)
     parser.close()
     return _SPACE.sub(" ", "".join(parser.parts)).strip()
