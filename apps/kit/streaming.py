@@ -34,6 +34,12 @@ T = TypeVar("T")
 # --- counts that move between events -------------------------------------------------------------
 
 
+# How often a product refreshes a count on an open page when the count is nobody's trigger: a
+# video's views, a song's plays, a paper's citations move on reload or every few minutes, not
+# under the reader's eyes (simulated seconds). A count a task watches (stars, prices) stays live.
+COUNT_REFRESH_S = 300.0
+
+
 def shown_count(value: float, step: int = 1) -> int:
     """`value` as a page shows it: the nearest multiple of `step`, half up."""
     return math.floor(value / step + 0.5) * step

@@ -14,7 +14,7 @@ from django.views.decorators.http import require_GET, require_POST
 from apps.kit.item_actions import act_on_item
 from apps.kit.pages import Page, run_page
 from apps.kit.rendering import back_field, redirect_after, render_screen
-from apps.kit.streaming import present, showing, shown_count
+from apps.kit.streaming import COUNT_REFRESH_S, present, showing, shown_count
 from apps.microfy import screens
 from apps.microfy.query import HomeQuery, SearchQuery
 from apps.microfy.state import LIKED, Music, Track
@@ -30,8 +30,8 @@ ARTIST_ACTIONS = {"follow_artist": "Following", "unfollow_artist": "Unfollowed"}
 
 
 def plays(page: Page, track: Track) -> int:
-    """A track's plays as shown now; the page is re-rendered when the number moves."""
-    showing(page, track.plays)
+    """A track's plays as shown now; an open page takes a new number up at its next refresh."""
+    showing(page, track.plays, refresh=COUNT_REFRESH_S)
     return screens.plays_at(page.state, track, page.now)
 
 

@@ -9,6 +9,7 @@ from types import SimpleNamespace
 
 import pytest
 
+from apps.kit.streaming import COUNT_REFRESH_S
 from apps.microtube import display, screens
 from apps.microtube.environment import MICROTUBE
 from apps.microtube.state import comment_count, notification_count, unread_notification_count
@@ -158,7 +159,7 @@ def test_the_shown_view_count_changes_exactly_when_next_change_says():
     shown = display.views_text(display.moving(page, video.views))
     ((change, every),) = changes
     assert change is not None and change > now
-    assert every == display.COUNT_REFRESH_S
+    assert every == COUNT_REFRESH_S
     assert display.views_text(video.views.value_at(change - 0.01)) == shown
     assert display.views_text(video.views.value_at(change + 0.01)) != shown
 
@@ -171,8 +172,8 @@ def test_an_open_page_refreshes_view_counts_every_few_minutes_and_a_reload_at_on
     page = Page(request=None, run=None, state=None, now=100.0)
     display.moving(page, video.views)
     # a reload reads anew at the count's next change; the open page is pushed at the refresh
-    assert page.fresh_until is not None and 100.0 < page.fresh_until < display.COUNT_REFRESH_S
-    assert page.next_change == display.COUNT_REFRESH_S
+    assert page.fresh_until is not None and 100.0 < page.fresh_until < COUNT_REFRESH_S
+    assert page.next_change == COUNT_REFRESH_S
     assert page.reads_same_until == page.fresh_until
 
 
