@@ -116,13 +116,14 @@ def artist(request: HttpRequest, page: Page, artist_id: str) -> HttpResponse:
     music: Music = page.state
     found = present(screens.visible_artist(music, artist_id), "artist")
     tracks = screens.artist_tracks(music, artist_id)
-    showing(page, found.followers)  # its followers move too: render again when they do
+    # Its followers and listeners move too: an open page takes them up at its next refresh.
+    showing(page, found.followers, refresh=COUNT_REFRESH_S)
     popular = sorted(tracks, key=lambda t: t.plays.value_at(0), reverse=True)[: screens.POPULAR]
     context = {
         **base_context(page, "artist", f"artist/{artist_id}"),
         "artist": found,
         "following": music.is_followed(artist_id),
-        "listeners": shown_count(showing(page, found.listeners)),
+        "listeners": shown_count(showing(page, found.listeners, refresh=COUNT_REFRESH_S)),
         "followers": screens.follower_count(music, found, page.now),
         "popular": [(t, music.is_liked(t.id), plays(page, t)) for t in popular],
         "discography": tuple(dict.fromkeys(t.album for t in tracks)),
