@@ -56,3 +56,16 @@ def test_microhub_starred_count_and_about_box_agree_after_starring():
         header = re.search(r"Starred ([\d,]+)", text)
         about = re.search(r"([\d,]+) stars", text)
         assert header and about and header.group(1) == about.group(1), now
+
+
+def test_microlendar_an_invitation_for_a_day_not_on_screen_is_noticed_until_opened():
+    """Was: the Hawaii invitation landed on 13 October while the month view showed September,
+    and nothing on the page changed. Now the sidebar lists it until it is opened."""
+    scenario, agenda = world("microlendar", "description-hawaii-absolute-active.json", 541.0)
+    text = page_text("microlendar", scenario, agenda, 541.0, "")
+    assert "September 2025" in text
+    assert re.search(r"New invitations \d+ Out of office Mon, Oct 13", text)
+    opened = get_environment("microlendar").perform(
+        agenda, "view_event", {"event_id": "desc-hawaii"}, 541.0
+    ).state
+    assert "Out of office Mon, Oct 13" not in page_text("microlendar", scenario, opened, 541.0, "")
