@@ -114,7 +114,21 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         if latest > self.seen:
             await self.push(latest)
         else:
+            await self.note_shown(url)
             self.arm()
+
+    async def note_shown(self, url: str) -> None:
+        """What the page looks like as the client has it — the same log position, the same
+        clock window — so that a first push that would change nothing is not sent either."""
+        now = sim_now(self.clock, wall_now())
+        if self.next_change is not None and now >= self.next_change:
+            return  # the clock moved on since the page was rendered: it shows an older window
+        try:
+            update = await live.shared_update(self.run, url, self.seen, now, self.host)
+        except Exception:  # a page that cannot be rendered live is pushed nothing anyway
+            return
+        if update.seq <= self.seen and url == self.url:
+            self.sent = update.looks
 
     async def run_log_grew(self, message: dict) -> None:
         if self.url is not None and message["seq"] > self.seen:

@@ -27,12 +27,20 @@ class _Text(HTMLParser):
         self.parts: list[str] = []
         self.open: list[str] = []  # tags open inside a skipped element, outermost first
         self.skip_ids = skip_ids
-        self.pictures = pictures  # an image's address is what it shows: part of the signature
+        # For a push's signature: what is seen without being text — a picture (its address),
+        # an icon (its name), how an element is styled (its classes: bold when unread).
+        self.pictures = pictures
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        if self.pictures and not self.open:
+            named = dict(attrs)
+            if tag == "img":
+                self.parts.append(f" [img {named.get('src') or ''}] ")
+            elif tag == "use":
+                self.parts.append(f" [icon {named.get('href') or ''}] ")
+            if named.get("class"):
+                self.parts.append(f"[.{named['class']}]")
         if tag in _VOID:
-            if tag == "img" and self.pictures and not self.open:
-                self.parts.append(f" [img {dict(attrs).get('src') or ''}] ")
             return
         if self.open:
             self.open.append(tag)
@@ -48,7 +56,9 @@ class _Text(HTMLParser):
             self.parts.append(" ")
 
     def handle_startendtag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
-        pass  # self-closing: holds no text
+        self.handle_starttag(tag, attrs)  # holds no text, may be a picture
+        if tag not in _VOID and self.open and self.open[-1] == tag:
+            self.open.pop()
 
     def handle_endtag(self, tag: str) -> None:
         if self.open:
@@ -73,8 +83,9 @@ def visible_text(html: str) -> str:
 
 
 def visible_signature(html: str) -> str:
-    """What a person sees of `html`: its text, the shell's clock included, and the pictures it
-    shows. A live push that would not change it is not sent (apps.kit.consumers)."""
+    """What a person sees of `html`: its text, the shell's clock included, its pictures, icons
+    and styling (classes), not its attributes for machines (ids, links, data-*, CSRF tokens,
+    labels). A live push that would not change it is not sent (apps.kit.consumers)."""
     parser = _Text(skip_ids=(), pictures=True)
     parser.feed(html)
     parser.close()

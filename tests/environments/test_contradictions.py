@@ -65,7 +65,9 @@ def test_microlendar_an_invitation_for_a_day_not_on_screen_is_noticed_until_open
     text = page_text("microlendar", scenario, agenda, 541.0, "")
     assert "September 2025" in text
     assert re.search(r"New invitations \d+ Out of office Mon, Oct 13", text)
-    opened = get_environment("microlendar").perform(
-        agenda, "view_event", {"event_id": "desc-hawaii"}, 541.0
-    ).state
+    opened = (
+        get_environment("microlendar")
+        .perform(agenda, "view_event", {"event_id": "desc-hawaii"}, 541.0)
+        .state
+    )
     assert "Out of office Mon, Oct 13" not in page_text("microlendar", scenario, opened, 541.0, "")
