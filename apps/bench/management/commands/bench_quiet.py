@@ -73,7 +73,7 @@ class Command(BaseCommand):
         unknown = [n for n in names if n not in environment_names()]
         if unknown:
             valid = ", ".join(environment_names())
-            raise CommandError(f"unknown --env {', '.join(unknown)}; valid: {valid}")
+            raise CommandError(f"unknown --env {', '.join(map(repr, unknown))}; valid: {valid}")
         for name, value in (("seconds", seconds), ("speed", speed)):
             if not value > 0:
                 raise CommandError(f"--{name} must be > 0, got {value}")
