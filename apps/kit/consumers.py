@@ -114,7 +114,7 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         if latest > self.seen:
             await self.push(latest)
         else:
-            await self.note_shown(url)
+            await self.note_shown(str(url))  # page_path_for checked it is a URL of this run
             self.arm()
 
     async def note_shown(self, url: str) -> None:

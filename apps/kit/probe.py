@@ -20,6 +20,8 @@ from events.catalog import load_catalog
 from events.models import Run
 from events.registry import EMPTY, LoggedEvent, get_environment
 
+# What @run_page reads for a page of the past (apps.replay) or, here, of a folded state.
+TIME_TRAVEL = "sentinel_time_travel"
 PROBE_TOKEN = "probe"  # never a stored run's token (those are long random strings)
 
 
@@ -74,7 +76,7 @@ def render_probe(run: Run, state: Any, at: float, path: str) -> str:
         raise NotRendered(f"no page {path!r} in {run.environment}") from None
     root = links.environment_root(run)
     request = RequestFactory().get(f"{root}/{path}")
-    request.sentinel_time_travel = Probe(run=run, state=state, at=at, root=root)
+    setattr(request, TIME_TRAVEL, Probe(run=run, state=state, at=at, root=root))
     response = match.func(request, run.token, *match.args, **match.kwargs)
     if hasattr(response, "render") and not getattr(response, "is_rendered", True):
         response = response.render()
