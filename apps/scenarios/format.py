@@ -81,6 +81,8 @@ class Scenario:
         spec = asdict(self)  # deep-copies, so the stored spec never aliases this object
         spec["events"] = list(spec["events"])
         spec["solution"] = list(spec["solution"])
+        if not spec["watch_page"]:
+            del spec["watch_page"]  # a run of a scenario without one is stored as it was
         return spec
 
 
@@ -282,9 +284,9 @@ def _condition_at(data: dict, kill_at: float, end: float, source: str) -> float 
 
 def _watch_page(data: dict, environment: str, source: str) -> str:
     """Optional; one of the environment's pages on our site, written as start_page is."""
-    if "watch_page" not in data:
+    page = _text(data.get("watch_page", ""), "watch_page", source)
+    if not page:  # absent or "": the start page
         return ""
-    page = _text(data["watch_page"], "watch_page", source, non_empty=True)
     root = f"HOST_ADDRESS/{environment}"
     if page != root and not page.startswith((root + "/", root + "?", root + "#")):
         _fail(source, "watch_page", f"must be a page of {environment}: {root}/…, got {page!r}")
