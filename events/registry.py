@@ -153,6 +153,9 @@ class Environment(Generic[S]):
     # state → every kind of page worth timing, as paths relative to the environment root
     # (e.g. "?folder=inbox"); used by `manage.py bench_pages`.
     sample_pages: Callable[[S], list[str]] | None = None
+    # The numbers the pages show in more than one place, each with its one value (the kit's
+    # apps.kit.counts.ShownCount): the generic tests check every sample page agrees with it.
+    shown_counts: tuple[Any, ...] = ()
 
     def action(self, name: str) -> Action[S]:
         """The action called `name`, or a refusal naming the ones there are."""

@@ -4,10 +4,13 @@ Protocol (JSON text frames):
 - client → server, on open and after every in-page navigation:
   `{"url": "/r/<token>/micromail/?folder=inbox", "seq": <log position the page shows>,
     "due": <simulated second its content next changes with the clock, or null>}`
-- server → client, whenever the run's log grows by a scenario or action event, and whenever
-  the clock reaches the page's `due` and the regions read differently:
+- server → client, whenever the run's log grows by a scenario or action event, or the clock
+  reaches the page's `due`, and what the regions show (text, clock, pictures: apps.kit.visible)
+  reads differently from what this socket last sent:
   `{"type": "regions", "url": …, "seq": N, "next_change": <the new due, or null>,
     "html": "<nav id=… data-live hx-swap-oob=\"true\">…"}`
+  (the log grew but nothing shown changed: the same frame with `"html": ""`, which moves the
+  page's log position and due time and swaps nothing),
   and `{"type": "error", "detail": …}` for a URL that is not one of this run's pages.
 
 Clock-driven pushes: after each push (and on subscribing) the socket sets one timer for the wall
@@ -65,7 +68,9 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         self.seen = 0
         self.clock = self.run  # the run's clock as last read (status, start, simulated time)
         self.next_change: float | None = None  # when the page shown next changes with the clock
-        self.sent: str | None = None  # the regions last sent (a clock push sends only a change)
+        # What the regions last sent look like (apps.kit.visible): a push that would not change
+        # what a person sees is not sent — whatever moved in the log or on the clock.
+        self.sent: str | None = None
         self.clock_pushed_at = float("-inf")
         self.timer: asyncio.TimerHandle | None = None
         self.due_task: asyncio.Task | None = None
@@ -109,7 +114,21 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         if latest > self.seen:
             await self.push(latest)
         else:
+            await self.note_shown(str(url))  # page_path_for checked it is a URL of this run
             self.arm()
+
+    async def note_shown(self, url: str) -> None:
+        """What the page looks like as the client has it — the same log position, the same
+        clock window — so that a first push that would change nothing is not sent either."""
+        now = sim_now(self.clock, wall_now())
+        if self.next_change is not None and now >= self.next_change:
+            return  # the clock moved on since the page was rendered: it shows an older window
+        try:
+            update = await live.shared_update(self.run, url, self.seen, now, self.host)
+        except Exception:  # a page that cannot be rendered live is pushed nothing anyway
+            return
+        if update.seq <= self.seen and url == self.url:
+            self.sent = update.looks
 
     async def run_log_grew(self, message: dict) -> None:
         if self.url is not None and message["seq"] > self.seen:
@@ -141,9 +160,13 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
             return  # the page navigated meanwhile; its new URL brought its own push
         self.seen = max(self.seen, update.seq, seq)
         self.next_change = update.next_change
-        if not (clock_driven and update.html == self.sent):
-            self.sent = update.html
+        if update.looks != self.sent:
+            self.sent = update.looks
             await self.send(text_data=update.text)
+        elif not clock_driven:
+            # The log grew but the page reads the same: only its position moves (a
+            # fast-forward agent reads it to know the page caught up), nothing is swapped.
+            await self.send_json(update.position())
         self.arm()
 
     # -- the clock timer ------------------------------------------------------------------------

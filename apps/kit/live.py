@@ -49,6 +49,7 @@ from django.urls import Resolver404, resolve, reverse
 from django.utils.crypto import get_random_string
 
 from apps.kit import request_attrs
+from apps.kit.visible import visible_signature
 from events.clock import CLOCK_FIELDS
 from events.lru import LRU
 from events.models import Event, Run
@@ -267,6 +268,17 @@ class LiveUpdate:
     def text(self) -> str:
         """The message as one JSON frame, encoded once for all subscribers."""
         return json.dumps(self.message())
+
+    @cached_property
+    def looks(self) -> str:
+        """What a person sees of the regions (text, clock, pictures): a push that would not
+        change it is not sent (apps.kit.consumers)."""
+        return visible_signature(self.html)
+
+    def position(self) -> dict:
+        """The frame that moves a page's log position and due time without touching it: the
+        log grew, but nothing the page shows changed."""
+        return {**self.message(), "html": ""}
 
     def shows(self, seq: int, now: float) -> bool:
         """Is this render what a fresh one at log position `seq`, simulated time `now` gives?"""

@@ -36,6 +36,20 @@ class LiveRenderActed(ActionRejected):
         super().__init__("a live re-render never acts", status=409)
 
 
+@dataclass(frozen=True)
+class Probe:
+    """A page rendered on a state folded in memory, at simulated second `at`, for a run that
+    need not be stored (apps.kit.probe): read-only like time travel, nothing logged or done."""
+
+    run: Run
+    state: Any
+    at: float
+    root: str
+
+
+AGE_REFRESH_S = 60.0  # simulated seconds; whole minutes, as the shell's clock turns over
+
+
 def run_for_token(token: str) -> Run:
     run = Run.objects.open_by_token(token)
     if run is None:
@@ -74,6 +88,10 @@ class Page:
     # without any event (a relative time ticks over, a price moves): live pages are re-rendered
     # and pushed then. None: nothing shown depends on the clock.
     next_change: float | None = None
+    # The earliest simulated time after `now` at which a fresh render (a reload) would read
+    # differently; before `next_change` when a value moves that the product only refreshes
+    # every few minutes on an open page (`refreshes_at`). None: same as `next_change`.
+    fresh_until: float | None = None
     # The fold `state` comes from (None for time travel): an action is decided on it and
     # applied to it, so a page action fires and folds nothing more (events.commands).
     folded: Folded | None = None
@@ -97,6 +115,45 @@ class Page:
         """Note that what this page shows changes at simulated second `at` (None: never)."""
         if at is not None and (self.next_change is None or at < self.next_change):
             self.next_change = max(at, self.now)
+        self._fresh_until(at)
+
+    def refreshes_at(self, at: float | None, every: float) -> None:
+        """A value shown moves at `at`, but an open page picks it up only at the product's next
+        refresh (every `every` simulated seconds: a video feed's view counts), not live: a
+        reload shows it at once, a live push waits for the refresh."""
+        if at is None:
+            return
+        self._fresh_until(at)
+        boundary = (self.now // every + 1) * every
+        self.changes_at_live(max(at, boundary))
+
+    def ages_at(self, at: float | None) -> None:
+        """A relative time shown ("5 min ago") next reads differently at `at`: an open page
+        takes it up with the clock's next minute, so a feed's ages and the top bar's clock move
+        together, once a minute, never at every item's own second."""
+        self.refreshes_at(at, AGE_REFRESH_S)
+
+    def changes_at_live(self, at: float | None) -> None:
+        if at is not None and (self.next_change is None or at < self.next_change):
+            self.next_change = max(at, self.now)
+
+    def note_changes(self, fresh_until: float | None, live_due: float | None) -> None:
+        """What a kept render of this page noted (apps.kit.screen_cache)."""
+        self._fresh_until(fresh_until)
+        self.changes_at_live(live_due)
+
+    def _fresh_until(self, at: float | None) -> None:
+        if at is not None and (self.fresh_until is None or at < self.fresh_until):
+            self.fresh_until = max(at, self.now)
+
+    @property
+    def reads_same_until(self) -> float | None:
+        """Until when a reload reads like this render (the screen cache keeps it that long)."""
+        if self.fresh_until is None:
+            return self.next_change
+        if self.next_change is None:
+            return self.fresh_until
+        return min(self.fresh_until, self.next_change)
 
     def act(self, action: str, payload: dict) -> Event | None:
         """Perform an agent action; the state is refreshed so the response shows its effect.
@@ -166,13 +223,17 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
     def wrapper(request: HttpRequest, token: str, *args, **kwargs) -> HttpResponse:
         past = getattr(request, "sentinel_time_travel", None)
         if past is not None:
-            # Set only by the staff-only admin viewer (apps.replay), never by a /r/ URL.
+            # Set only by the staff-only admin viewer (apps.replay) and by a probe render
+            # (apps.kit.probe), never by a /r/ URL.
             if request.method != "GET":
                 return HttpResponseNotAllowed(["GET"])
+            # A probe (apps.kit.probe) brings the state it folded in memory; the replay viewer
+            # names a log position of a stored run.
+            state = past.state if isinstance(past, Probe) else state_at(past.run, past.seq)
             page = Page(
                 request=request,
                 run=past.run,
-                state=state_at(past.run, past.seq),
+                state=state,
                 now=past.at,
                 read_only=True,
                 base=past.root,

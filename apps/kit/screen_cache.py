@@ -37,8 +37,9 @@ class Screen:
     state: Any  # held, so its identity cannot be reused while the entry lives
     live_seq: int
     rendered_at: float  # simulated second the screen was rendered at
-    valid_until: float  # the page's next registered change (inf: nothing shown moves)
+    valid_until: float  # when a reload next reads differently (inf: nothing shown moves)
     html: str  # with CSRF_PLACEHOLDER for the token
+    live_due: float | None = None  # the page's next live push (its `next_change`)
 
 
 _screens: OrderedDict[tuple, Screen] = OrderedDict()
@@ -87,15 +88,21 @@ def cached_render(
         and screen.live_seq == page.live_seq
         and screen.rendered_at <= page.now < screen.valid_until
     ):
-        page.changes_at(screen.valid_until if screen.valid_until != float("inf") else None)
+        # What the render noted: when a reload reads differently, when the open page is pushed.
+        page.note_changes(
+            screen.valid_until if screen.valid_until != float("inf") else None, screen.live_due
+        )
         _counts["hits"] += 1
         return _with_token(request, screen.html, status)
     _counts["misses"] += 1
     html = render({"csrf_token": CSRF_PLACEHOLDER})
     if status == 200:
-        valid_until = page.next_change if page.next_change is not None else float("inf")
+        until = page.reads_same_until
+        valid_until = until if until is not None else float("inf")
         with _lock:
-            _screens[key] = Screen(page.state, page.live_seq, page.now, valid_until, html)
+            _screens[key] = Screen(
+                page.state, page.live_seq, page.now, valid_until, html, page.next_change
+            )
             _screens.move_to_end(key)
             while len(_screens) > MAX_SCREENS:
                 _screens.popitem(last=False)

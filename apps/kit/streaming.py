@@ -34,15 +34,27 @@ T = TypeVar("T")
 # --- counts that move between events -------------------------------------------------------------
 
 
+# How often a product refreshes a count on an open page when the count is nobody's trigger: a
+# video's views, a song's plays, a paper's citations move on reload or every few minutes, not
+# under the reader's eyes (simulated seconds). A count a task watches (stars, prices) stays live.
+COUNT_REFRESH_S = 300.0
+
+
 def shown_count(value: float, step: int = 1) -> int:
     """`value` as a page shows it: the nearest multiple of `step`, half up."""
     return math.floor(value / step + 0.5) * step
 
 
-def showing(page: Any, series: Waypoints, step: int = 1) -> float:
+def showing(page: Any, series: Waypoints, step: int = 1, *, refresh: float | None = None) -> float:
     """The value of `series` at the page's `now`; the page (`apps.kit.pages.Page`) is rendered
-    again when the value, rounded to `step`, next reads differently."""
-    page.changes_at(series.next_change(page.now, step=step))
+    again when the value, rounded to `step`, next reads differently — or, with `refresh`
+    (simulated seconds), an open page takes the new value up only at its next refresh, as a
+    video feed's view counts do (a reload shows it at once)."""
+    change = series.next_change(page.now, step=step)
+    if refresh is None:
+        page.changes_at(change)
+    else:
+        page.refreshes_at(change, refresh)
     return series.value_at(page.now)
 
 

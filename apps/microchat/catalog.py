@@ -11,11 +11,13 @@ meeting's `schedule` {day, start, minutes}.
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Mapping
 from typing import Any
 
 from apps.kit.arrivals import Stamp
 from apps.kit.feeds import from_catalog
+from apps.kit.simclock import DAY_S, DAY_START_S
 from apps.microchat.state import (
     ENVIRONMENT,
     REACTIONS,
@@ -188,10 +190,37 @@ def make_team(chat: Chat, team_id: str, record: Mapping[str, Any], stamp: Stamp)
     )
 
 
+_CLOCK = re.compile(r"^(\d{1,2}):(\d{2})$")
+_AGO = re.compile(r"^(\d+) (minute|min|hour|day|week)s? ago$")
+_AGO_UNIT_S = {"minute": 60, "min": 60, "hour": 3600, "day": DAY_S, "week": 7 * DAY_S}
+# The hour a call the catalog logs only by its day is placed at, so the log sorts and reads
+# like one: yesterday afternoon, a day earlier mid-afternoon, last week late morning.
+_DAY_WORDS = {"Yesterday": (1, 16), "Last week": (7, 11)}
+
+
+def logged_call_at(text: str, at: float) -> float | None:
+    """When a call the catalog logs in words ("08:12", "Yesterday", "2 days ago") took place,
+    as a simulated second before `at` (its preload); None for words we cannot place. Calls
+    and reactions are then ordered and dated on one clock (the Activity feed mixes them)."""
+    text = text.strip()
+    if match := _CLOCK.match(text):
+        then = int(match[1]) * 3600 + int(match[2]) * 60 - DAY_START_S
+        return then if then <= at else then - DAY_S  # a later hour than now: yesterday's
+    if match := _AGO.match(text):
+        unit = _AGO_UNIT_S[match[2]]
+        if unit < DAY_S:
+            return at - int(match[1]) * unit
+        return int(match[1]) * -unit + 14 * 3600 - DAY_START_S
+    if text in _DAY_WORDS:
+        days, hour = _DAY_WORDS[text]
+        return -days * DAY_S + hour * 3600 - DAY_START_S
+    return None
+
+
 @from_catalog(ENVIRONMENT, "calls")
 def make_call(chat: Chat, call_id: str, record: Mapping[str, Any], stamp: Stamp) -> Call:
     """A call of the log: one delivered by a `new_call` event carries its arrival time, one
-    preloaded the catalog's own words ("2 hours ago")."""
+    preloaded the time the catalog's own words ("2 hours ago") stand for."""
     user_id = _field(record, "userId", "user_id")
     return Call(
         id=call_id,
@@ -204,6 +233,6 @@ def make_call(chat: Chat, call_id: str, record: Mapping[str, Any], stamp: Stamp)
         missed=bool(record.get("missed", False)),
         duration=str(record.get("duration") or ""),
         time_text=str(record.get("time") or ""),
-        at=None if stamp.preloaded else stamp.at,
+        at=logged_call_at(str(record.get("time") or ""), stamp.at) if stamp.preloaded else stamp.at,
         order=int(record.get("order") or 0),
     )

@@ -9,6 +9,7 @@ from typing import Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.microchat import state as chats
@@ -163,6 +164,23 @@ def has_unread(chat: Chat, conversation_id: str) -> bool:
     return bool(chats.unread_in(chat, conversation_id))
 
 
+# The numbers shown in more than one place (apps.kit.counts): the rail's badges on every screen,
+# the call log's tabs.
+SHOWN_COUNTS = (
+    ShownCount(
+        "unread chats",
+        lambda chat, now: chats.unread_conversation_count(chat),
+        ("{n} unread chats?",),
+    ),
+    ShownCount(
+        "missed calls",
+        lambda chat, now: chats.missed_call_count(chat),
+        ("Activity {n} new", r"All [\d,]+ Missed {n}"),
+    ),
+    ShownCount("calls", lambda chat, now: len(chat.calls), ("All {n} Missed",)),
+)
+
+
 MICROCHAT = Environment(
     name=ENVIRONMENT,
     title="MicroChat",
@@ -177,4 +195,5 @@ MICROCHAT = Environment(
         opening("chat", "conversation", "open_conversation", "conversation_id", applies=has_unread),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

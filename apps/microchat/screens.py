@@ -364,10 +364,13 @@ class CallsScreen:
 
 
 def newest_calls(chat: Chat) -> list[Call]:
-    """Calls delivered during the run (newest first) above the log they started with."""
-    arrived = sorted((c for c in chat.calls.values() if c.at is not None), key=lambda c: -c.at)
-    logged = sorted((c for c in chat.calls.values() if c.at is None), key=lambda c: c.order)
-    return arrived + logged
+    """Newest first: calls delivered during the run above the log they started with (dated
+    from its words); a call whose words give no time last, in the catalog's order."""
+    dated = sorted(
+        (c for c in chat.calls.values() if c.at is not None), key=lambda c: (-c.at, c.order)
+    )
+    undated = sorted((c for c in chat.calls.values() if c.at is None), key=lambda c: c.order)
+    return dated + undated
 
 
 @per_state()

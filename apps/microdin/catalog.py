@@ -180,6 +180,7 @@ def catalog_job(network: Network, job_id: str, record: Mapping, stamp: Stamp) ->
         applicants=int(record.get("applicants") or 0),
         posted_at=posted_at,
         order=order,
+        posted_during_run=not stamp.preloaded,
     )
 
 

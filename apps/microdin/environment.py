@@ -18,6 +18,7 @@ from dataclasses import replace
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.feeds import opening, posts_table
 from apps.kit.tables import KEY, Table, tables
 from apps.microdin import catalog as records
@@ -39,6 +40,42 @@ BASELINES = counted(
         "job_count": network_state.job_count,
         "applied_job_count": network_state.applied_job_count,
     }
+)
+
+
+def _not_a_strangers_profile(network: Network, path: str) -> bool:
+    """Another member's profile shows their own connections."""
+    return not path.startswith("in/") or path == f"in/{network.me.id}/"
+
+
+# The numbers shown in more than one place (apps.kit.counts): the nav badges, the home page's
+# card, My Network, the profile.
+SHOWN_COUNTS = (
+    ShownCount(
+        "connections",
+        lambda network, now: network_state.connections_count(network),
+        # ("Profile viewers 87 Connections 412": the card's figures sit side by side)
+        ("Connections {n}", "(?<!viewers ){n} Connections?", "{n} connections?"),
+        on=_not_a_strangers_profile,
+    ),
+    ShownCount(
+        "pending invitations",
+        lambda network, now: network_state.pending_connection_count(network),
+        ("{n} pending invitations?", r"Invitations \({n}\)", "Invitations {n}", "Show all {n}"),
+    ),
+    ShownCount(
+        "unread messages",
+        lambda network, now: network_state.unread_message_count(network),
+        ("{n} unread messages?",),
+    ),
+    ShownCount(
+        "unread notifications",
+        lambda network, now: network_state.unread_notification_count(network),
+        ("{n} unread notifications?",),
+    ),
+    ShownCount(
+        "jobs", lambda network, now: network_state.job_count(network), ("{n} jobs? on MicroDin",)
+    ),
 )
 
 
@@ -255,4 +292,5 @@ MICRODIN = Environment(
         ),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

@@ -132,9 +132,17 @@ class Job:
     type: str
     description: str
     requirements: tuple[str, ...]
-    applicants: int
+    applicants: int  # the catalog's count, for a posting that was up before the run
     posted_at: float
     order: int
+    # Posted while the run plays (minutes ago): it cannot have its catalogued applicants yet,
+    # so it reads as LinkedIn's fresh postings do, "Be among the first 25 applicants".
+    posted_during_run: bool = False
+
+    @property
+    def applicants_shown(self) -> int | None:
+        """The applicant count the posting shows; None for a fresh one (no count yet)."""
+        return None if self.posted_during_run else self.applicants
 
 
 @dataclass(frozen=True)

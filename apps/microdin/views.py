@@ -85,21 +85,30 @@ def my_network(request: HttpRequest, page: Page):
         "invitations": pending[: screens.INVITATIONS_PREVIEW],
         "pending": len(pending),
         "suggestions": screens.suggestions(page.state),
-        "connections": len(screens.connected_people(page.state)),
+        # One number everywhere (home, My Network, profile): the profile's count, not the
+        # length of the list of people we can show.
+        "connections": connections_count(page.state),
     }
 
 
 @PAGES.screen("invitations.html", tab="network")
 def invitations(request: HttpRequest, page: Page):
     pending = screens.invitations(page.state)
-    connected = screens.connected_people(page.state)
-    return {"invitations": pending, "pending": len(pending), "connections": len(connected)}
+    return {
+        "invitations": pending,
+        "pending": len(pending),
+        "connections": connections_count(page.state),
+    }
 
 
 @PAGES.screen("connections.html", tab="network")
 def connections(request: HttpRequest, page: Page):
     pending = screens.invitations(page.state)
-    return {"people": screens.connected_people(page.state), "pending": len(pending)}
+    return {
+        "people": screens.connected_people(page.state),
+        "pending": len(pending),
+        "connections": connections_count(page.state),
+    }
 
 
 @PAGES.form

@@ -11,6 +11,7 @@ playlist needs a track in the session (the original did not check it).
 
 from __future__ import annotations
 
+import json
 from collections.abc import Mapping
 from dataclasses import replace
 from types import MappingProxyType
@@ -104,9 +105,9 @@ def reduce_create_playlist(music: Music, event: LoggedEvent) -> Music:
 
 
 def decide_add_to_playlist(music: Music, payload: dict) -> dict:
-    if payload["playlist_id"] not in music.user_playlists:
+    if not music.owns_playlist(payload["playlist_id"]):
         raise ActionRejected(
-            f"no playlist of yours {payload['playlist_id']!r}: only playlists you created "
+            f"no playlist of yours {payload['playlist_id']!r}: only playlists you own "
             "can be added to",
             status=404,
         )
@@ -114,12 +115,23 @@ def decide_add_to_playlist(music: Music, payload: dict) -> dict:
 
 
 def reduce_add_to_playlist(music: Music, event: LoggedEvent) -> Music:
-    playlist = music.user_playlists.get(event.payload["playlist_id"])
-    track_id = event.payload["track_id"]
-    if playlist is None or track_id in playlist.track_ids:
+    """The track goes at the end of one of the user's playlists: one they created, or a catalog
+    playlist they own, whose `data` (the evaluation table's copy of its record) says so too."""
+    playlist_id, track_id = event.payload["playlist_id"], event.payload["track_id"]
+    created = music.user_playlists.get(playlist_id)
+    if created is not None:
+        if track_id in created.track_ids:
+            return music
+        track_ids = (*created.track_ids, track_id)
+        return with_changed(music, "user_playlists", playlist_id, track_ids=track_ids)
+    owned = music.playlists.get(playlist_id)
+    if owned is None or owned.owner_id != music.self_id or track_id in owned.track_ids:
         return music
-    track_ids = (*playlist.track_ids, track_id)
-    return with_changed(music, "user_playlists", playlist.id, track_ids=track_ids)
+    track_ids = (*owned.track_ids, track_id)
+    record = {**json.loads(owned.data or "{}"), "trackIds": list(track_ids)}
+    return with_changed(
+        music, "playlists", playlist_id, track_ids=track_ids, data=json.dumps(record)
+    )
 
 
 def on_track_page(music: Music, payload: dict) -> PageStep:

@@ -20,6 +20,7 @@ from typing import Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
@@ -168,6 +169,17 @@ materialize = tables(
 )
 
 
+# The numbers shown in more than one place (apps.kit.counts): Liked Songs in the library and on
+# its own page.
+SHOWN_COUNTS = (
+    ShownCount(
+        "liked songs",
+        lambda music, now: len(screens.liked_tracks(music)),
+        ("Liked Songs [^•]*• {n} songs?",),  # "Playlist • 6 songs", "<owner> • 6 songs, 19:16"
+    ),
+)
+
+
 MICROFY = Environment(
     name=ENVIRONMENT,
     title="MicroFy",
@@ -178,4 +190,5 @@ MICROFY = Environment(
     materialize=materialize,
     urlconf="apps.microfy.urls",
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

@@ -121,6 +121,15 @@ class Music(SelfUserState):
     def playlist(self, playlist_id: str) -> Playlist | None:
         return self.playlists.get(playlist_id) or self.user_playlists.get(playlist_id)
 
+    def own_playlists(self) -> tuple[Playlist, ...]:
+        """The playlists the user can add to: the catalog's that the user owns (the library
+        says "Playlist • you"), then those the user created — Spotify's "Add to playlist"."""
+        owned = (p for p in self.playlists.values() if p.owner_id == self.self_id)
+        return (*owned, *self.user_playlists.values())
+
+    def owns_playlist(self, playlist_id: str) -> bool:
+        return any(p.id == playlist_id for p in self.own_playlists())
+
 
 empty_music = Music.of  # catalog → the empty library, its self user in place
 

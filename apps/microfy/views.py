@@ -14,7 +14,7 @@ from django.views.decorators.http import require_GET, require_POST
 from apps.kit.item_actions import act_on_item
 from apps.kit.pages import Page, run_page
 from apps.kit.rendering import back_field, redirect_after, render_screen
-from apps.kit.streaming import present, showing, shown_count
+from apps.kit.streaming import COUNT_REFRESH_S, present, showing, shown_count
 from apps.microfy import screens
 from apps.microfy.query import HomeQuery, SearchQuery
 from apps.microfy.state import LIKED, Music, Track
@@ -30,8 +30,8 @@ ARTIST_ACTIONS = {"follow_artist": "Following", "unfollow_artist": "Unfollowed"}
 
 
 def plays(page: Page, track: Track) -> int:
-    """A track's plays as shown now; the page is re-rendered when the number moves."""
-    showing(page, track.plays)
+    """A track's plays as shown now; an open page takes a new number up at its next refresh."""
+    showing(page, track.plays, refresh=COUNT_REFRESH_S)
     return screens.plays_at(page.state, track, page.now)
 
 
@@ -104,7 +104,7 @@ def track(request: HttpRequest, page: Page, track_id: str) -> HttpResponse:
         "more_by_artist": [
             t for t in screens.artist_tracks(music, song.artist_id) if t.id != track_id
         ],
-        "user_playlists": tuple(music.user_playlists.values()),
+        "user_playlists": music.own_playlists(),
         "lyrics": [block.split("\n") for block in song.lyrics.split("\n\n") if block.strip()],
     }
     return render_screen(request, page, "microfy/track.html", context)
@@ -116,13 +116,14 @@ def artist(request: HttpRequest, page: Page, artist_id: str) -> HttpResponse:
     music: Music = page.state
     found = present(screens.visible_artist(music, artist_id), "artist")
     tracks = screens.artist_tracks(music, artist_id)
-    showing(page, found.followers)  # its followers move too: render again when they do
+    # Its followers and listeners move too: an open page takes them up at its next refresh.
+    showing(page, found.followers, refresh=COUNT_REFRESH_S)
     popular = sorted(tracks, key=lambda t: t.plays.value_at(0), reverse=True)[: screens.POPULAR]
     context = {
         **base_context(page, "artist", f"artist/{artist_id}"),
         "artist": found,
         "following": music.is_followed(artist_id),
-        "listeners": shown_count(showing(page, found.listeners)),
+        "listeners": shown_count(showing(page, found.listeners, refresh=COUNT_REFRESH_S)),
         "followers": screens.follower_count(music, found, page.now),
         "popular": [(t, music.is_liked(t.id), plays(page, t)) for t in popular],
         "discography": tuple(dict.fromkeys(t.album for t in tracks)),

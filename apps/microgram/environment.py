@@ -18,6 +18,7 @@ from typing import NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.feeds import opening, posts_table
 from apps.kit.social import Comment
 from apps.kit.state import with_changed, with_items
@@ -237,6 +238,21 @@ def _opens_unviewed_post(gram: Gram, post_id: str) -> bool:
     return state is not None and not state.is_viewed
 
 
+# The numbers shown in more than one place (apps.kit.counts): the sidebar's badges on every page.
+SHOWN_COUNTS = (
+    ShownCount(
+        "unread conversations",
+        lambda gram, now: gram_state.unread_conversation_count(gram),
+        ("{n} Messages", "{n} unread conversations?"),
+    ),
+    ShownCount(
+        "unread notifications",
+        lambda gram, now: gram_state.unread_activity_count(gram),
+        ("Notifications , {n} unread",),
+    ),
+)
+
+
 MICROGRAM = Environment(
     name=ENVIRONMENT,
     title="MicroGram",
@@ -263,4 +279,5 @@ MICROGRAM = Environment(
         ),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

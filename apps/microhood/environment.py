@@ -14,6 +14,7 @@ from typing import Annotated, Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.state import with_items
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
@@ -211,6 +212,35 @@ def materialize(hood: Hood, now: float, conn: sqlite3.Connection) -> None:
     write_tables(hood, now, conn)
 
 
+def _stock_on_screen(path: str) -> str:
+    """`stocks/MRDN?range=1D` → "MRDN" ("" on any other page)."""
+    page = path.partition("?")[0]
+    return page.removeprefix("stocks/") if page.startswith("stocks/") else ""
+
+
+# The numbers shown in more than one place (apps.kit.counts): a position's shares in the home
+# page's list and on its stock page; the buying power on the home page and the trade ticket.
+SHOWN_COUNTS = (
+    ShownCount(
+        "shares of the stock on screen",
+        lambda hood, now: 0,
+        ("Your position Shares {n}",),
+        value_on=lambda hood, now, path: hood.holding(_stock_on_screen(path)).shares,
+    ),
+    ShownCount(
+        "shares listed",
+        lambda hood, now: 0,
+        (r"\b{key} {n} shares?",),
+        value_of=lambda hood, now, symbol: hood.holding(symbol).shares,
+    ),
+    ShownCount(
+        "buying power",
+        lambda hood, now: int(hood.buying_power),
+        (r"Buying power \${n}",),
+    ),
+)
+
+
 MICROHOOD = Environment(
     name=ENVIRONMENT,
     title="MicroHood",
@@ -221,4 +251,5 @@ MICROHOOD = Environment(
     materialize=materialize,
     urlconf="apps.microhood.urls",
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

@@ -26,11 +26,24 @@ def money(value: float) -> str:
     return f"-${-value:,.2f}" if value < 0 else f"${value:,.2f}"
 
 
-def signed(value: float, shape: str) -> str:
-    """`shape` ("${}", "{}%") around the size, after a sign that agrees with the digits shown: a
-    change that rounds to zero is "+"."""
-    digits = f"{abs(value):,.2f}"
-    return ("-" if value < 0 and digits.strip("0.,") else "+") + shape.format(digits)
+@dataclass(frozen=True)
+class Change:
+    """A change in dollars and in percent, shown with one sign and one colour: "-$0.0033
+    (-3.95%)" in red, never "+$0.00 (-3.95%)" (a coin under a dollar moves by fractions of a
+    cent, so its dollars keep the four decimals its price has)."""
+
+    amount: str
+    percent: str
+    up: bool
+
+    @classmethod
+    def of(cls, delta: float, percent: float, price: float) -> Change:
+        tiny = round(delta, 2) == 0 and round(percent, 2) != 0  # a move of under a cent
+        places = 4 if 0 < abs(price) < 1 or tiny else 2
+        size, pct = f"{abs(delta):,.{places}f}", f"{abs(percent):,.2f}"
+        down = delta < 0 and bool((size + pct).strip("0.,"))  # a change shown as zero is "+"
+        sign = "-" if down else "+"
+        return cls(f"{sign}${size}", f"{sign}{pct}%", not down)
 
 
 def price_text(value: float) -> str:
@@ -61,6 +74,8 @@ def settled(hood: Hood, now: float) -> Hood:
 def row(hood: Hood, symbol: str, now: float, detail: str = "", spark: bool = False) -> Row:
     stock = hood.stocks[symbol]
     delta, percent = account.change(hood, symbol, now)
+    price = shown_price(hood, symbol, now)
+    shown = Change.of(delta, percent, price)
     series = hood.prices[symbol]
     line = ""
     if spark:  # the day so far, as the 1D chart draws it
@@ -69,10 +84,10 @@ def row(hood: Hood, symbol: str, now: float, detail: str = "", spark: bool = Fal
     return Row(
         symbol=symbol,
         name=stock.name,
-        price=price_text(shown_price(hood, symbol, now)),
-        change=signed(delta, "${}"),
-        percent=signed(percent, "{}%"),
-        up=delta >= 0,
+        price=price_text(price),
+        change=shown.amount,
+        percent=shown.percent,
+        up=shown.up,
         detail=detail,
         spark=line,
         logo=stock.name,
@@ -129,11 +144,12 @@ def portfolio(hood: Hood, now: float, range_name: str, span: float) -> Portfolio
     delta = value - hood.opening_value
     percent = delta / hood.opening_value * 100 if hood.opening_value else 0.0
     line = chart("portfolio", range_name, lambda t: account.portfolio_value(hood, t), now, span)
+    shown = Change.of(delta, percent, value)
     return Portfolio(
         value=money(value),
-        change=signed(delta, "${}"),
-        percent=signed(percent, "{}%"),
-        up=delta >= 0,
+        change=shown.amount,
+        percent=shown.percent,
+        up=shown.up,
         buying_power=money(hood.buying_power),
         cash=money(account.total_cash(hood)),
         chart=line,
@@ -169,13 +185,14 @@ def position(hood: Hood, symbol: str, now: float) -> Position | None:
     value = held.shares * account.quote(hood, symbol, now)
     gain = value - held.shares * held.avg_cost
     percent = gain / (held.shares * held.avg_cost) * 100 if held.avg_cost else 0.0
+    shown = Change.of(gain, percent, value)
     return Position(
         shares=held.shares,
         available=account.shares_available(hood, symbol),
         market_value=money(value),
         avg_cost=money(held.avg_cost),
-        total_return=f"{signed(gain, '${}')} ({signed(percent, '{}%')})",
-        total_return_up=gain >= 0,
+        total_return=f"{shown.amount} ({shown.percent})",
+        total_return_up=shown.up,
     )
 
 

@@ -17,10 +17,12 @@ from typing import Annotated, Any
 from pydantic import Field, model_validator
 
 from apps.kit.arrivals import Deliver, Delivery, Stamp, arrival, event_types
+from apps.kit.counts import ShownCount
 from apps.kit.state import EMPTY
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhub import catalog as records
+from apps.microhub import screens as hub_screens
 from apps.microhub.actions import ACTIONS
 from apps.microhub.bench import sample_pages
 from apps.microhub.state import (
@@ -374,6 +376,41 @@ materialize = tables(
 )
 
 
+def _unfiltered_list(of: str) -> Callable[[Hub, str], bool]:
+    """An issue or pull-request list without a search: its "N Open" is the repository's."""
+    return lambda hub, path: path.partition("?")[0] == of and "q=" not in path
+
+
+# The numbers shown in more than one place (apps.kit.counts): the repository header on every
+# page, the About box, the lists' open/closed switch, the profile's pinned repository.
+SHOWN_COUNTS = (
+    ShownCount(
+        "stars", lambda hub, now: star_count(hub, now), ("Star {n}", "Starred {n}", "{n} stars")
+    ),
+    ShownCount("forks", lambda hub, now: hub.forks, ("Fork {n}",)),
+    ShownCount(
+        "open issues", lambda hub, now: hub_screens.counts(hub).open_issues, ("Issues {n}",)
+    ),
+    ShownCount(
+        "open issues listed",
+        lambda hub, now: hub_screens.counts(hub).open_issues,
+        ("{n} Open",),
+        on=_unfiltered_list("issues/"),
+    ),
+    ShownCount(
+        "open pull requests",
+        lambda hub, now: hub_screens.counts(hub).open_prs,
+        ("Pull requests {n}",),
+    ),
+    ShownCount(
+        "open pull requests listed",
+        lambda hub, now: hub_screens.counts(hub).open_prs,
+        ("{n} Open",),
+        on=_unfiltered_list("pulls/"),
+    ),
+)
+
+
 MICROHUB = Environment(
     name=ENVIRONMENT,
     title="MicroHub",
@@ -396,4 +433,5 @@ MICROHUB = Environment(
         ),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

@@ -22,6 +22,7 @@ from typing import Any, NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
 from apps.kit.tables import Rows, Table, named, tables
 from apps.microlendar import state as agenda_state
@@ -47,12 +48,16 @@ BASELINES = counted(
     }
 )
 
-deliver_events = Delivery(
-    "events",
-    lambda agenda, event_id, stamp: catalog_event(agenda.catalog, event_id),
-    states="event_states",
-    fresh=EventState,
-)
+
+def delivered_event(agenda: Agenda, event_id: str, stamp) -> tuple[Any, EventState] | None:
+    """The catalog event, marked as a new invitation unless it is part of the starting world."""
+    event = catalog_event(agenda.catalog, event_id)
+    if event is None:
+        return None
+    return event, EventState(arrived_during_run=not stamp.preloaded)
+
+
+deliver_events = Delivery("events", delivered_event, states="event_states")
 # A catalog task comes with its catalogued completion.
 deliver_tasks = Delivery(
     "tasks",
@@ -185,6 +190,17 @@ def unviewed_invitation(agenda: Agenda, event_id: str) -> bool:
     )
 
 
+# The numbers shown in more than one place (apps.kit.counts): the sidebar on every view.
+SHOWN_COUNTS = (
+    ShownCount("tasks", lambda agenda, now: agenda_state.task_count(agenda), ("Tasks {n}",)),
+    ShownCount(
+        "new invitations",
+        lambda agenda, now: len(agenda_state.new_invitations(agenda)),
+        ("New invitations {n}",),
+    ),
+)
+
+
 MICROLENDAR = Environment(
     name=ENVIRONMENT,
     title="MicroLendar",
@@ -200,4 +216,5 @@ MICROLENDAR = Environment(
         opening("calendar", "event", "view_event", "event_id", applies=unviewed_invitation),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

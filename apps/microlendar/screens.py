@@ -25,6 +25,7 @@ from apps.microlendar.state import (
     live_events,
     live_tasks,
     matches_search,
+    new_invitations,
 )
 
 HOUR_PX = 48  # height of an hour row in the day, week and 4-day grids
@@ -287,6 +288,25 @@ def grouped(agenda: Agenda, query: CalendarQuery, events: list[CalendarEvent]):
 
 
 # --- the open event and the sidebar -----------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class InvitationRow:
+    title: str
+    when: str  # "Mon, Oct 13 · 9am – 5pm"
+    url: str  # the calendar on the invitation's day, its details open (opening marks it seen)
+
+
+def invitation_rows(agenda: Agenda, query: CalendarQuery) -> tuple[InvitationRow, ...]:
+    """The sidebar's "New invitations": what came in during the run and is not opened yet."""
+    return tuple(
+        InvitationRow(
+            title=event.title,
+            when=f"{event.day:%a}, {event.day:%b} {event.day.day} · {event.span}",
+            url=query.but(date=event.day.isoformat(), event=event.id).querystring() or "?",
+        )
+        for event in new_invitations(agenda)
+    )
 
 
 @dataclass(frozen=True)

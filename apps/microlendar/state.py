@@ -79,6 +79,9 @@ class CalendarEvent:
 class EventState:
     viewed: bool = False  # opened in the event details (upstream `isViewed`)
     deleted: bool = False
+    # Delivered while the user was away from the calendar's start, i.e. an invitation that came
+    # in during the run: until opened, the sidebar lists it as a new invitation.
+    arrived_during_run: bool = False
 
 
 @dataclass(frozen=True)
@@ -207,6 +210,18 @@ def conflict_count(agenda: Agenda) -> int:
         for second in day_events[i + 1 :]
         if first.overlaps(second)
     )
+
+
+def new_invitations(agenda: Agenda) -> list[CalendarEvent]:
+    """Invitations that came in during the run and were not opened yet, newest first: the
+    notice a calendar shows for an invitation arriving on a day the user is not looking at."""
+    return [
+        event
+        for event in reversed(live_events(agenda))
+        if not event.user_created
+        and agenda.event_states[event.id].arrived_during_run
+        and not agenda.event_states[event.id].viewed
+    ]
 
 
 def days(first: date, count: int) -> list[date]:

@@ -62,6 +62,7 @@ def base_context(page: Page, query: CalendarQuery) -> dict:
             for name in CALENDARS
         ],
         "tasks": screens.task_rows(agenda, today),
+        "invitations": screens.invitation_rows(agenda, query.but(q="", event=None)),
         "back": query.querystring(),
         "calendar_choices": CALENDARS,
     }

@@ -5,13 +5,14 @@ from __future__ import annotations
 
 from apps.kit import feeds
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
 from apps.kit.tables import KEY, Table, named, tables
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
 from apps.micromail.bench import sample_pages
 from apps.micromail.catalog import catalog_email, catalog_state
-from apps.micromail.state import ENVIRONMENT, Email, EmailState, Mail
+from apps.micromail.state import ENVIRONMENT, FOLDER_TITLES, FOLDERS, Email, EmailState, Mail
 from events.registry import Environment, counted
 
 # Upstream stamps every preloaded mail "five minutes before start", so its list reads "5 min ago"
@@ -95,6 +96,22 @@ def unread(mail: Mail, email_id: str) -> bool:
     return mail.has(email_id) and not mail.states[email_id].is_read
 
 
+# The numbers shown in more than one place (apps.kit.counts): the folder pane's badges (Inbox
+# under Favorites and again in the account's folders), every other folder its item count.
+SHOWN_COUNTS = (
+    ShownCount("inbox unread", lambda mail, now: mailbox.unread_count(mail), ("Inbox {n} unread",)),
+    *(
+        ShownCount(
+            f"{folder} items",
+            lambda mail, now, folder=folder: mailbox.folder_badges(mail)[folder],
+            (f"{FOLDER_TITLES[folder]} {{n}} items",),
+        )
+        for folder in FOLDERS
+        if folder != "inbox"
+    ),
+)
+
+
 MICROMAIL = Environment(
     name=ENVIRONMENT,
     title="MicroMail",
@@ -109,4 +126,5 @@ MICROMAIL = Environment(
         opening("mailbox", "email", "open_email", "email_id", applies=unread),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

@@ -18,6 +18,7 @@ import json
 from collections.abc import Iterable
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
 from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
@@ -137,6 +138,22 @@ def not_cited_yet(scholar: Scholar, paper_id: str) -> bool:
     return paper_id in scholar.papers and not scholar.is_cited(paper_id)
 
 
+# The numbers shown in more than one place (apps.kit.counts): the top bar's library and alert
+# badges on every page, and the library and alert pages' own headings.
+SHOWN_COUNTS = (
+    ShownCount(
+        "library",
+        lambda scholar, now: index.saved_paper_count(scholar),
+        ("My library {n}", "My library · {n} articles?"),
+    ),
+    ShownCount(
+        "unread alerts",
+        lambda scholar, now: index.unread_alert_count(scholar),
+        ("Alerts {n} unread", "{n} unread alerts?"),
+    ),
+)
+
+
 MICROSCHOLAR = Environment(
     name=ENVIRONMENT,
     title="MicroScholar",
@@ -151,4 +168,5 @@ MICROSCHOLAR = Environment(
         opening("cite", "paper_id", "cite", "paper_id", applies=not_cited_yet),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

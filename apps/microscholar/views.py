@@ -16,7 +16,7 @@ from django.views.decorators.http import require_GET, require_POST
 from apps.kit import simclock
 from apps.kit.pages import Page, run_page
 from apps.kit.rendering import back_field, redirect_after, render_screen
-from apps.kit.streaming import present
+from apps.kit.streaming import COUNT_REFRESH_S, present
 from apps.microscholar import cite as citing
 from apps.microscholar import screens
 from apps.microscholar import state as index
@@ -53,10 +53,11 @@ def show(
 
 
 def watch(page: Page, ids) -> None:
-    """The page changes when a shown "Cited by" count next ticks over."""
+    """The page changes when a shown "Cited by" count next ticks over; an open page takes it up
+    at its next refresh (Google Scholar's counts never move under the reader's eyes)."""
     papers = page.state.papers
     changes = (papers[i].citations_change_at(page.now) for i in ids)
-    page.changes_at(min((t for t in changes if t is not None), default=None))
+    page.refreshes_at(min((t for t in changes if t is not None), default=None), COUNT_REFRESH_S)
 
 
 def shown_rows(page: Page, ids) -> tuple[screens.Row, ...]:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from apps.kit.streaming import showing, shown_count
+from apps.kit.streaming import COUNT_REFRESH_S, showing, shown_count
 from apps.kit.waypoints import Waypoints
 
 UNITS = ((1_000_000_000, "B"), (1_000_000, "M"), (1_000, "K"))
@@ -66,9 +66,12 @@ def subscribers_text(value: float) -> str:
 
 
 def moving(page: Any, series: Waypoints, *, digits: int | None = None) -> float:
-    """The value of `series` at the page's `now`; the page is rendered again when its compact
-    text next changes."""
-    return showing(page, series, step=count_step(series.value_at(page.now), digits=digits))
+    """The value of `series` at the page's `now`; an open page shows its compact text anew at
+    the refresh after it changes."""
+    step = count_step(series.value_at(page.now), digits=digits)
+    # YouTube refreshes view and subscriber counts on an open page every few minutes, never
+    # live: a reload shows the count of the moment, a watching agent is not woken by each tick.
+    return showing(page, series, step=step, refresh=COUNT_REFRESH_S)
 
 
 def ago(at: float, now: float) -> str:

@@ -19,8 +19,10 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
+from apps.kit.counts import ShownCount
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
+from apps.microtube import screens as tube_screens
 from apps.microtube import state as tube_state
 from apps.microtube.actions import ACTIONS
 from apps.microtube.bench import sample_pages
@@ -217,6 +219,41 @@ materialize = tables(
 )
 
 
+def _on_screen(path: str, page: str, key: str) -> str:
+    """The id a page shows: `watch?v=ID` → ID for ("watch", "v"); "" on any other page."""
+    name, _, query = path.partition("?")
+    if name != page:
+        return ""
+    return next((v for k, _, v in (p.partition("=") for p in query.split("&")) if k == key), "")
+
+
+def _channel_on_screen(path: str) -> str:
+    name = path.partition("?")[0]
+    return name.removeprefix("channel/") if name.startswith("channel/") else ""
+
+
+# The numbers shown in more than one place (apps.kit.counts): a channel's video count in its
+# header and its About box, a video's comment count. (The bell reads "9+" past nine.)
+SHOWN_COUNTS = (
+    ShownCount(
+        "videos of the channel on screen",
+        lambda tube, now: 0,
+        ("{n} videos?",),
+        on=lambda tube, path: bool(_channel_on_screen(path)),
+        value_on=lambda tube, now, path: tube.channels[_channel_on_screen(path)].video_total,
+    ),
+    ShownCount(
+        "comments on the video on screen",
+        lambda tube, now: 0,
+        ("{n} Comments?",),
+        on=lambda tube, path: bool(_on_screen(path, "watch", "v")),
+        value_on=lambda tube, now, path: len(
+            tube_screens.comments(tube, _on_screen(path, "watch", "v"))
+        ),
+    ),
+)
+
+
 MICROTUBE = Environment(
     name=ENVIRONMENT,
     title="MicroTube",
@@ -238,4 +275,5 @@ MICROTUBE = Environment(
         ),
     ),
     sample_pages=sample_pages,
+    shown_counts=SHOWN_COUNTS,
 )

@@ -175,7 +175,19 @@ class ScenarioAdmin(admin.ModelAdmin):
     search_fields = ("scenario_id", "prompt")
     readonly_fields = ("monitoring_approach", "milestone_type", "updated_at")
     fieldsets = (
-        (None, {"fields": ("scenario_id", "environment", "path", "prompt", "start_page")}),
+        (
+            None,
+            {
+                "fields": (
+                    "scenario_id",
+                    "environment",
+                    "path",
+                    "prompt",
+                    "start_page",
+                    "watch_page",
+                )
+            },
+        ),
         (
             "Timing (authored seconds)",
             {"fields": ("condition_at", "event_timeline_end", "kill_at")},

@@ -3,7 +3,9 @@
 A throwaway fold in memory, nothing logged: the environment's initial state from the catalog,
 each timeline entry applied as a `scenario` LoggedEvent, and after each one the eval_sql value
 (with session_meta baselines, as grading computes them). Then the author's claims are checked:
-a passive task's condition must first hold at `condition_at` (±1 s), a no-op's never.
+a passive task's condition must first hold at `condition_at` (±1 s), a no-op's never; and a
+task's watched page (`watch_page`, else the start page) must read differently at `condition_at`
+than just before (apps.scenarios.watching).
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from typing import Any
 
 from apps.scenarios.models import Scenario, TimelineEvent
 from apps.scenarios.serialization import timeline_of
+from apps.scenarios.watching import watch_check
 from events.catalog import load_catalog
 from events.evaluation import GradingSnapshot
 from events.registry import (
@@ -93,6 +96,8 @@ def dry_run(
             )
         )
     _check(scenario, result, sql)
+    if condition_at is not None and not scenario.is_dev:
+        _check_watched(scenario, events, result, catalog_dir)
     if sql and condition_at is not None and scenario.solution and not scenario.is_dev:
         _check_solution(scenario, environment, at_condition, sql, result)
     return result
@@ -143,6 +148,24 @@ def _check_solution(scenario: Scenario, environment, start, sql: str, result: Dr
             f"the solution performed at condition_at {at:g} s does not make the condition hold "
             f"(eval_sql returned {shown(value)})"
         )
+
+
+def _check_watched(scenario: Scenario, events, result: DryRun, catalog_dir) -> None:
+    """Is the trigger there to be seen where the prompt says to watch?"""
+    assert scenario.condition_at is not None
+    check = watch_check(
+        scenario.environment,
+        scenario.watch_page or scenario.start_page,
+        scenario.condition_at,
+        [
+            {"time": e.time, "type": e.type, "payload": e.payload or {}}
+            for e in sorted(events, key=lambda e: (e.time, e.position))
+        ],
+        scenario.event_timeline_end,
+        catalog_dir=catalog_dir,
+        source=scenario.path,
+    )
+    (result.notes if check.changes else result.warnings).append(check.detail)
 
 
 def _check(scenario: Scenario, result: DryRun, sql: str) -> None:

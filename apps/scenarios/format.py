@@ -64,6 +64,14 @@ class Scenario:
     contact_rubric: dict[str, Any] = field(default_factory=dict)
     is_dev: bool = False
     source: str = INLINE
+    # Our extension: the page the prompt tells the agent to watch ("keep an eye on the jobs
+    # page"), same form as start_page; "" when it is the start page.
+    watch_page: str = ""
+
+    @property
+    def watched_page(self) -> str:
+        """Where the trigger must show: the declared watch page, else the start page."""
+        return self.watch_page or self.start_page
 
     @property
     def is_noop(self) -> bool:
@@ -75,6 +83,8 @@ class Scenario:
         spec = asdict(self)  # deep-copies, so the stored spec never aliases this object
         spec["events"] = list(spec["events"])
         spec["solution"] = list(spec["solution"])
+        if not spec["watch_page"]:
+            del spec["watch_page"]  # a run of a scenario without one is stored as it was
         return spec
 
 
@@ -294,6 +304,17 @@ def _condition_at(data: dict, kill_at: float, end: float, source: str) -> float 
     return condition_at
 
 
+def _watch_page(data: dict, environment: str, source: str) -> str:
+    """Optional; one of the environment's pages on our site, written as start_page is."""
+    page = _text(data.get("watch_page", ""), "watch_page", source)
+    if not page:  # absent or "": the start page
+        return ""
+    root = f"HOST_ADDRESS/{environment}"
+    if page != root and not page.startswith((root + "/", root + "?", root + "#")):
+        _fail(source, "watch_page", f"must be a page of {environment}: {root}/…, got {page!r}")
+    return page
+
+
 # --- public API --------------------------------------------------------------------------------
 
 
@@ -312,6 +333,7 @@ def parse_scenario(data: object, *, source: str = INLINE) -> Scenario:
         "start_page",
         source,
     )
+    watch_page = _watch_page(data, environment, source)
     end, kill_at = _timeline_bounds(data, source)
     condition_at = _condition_at(data, kill_at, end, source)
     eval_sql = _text(data.get("eval_sql", ""), "eval_sql", source)
@@ -333,6 +355,7 @@ def parse_scenario(data: object, *, source: str = INLINE) -> Scenario:
         contact_rubric=_contact_rubric(data, source),
         is_dev=False,
         source=source,
+        watch_page=watch_page,
     )
 
 

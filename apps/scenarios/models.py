@@ -23,6 +23,7 @@ DEFAULT_KEY_ORDER = (
     "id",
     "environment",
     "start_page",
+    "watch_page",
     "prompt",
     "condition_at",
     "event_timeline_end",
@@ -84,6 +85,12 @@ class Scenario(models.Model):
     environment = models.CharField(max_length=64, db_index=True)
     prompt = models.TextField(blank=True)
     start_page = models.CharField(max_length=300, blank=True)
+    watch_page = models.CharField(
+        max_length=300,
+        blank=True,
+        help_text="the page the prompt tells the agent to watch, e.g. HOST_ADDRESS/microdin/jobs "
+        "(empty: the start page)",
+    )
     condition_at = models.FloatField(
         null=True, blank=True, help_text="authored seconds; empty = no-op"
     )

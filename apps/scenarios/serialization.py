@@ -71,6 +71,7 @@ def read_scenario_file(path: Path, root: Path) -> ScenarioFile:
         environment=parsed.environment,
         prompt=data.get("prompt", ""),
         start_page=data.get("start_page", ""),
+        watch_page=data.get("watch_page", ""),
         condition_at=parsed.condition_at,
         event_timeline_end=parsed.event_timeline_end,
         kill_at=parsed.kill_at,
@@ -121,6 +122,7 @@ def scenario_document(row: Scenario, events: list[TimelineEvent] | None = None) 
         "id": row.scenario_id,
         "environment": row.environment,
         "start_page": row.start_page,
+        "watch_page": row.watch_page,
         "prompt": row.prompt,
         "condition_at": _number(row, "condition_at", row.condition_at),
         "event_timeline_end": _number(row, "event_timeline_end", row.event_timeline_end),
@@ -138,6 +140,8 @@ def scenario_document(row: Scenario, events: list[TimelineEvent] | None = None) 
         at = order.index("duration")
         order[at : at + 1] = ["event_timeline_end"] + ([] if row.is_dev else ["kill_at"])
     # Fields an author filled in after import are added (at the end) rather than lost.
+    if row.watch_page and "watch_page" not in order:
+        order.insert(order.index("start_page") + 1 if "start_page" in order else 0, "watch_page")
     for key, present in (
         ("eval_sql", bool(row.eval_sql)),
         ("solution", bool(row.solution)),
@@ -150,6 +154,8 @@ def scenario_document(row: Scenario, events: list[TimelineEvent] | None = None) 
         if key in KNOWN_KEYS:
             if key == "solution" and not row.key_order and not row.solution:
                 continue
+            if key == "watch_page" and not row.watch_page:
+                continue  # optional: a file without one is written without one
             document[key] = values[key]
         elif key in (row.extra or {}):
             document[key] = row.extra[key]

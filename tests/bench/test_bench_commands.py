@@ -33,7 +33,14 @@ def test_bench_pages_times_the_chosen_environment():
     )
 
 
-@pytest.mark.parametrize("command", ["bench_live", "bench_pages"])
+def test_bench_quiet_counts_pushes_per_minute_of_pages_with_nothing_due():
+    # 64 simulated seconds at speed 4: the top bar's minute turns over once or twice.
+    line = run("bench_quiet", "--env", "microlendar", "--seconds", "16", "--speed", "4")
+    found = re.fullmatch(r"bench_quiet: max_pushes_per_min=([\d.]+) worst=microlendar/\S*", line)
+    assert found and float(found.group(1)) <= 2.0, line
+
+
+@pytest.mark.parametrize("command", ["bench_live", "bench_pages", "bench_quiet"])
 def test_an_unknown_environment_is_named_with_the_valid_ones(command):
     with pytest.raises(CommandError, match=r"unknown --env 'nope'; valid: .*micromail"):
         run(command, "--env", "nope", "--seconds", "1")

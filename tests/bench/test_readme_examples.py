@@ -104,6 +104,7 @@ def test_the_readme_validate_command_proves_every_scenario(tmp_path):
     assert re.fullmatch(
         r"bench_validate: scenarios=100 oracle=100/100 early_fail=80/80 never_ok=100/100 "
         r"sleeper=39/100 act_all=39/100 act_all_timely=0/80 fixed_time=17/100 "
-        r"fixed_time_timely=6/80 quitter=0/100 quitter_timely=0/80 wall_s=[\d.]+ clock=virtual",
+        r"fixed_time_timely=6/80 quitter=0/100 quitter_timely=0/80 unseen=0/80 "
+        r"wall_s=[\d.]+ clock=virtual",
         done.stdout.strip().splitlines()[-1],
     )

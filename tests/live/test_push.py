@@ -291,3 +291,26 @@ def test_a_purged_open_item_stops_pushes_quietly():
     assert "In Deleted Items" in regions(moved)["reading-pane"]
     assert nothing
     assert REPORT in regions(inbox_update)["message-list"]
+
+
+def test_a_log_that_grows_without_changing_what_a_page_shows_moves_only_its_position():
+    """Nothing moves without a cause: flagging an inbox message changes nothing on Sent Items,
+    so that tab gets no regions, only its new log position (a fast-forward agent reads it)."""
+    run = new_run()
+    tab_a = Client()
+    sent = inbox(run, "?folder=sent")
+
+    async def story():
+        tab_b = await subscribe(run, sent)
+        assert await tab_b.receive_nothing(timeout=0.5)  # subscribed: the page as it is noted
+        response = await database_sync_to_async(tab_a.post)(
+            inbox(run, "emails/budget-review/flag"), {"back": "?folder=inbox"}
+        )
+        assert response.status_code == 302
+        message = await tab_b.receive_json_from(timeout=WAIT_S)
+        await tab_b.disconnect()
+        return message
+
+    message = run_async(story)
+    assert message["type"] == "regions" and message["url"] == sent
+    assert message["html"] == "" and message["seq"] == last_live_seq(run.pk)

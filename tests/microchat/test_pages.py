@@ -9,6 +9,9 @@ import pytest
 from django.conf import settings
 from django.test import Client
 
+from apps.kit.probe import probe_run, render_probe, state_at_time
+from apps.kit.visible import visible_text
+from apps.microchat import screens
 from apps.microchat.markup import render_markup
 from apps.scenarios.format import load_scenario_file
 from events import lifecycle
@@ -111,3 +114,19 @@ def test_light_markdown_escapes_and_highlights_mentions_of_me():
     assert "&lt;b&gt;x&lt;/b&gt;" in html
     assert 'href="https://x.example/a"' in html and "</a>." in html
     assert '<span class="mention me">@Sam</span>' in render_markup("@you", ("Sam",))
+
+
+def test_the_activity_feed_reads_newest_first_and_never_later_than_now():
+    """Regression: Activity listed reactions at "14:35" at 09:02, above calls of "Yesterday"
+    (past days' times shown as today's, preloaded calls sorted apart from the rest)."""
+    dev = load_scenario_file(Path(settings.SENTINEL_SCENARIO_DIR) / "microchat" / "dev.json")
+    now = 120.0
+    chat = state_at_time("microchat", dev.events, now)
+    items = screens.activity(chat, "/")
+    times = [item.at for item in items]
+    assert None not in times and times == sorted(times, reverse=True)
+    assert max(times) <= now
+    text = visible_text(
+        render_probe(probe_run("microchat", dev.to_run_spec()), chat, now, "activity")
+    )
+    assert "Missed call 31 min ago" in text and "Yesterday 16:00" in text

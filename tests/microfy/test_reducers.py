@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import sqlite3
 
 import pytest
@@ -84,7 +85,7 @@ def test_like_and_unlike_are_explicit_and_follow_needs_an_artist_in_the_session(
 
 def test_playlists_of_your_own_take_numbered_ids_and_only_they_can_be_added_to():
     music = act(
-        preloaded(playlist_ids=["playlist-001"]),
+        preloaded(playlist_ids=["playlist-001", "playlist-020"]),
         "create_playlist",
         {"name": "  Night Drive ", "description": None},
     )
@@ -93,8 +94,8 @@ def test_playlists_of_your_own_take_numbered_ids_and_only_they_can_be_added_to()
     add = {"playlist_id": "user-playlist-1", "track_id": "track-004"}
     music = act(act(music, "add_to_playlist", add), "add_to_playlist", add)
     assert music.user_playlists["user-playlist-1"].track_ids == ("track-004",)
-    with pytest.raises(ActionRejected, match="only playlists you created"):
-        act(music, "add_to_playlist", {**add, "playlist_id": "playlist-001"})
+    with pytest.raises(ActionRejected, match="only playlists you own"):
+        act(music, "add_to_playlist", {**add, "playlist_id": "playlist-020"})  # someone else's
     with pytest.raises(ActionRejected, match=r"^name"):
         act(music, "create_playlist", {"name": "   "})
 
@@ -155,3 +156,14 @@ def test_drifting_counts_grow_and_page_and_tables_agree_at_the_same_instant():
 def test_an_empty_catalog_state_is_safe():
     music = CAST.fresh()
     assert screens.trending(music) == () and screens.player(music, 0.0) == (None, None)
+
+
+def test_the_track_page_offers_every_playlist_you_own_and_adding_to_one_shows_in_its_data():
+    """Regression: "Add to playlist" offered only "Create a playlist first" beside the user's
+    four playlists in the library (they came from the catalog, owned by the user)."""
+    music = preloaded(playlist_ids=["playlist-001", "playlist-020"])
+    assert [p.id for p in music.own_playlists()] == ["playlist-001"]  # not playlist-020
+    music = act(music, "add_to_playlist", {"playlist_id": "playlist-001", "track_id": "track-004"})
+    playlist = music.playlists["playlist-001"]
+    assert playlist.track_ids[-1] == "track-004"
+    assert json.loads(playlist.data)["trackIds"][-1] == "track-004"

@@ -9,6 +9,7 @@ from types import SimpleNamespace
 
 import pytest
 
+from apps.kit.streaming import COUNT_REFRESH_S
 from apps.microtube import display, screens
 from apps.microtube.environment import MICROTUBE
 from apps.microtube.state import comment_count, notification_count, unread_notification_count
@@ -153,12 +154,27 @@ def test_a_new_upload_climbs_from_zero_and_page_and_table_agree_at_each_instant(
 def test_the_shown_view_count_changes_exactly_when_next_change_says():
     video = preloaded().videos[WALKTHROUGH]
     now, changes = 100.0, []
-    page = SimpleNamespace(now=now, changes_at=changes.append)  # what the tag tells its page
+    # what the tag tells its page: the change, and how often an open page refreshes it
+    page = SimpleNamespace(now=now, refreshes_at=lambda at, every: changes.append((at, every)))
     shown = display.views_text(display.moving(page, video.views))
-    (change,) = changes
+    ((change, every),) = changes
     assert change is not None and change > now
+    assert every == COUNT_REFRESH_S
     assert display.views_text(video.views.value_at(change - 0.01)) == shown
     assert display.views_text(video.views.value_at(change + 0.01)) != shown
+
+
+def test_an_open_page_refreshes_view_counts_every_few_minutes_and_a_reload_at_once():
+    """Was: the home page's view counts changed in 24 of 24 half-second samples."""
+    from apps.kit.pages import Page
+
+    video = preloaded().videos[WALKTHROUGH]
+    page = Page(request=None, run=None, state=None, now=100.0)
+    display.moving(page, video.views)
+    # a reload reads anew at the count's next change; the open page is pushed at the refresh
+    assert page.fresh_until is not None and 100.0 < page.fresh_until < COUNT_REFRESH_S
+    assert page.next_change == COUNT_REFRESH_S
+    assert page.reads_same_until == page.fresh_until
 
 
 def test_search_covers_titles_descriptions_and_channel_names():

@@ -33,7 +33,10 @@ def test_a_passive_condition_at_30_seconds_off_is_flagged(our_scenarios):
     result = dry_run(scenario)
     assert result.first_holds_at == 173.64
     assert result.warnings == [
-        "passive task: the condition first holds at 173.64 s, but condition_at is 203.64 s (off by -30 s)"
+        "passive task: the condition first holds at 173.64 s, but condition_at is 203.64 s (off by -30 s)",
+        # Nothing arrives at the wrong time either: the inbox reads the same just before it.
+        "the watched page HOST_ADDRESS/micromail does not change at condition_at 203.64 s: "
+        "declare the page the prompt names (watch_page) or show the trigger there",
     ]
 
 
@@ -73,3 +76,12 @@ def test_a_solution_that_cannot_act_at_condition_at_is_flagged(our_scenarios):
     scenario = our_scenarios.get(path="micromail/attachment-name-absolute-active.json")
     scenario.condition_at = 5.0  # before the awaited mail arrives: opening it is rejected
     assert any("is rejected at condition_at 5 s" in w for w in dry_run(scenario).warnings)
+
+
+def test_the_dry_run_notes_that_the_watched_page_changes(our_scenarios):
+    scenario = our_scenarios.get(path="micromail/inbox-relative-passive.json")
+    notes = dry_run(scenario).notes
+    assert any(
+        n.startswith("the watched page HOST_ADDRESS/micromail changes at condition_at 173.64 s")
+        for n in notes
+    ), notes

@@ -52,7 +52,7 @@ def _age(page, at: float, style: str) -> str:
     except KeyError:
         raise template.TemplateSyntaxError(f"ago={style!r}: allowed {', '.join(AGES)}") from None
     zero = simclock.day_zero(getattr(page, "run", None))
-    page.changes_at(changes_at(at, page.now, zero))
+    page.ages_at(changes_at(at, page.now, zero))
     return text(at, page.now, zero)
 
 

@@ -34,7 +34,7 @@ register = template.Library()
 def sim_ago(at: float, page) -> str:
     if isinstance(page, int | float):
         return simclock.ago(at, page)
-    page.changes_at(simclock.ago_changes_at(at, page.now))
+    page.ages_at(simclock.ago_changes_at(at, page.now))
     return simclock.ago(at, page.now)
 
 
@@ -42,7 +42,7 @@ def sim_ago(at: float, page) -> str:
 def sim_ago_compact(at: float, page) -> str:
     if isinstance(page, int | float):
         return simclock.compact_ago(at, page)
-    page.changes_at(simclock.units_changes_at(at, page.now))
+    page.ages_at(simclock.units_changes_at(at, page.now))
     return simclock.compact_ago(at, page.now)
 
 
@@ -50,7 +50,7 @@ def sim_ago_compact(at: float, page) -> str:
 def sim_ago_long(at: float, page) -> str:
     if isinstance(page, int | float):
         return simclock.long_ago(at, page)
-    page.changes_at(simclock.units_changes_at(at, page.now))
+    page.ages_at(simclock.units_changes_at(at, page.now))
     return simclock.long_ago(at, page.now)
 
 
@@ -64,7 +64,7 @@ def sim_relative(at: float, page) -> str:
     if isinstance(page, int | float):
         return simclock.relative(at, page, simclock.day_zero(None))
     zero = simclock.day_zero(page.run)
-    page.changes_at(simclock.relative_changes_at(at, page.now, zero))
+    page.ages_at(simclock.relative_changes_at(at, page.now, zero))
     return simclock.relative(at, page.now, zero)
 
 

@@ -11,7 +11,7 @@ from datetime import datetime
 from django import template
 
 from apps.kit import simclock
-from apps.kit.templatetags.simtime import sim_ago
+from apps.kit.templatetags.simtime import sim_relative
 from apps.microchat.markup import render_markup
 from apps.microchat.state import REACTIONS
 
@@ -58,8 +58,9 @@ def reaction_label(name: str) -> str:
 
 @register.simple_tag(takes_context=True)
 def when_text(context: template.Context, at: float | None, fallback: str = "") -> str:
-    """A call or activity time: relative to the page's clock for one that arrived during the
-    run, else the catalog's own words."""
+    """A call or activity time on the page's clock ("5 min ago", "14:35", "Yesterday 16:00",
+    "Mon 3 Mar": the day named once it is not today, so the feed never reads later than now),
+    else the catalog's own words."""
     if at is None:
         return fallback
-    return sim_ago(at, context["page"])
+    return sim_relative(at, context["page"])

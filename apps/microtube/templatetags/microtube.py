@@ -37,7 +37,7 @@ def likes(video: Video, page) -> str:
 
 @register.filter
 def yt_ago(at: float, page) -> str:
-    page.changes_at(display.ago_changes_at(at, page.now))
+    page.ages_at(display.ago_changes_at(at, page.now))
     return display.ago(at, page.now)
 
 

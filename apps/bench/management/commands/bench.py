@@ -61,6 +61,8 @@ from apps.bench.runner import (
     discover,
     run_pool,
 )
+from apps.scenarios.library import library, scenario_root
+from apps.scenarios.watching import WatchCheck, unseen_triggers
 from events.timing import (
     MAX_CONDITION_AT,
     REACTION_WINDOW,
@@ -551,6 +553,17 @@ class Command(BaseCommand):
 
     # --- validate --------------------------------------------------------------------------
 
+    def unseen_triggers(self, listing: list[dict]) -> list[WatchCheck]:
+        """Scenarios whose watched page does not change at condition_at, reported (not failed:
+        the original's files run unchanged). Checked on this checkout's copy of each file, by
+        its path; a scenario only the server has is not checked."""
+        local = library(scenario_root()).by_path
+        found = [local[s["path"]] for s in listing if s.get("path") in local]
+        unseen = unseen_triggers(found)
+        for check in unseen:
+            self.stdout.write(f"unseen trigger: {check.scenario}: {check.detail}")
+        return unseen
+
     def handle_validate(
         self,
         *,
@@ -652,6 +665,7 @@ class Command(BaseCommand):
         ]
         sleeper = [i for i in ids if passed("sleeper", i)]
         problems += cheating_problems(passed, ids, noop, active, noop_rule)
+        unseen = self.unseen_triggers(listing)
         for problem in problems:
             self.stdout.write(f"PROBLEM: {problem}")
         if sleeper:
@@ -678,6 +692,7 @@ class Command(BaseCommand):
             f"bench_validate: scenarios={len(ids)} oracle={len(oracle)}/{len(ids)} "
             f"early_fail={len(early)}/{len(targeted)} never_ok={len(never)}/{len(ids)} "
             f"sleeper={len(sleeper)}/{len(ids)} {' '.join(figures)} "
+            f"unseen={len(unseen)}/{len(targeted)} "
             f"wall_s={wall:.1f} clock={clock}"
         )
         if problems or errors:

@@ -1,11 +1,16 @@
 """`manage.py checkscenarios [DIR]`: which scenario files the library serves, and which not, why.
 
 One line per problem (a file failing validation, a file repeating another's id), then a
-summary, then how the targeted scenarios' condition times spread: a line per 100-second bin
+summary, then whether each trigger shows (below), then how the targeted scenarios' condition times spread: a line per 100-second bin
 (count and share) and a verdict. Exit 1 when a file fails validation or when one bin holds
 more than 25 % of the targeted scenarios (the paper samples condition times uniformly in
 [10, 600] s); a repeated id is reported but still runs by its path, as the original
 benchmark's MicroFy pair does.
+
+Then, for every targeted scenario, whether its trigger shows: the watched page (`watch_page`,
+else the start page) rendered just before and at `condition_at` must read differently
+(apps.scenarios.watching). A scenario where it does not is reported (`unseen: …`), not failed:
+the original benchmark's files run unchanged, and ours are held to it by their own test.
 """
 
 from __future__ import annotations
@@ -14,6 +19,7 @@ from django.core.management.base import BaseCommand, CommandError
 
 from apps.scenarios.library import library, scenario_root
 from apps.scenarios.spread import MAX_BIN_SHARE, MIN_JUDGED, Spread, condition_spread
+from apps.scenarios.watching import unseen_triggers
 
 
 class Command(BaseCommand):
@@ -38,6 +44,14 @@ class Command(BaseCommand):
         self.stdout.write(
             f"{len(loaded.by_path)} scenario files load from {root} "
             f"({len(loaded.by_id)} ids); {len(invalid)} invalid, {len(duplicates)} repeat an id"
+        )
+        unseen = unseen_triggers(loaded.by_path.values())
+        for check in unseen:
+            self.stdout.write(f"unseen: {check.scenario}: {check.detail}")
+        targeted = sum(1 for s in loaded.by_path.values() if s.condition_at is not None)
+        self.stdout.write(
+            f"watched pages: {targeted - len(unseen)} of {targeted} targeted scenarios "
+            "change visibly at condition_at"
         )
         spread = condition_spread(loaded.by_path.values())
         self._print_spread(spread)

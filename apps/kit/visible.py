@@ -1,0 +1,104 @@
+"""The text a person sees on a rendered page: what "the page changed" means to a watcher.
+
+Used to check that a scenario's trigger shows on the page its prompt names
+(apps.scenarios.watching), and to push a live re-render only when it reads differently
+(apps.kit.consumers). Markup, attributes, scripts, hidden elements and the shell's own clock
+are not text a watcher compares: the clock changes every minute whatever happens.
+"""
+
+from __future__ import annotations
+
+import re
+from html.parser import HTMLParser
+
+# Never shown as text: the head, scripts and styles, templates, the icon sprite's symbols.
+_SKIPPED = frozenset({"head", "script", "style", "template", "noscript", "symbol", "title"})
+_VOID = frozenset(
+    {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "wbr"}
+)
+# The shell's simulated clock (templates/site/base.html) reads the time, not what happened.
+CLOCK_ID = "sim-clock"
+_SPACE = re.compile(r"\s+")
+
+
+class _Text(HTMLParser):
+    def __init__(self, skip_ids: tuple[str, ...] = (CLOCK_ID,), pictures: bool = False) -> None:
+        super().__init__(convert_charrefs=True)
+        self.parts: list[str] = []
+        self.open: list[str] = []  # tags open inside a skipped element, outermost first
+        self.skip_ids = skip_ids
+        # For a push's signature: what is seen without being text — a picture (its address),
+        # an icon (its name), how an element is styled (its classes: bold when unread).
+        self.pictures = pictures
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        if self.pictures and not self.open:
+            named = dict(attrs)
+            if tag == "img":
+                self.parts.append(f" [img {named.get('src') or ''}] ")
+            elif tag == "use":
+                self.parts.append(f" [icon {named.get('href') or ''}] ")
+            if named.get("class"):
+                self.parts.append(f"[.{named['class']}]")
+        if tag in _VOID:
+            return
+        if self.open:
+            self.open.append(tag)
+            return
+        named = dict(attrs)
+        if (
+            tag in _SKIPPED
+            or "hidden" in named  # aria-hidden text is still seen: only `hidden` hides
+            or named.get("id") in self.skip_ids
+        ):
+            self.open.append(tag)
+        elif tag in ("br", "p", "div", "li", "tr", "h1", "h2", "h3", "h4", "section"):
+            self.parts.append(" ")
+
+    def handle_startendtag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        self.handle_starttag(tag, attrs)  # holds no text, may be a picture
+        if tag not in _VOID and self.open and self.open[-1] == tag:
+            self.open.pop()
+
+    def handle_endtag(self, tag: str) -> None:
+        if self.open:
+            # Close up to the matching tag (HTML lets some end tags be left out).
+            if tag in self.open:
+                while self.open and self.open.pop() != tag:
+                    pass
+            return
+        self.parts.append(" ")
+
+    def handle_data(self, data: str) -> None:
+        if not self.open:
+            self.parts.append(data)
+
+
+def visible_text(html: str) -> str:
+    """The page's (or fragment's) text in document order, whitespace collapsed to one space."""
+    parser = _Text()
+    parser.feed(html)
+    parser.close()
+    return _SPACE.sub(" ", "".join(parser.parts)).strip()
+
+
+def visible_signature(html: str) -> str:
+    """What a person sees of `html`: its text, the shell's clock included, its pictures, icons
+    and styling (classes), not its attributes for machines (ids, links, data-*, CSRF tokens,
+    labels). A live push that would not change it is not sent (apps.kit.consumers)."""
+    parser = _Text(skip_ids=(), pictures=True)
+    parser.feed(html)
+    parser.close()
+    return _SPACE.sub(" ", "".join(parser.parts)).strip()
+
+
+def text_difference(before: str, after: str, *, width: int = 60) -> str:
+    """Where two texts first differ, as a short one-line excerpt of each ("" when equal)."""
+    if before == after:
+        return ""
+    start = next(
+        (i for i, (a, b) in enumerate(zip(before, after, strict=False)) if a != b),
+        min(len(before), len(after)),
+    )
+    lo = max(0, start - 20)
+    return f"before …{before[lo : lo + width]!r}… after …{after[lo : lo + width]!r}…"
