@@ -83,8 +83,9 @@ class Scenario:
         spec = asdict(self)  # deep-copies, so the stored spec never aliases this object
         spec["events"] = list(spec["events"])
         spec["solution"] = list(spec["solution"])
-        if not spec["watch_page"]:
-            del spec["watch_page"]  # a run of a scenario without one is stored as it was
+        for optional in ("watch_page", "contact_rubric"):
+            if not spec[optional]:
+                del spec[optional]  # a run of a scenario without one is stored as it was
         return spec
 
 
@@ -241,7 +242,7 @@ def _contact_rubric(data: dict, source: str) -> dict[str, Any]:
     """What the agent's report must say (judged by `bench grade`: apps/bench/judge.py):
     `{"rubric": "…", "must_mention": ["…"]}`, either or both."""
     rubric = data.get("contact_rubric")
-    if rubric is None or rubric == {}:  # {}: a run spec's "no rubric"
+    if rubric is None:
         return {}
     where = "contact_rubric"
     rubric = _object(rubric, where, source)
