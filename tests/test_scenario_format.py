@@ -101,11 +101,14 @@ def test_the_run_spec_is_json_with_exactly_the_scenario_fields(pingenv):
 
     spec = scenario.to_run_spec()
 
-    # watch_page only when the scenario declares one: a run of one that does not is stored as
-    # runs always were.
-    assert set(spec) == {f.name for f in dataclasses.fields(Scenario)} - {"watch_page"}
+    # watch_page and contact_rubric only when the scenario declares them: a run of one that does
+    # not is stored as runs always were.
+    optional = {"watch_page", "contact_rubric"}
+    assert set(spec) == {f.name for f in dataclasses.fields(Scenario)} - optional
     watched = parse_scenario({**third_ping_scenario(), "watch_page": "HOST_ADDRESS/tally/x"})
     assert watched.to_run_spec()["watch_page"] == "HOST_ADDRESS/tally/x"
+    judged = parse_scenario({**third_ping_scenario(), "contact_rubric": {"must_mention": ["x"]}})
+    assert judged.to_run_spec()["contact_rubric"] == {"must_mention": ["x"]}
     assert isinstance(spec["events"], list) and isinstance(spec["solution"], list)
     assert json.loads(json.dumps(spec)) == spec
     assert spec["source"] == "<inline>"
