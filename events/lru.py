@@ -36,6 +36,16 @@ class LRU(Generic[K, V]):
             while len(self._entries) > self.size:
                 self._entries.popitem(last=False)
 
+    def pop(self, key: K) -> V | None:
+        with self._lock:
+            return self._entries.pop(key, None)
+
+    def discard_where(self, drop: Callable[[K], bool]) -> None:
+        """Forget every entry whose key `drop` selects (a closed run's)."""
+        with self._lock:
+            for key in [key for key in self._entries if drop(key)]:
+                del self._entries[key]
+
     def clear(self) -> None:
         with self._lock:
             self._entries.clear()

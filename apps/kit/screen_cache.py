@@ -102,6 +102,14 @@ def cached_render(
     return _with_token(request, html, status)
 
 
+def on_run_closed(sender: object, *, run_id: int, **_: object) -> None:
+    """Drop a closed run's screens (each holds its HTML and the state it was rendered from):
+    connected to the engine's `run_closed` notice in KitConfig.ready()."""
+    with _lock:
+        for key in [key for key in _screens if key[0] == run_id]:
+            del _screens[key]
+
+
 def cache_info() -> tuple[int, int]:
     """(hits, misses) of cacheable loads since the last `clear()`."""
     return _counts["hits"], _counts["misses"]
