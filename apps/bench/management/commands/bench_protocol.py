@@ -12,7 +12,8 @@ largest preload (its "full preload"):
 - landing pages per second: the run's start page (virtual clock, so it holds still) loaded by 8
   keep-alive clients;
 - server CPU per pushed frame: 50 websocket watchers on the first environment's landing page
-  of a live run, CPU of the server and its workers ÷ frames received;
+  of a live run whose inbox gets an arrival every 2 s (its own later events, repeated), CPU of
+  the server and its workers ÷ frames received, event and clock-driven pushes alike;
 - RSS growth: resident memory of the server and its workers before and after 1,000 runs are
   created, opened (task URL, start page) and closed.
 
@@ -48,6 +49,8 @@ from sentinel_site.processes import cpu_seconds, descendants, rss_kib
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
 LIVE_SOCKET = re.compile(r'id="sentinel-live"[^>]*data-socket="([^"]+)"')
+EVENT_EVERY_S = 2.0  # a watched inbox: one arrival every two seconds
+SUBSCRIBE_S = 60.0  # the watchers' time to subscribe, at most
 
 
 @dataclass(frozen=True)
@@ -77,21 +80,17 @@ def full_preload_scenario(environment: str) -> dict:
     return fullest.to_run_spec()
 
 
-def soon(spec: dict) -> dict:
-    """`spec` with its timeline after the preload moved earlier, spacing kept, so that its first
-    arrival comes one second after the clock starts (a short watch still sees events)."""
-    later = [e["time"] for e in spec["events"] if e["time"] > 0]
-    if not later:
-        return spec
-    shift = min(later) - 1.0
-    return {
-        **spec,
-        "events": [
-            {**e, "time": e["time"] - shift} if e["time"] > 0 else e for e in spec["events"]
-        ],
-        "event_timeline_end": spec["event_timeline_end"] - shift,
-        "condition_at": None,
-    }
+def watched(spec: dict, seconds: float) -> dict:
+    """`spec` as an inbox being watched: its preload, then its later arrivals again and again,
+    one every EVENT_EVERY_S from the clock's start until the watch surely ended (the
+    watchers subscribe first, within SUBSCRIBE_S) — pushes the watch sees whatever the
+    scenario's own spacing. A no-op task: nothing is graded."""
+    preload = [e for e in spec["events"] if e["time"] <= 0]
+    later = [e for e in spec["events"] if e["time"] > 0] or preload
+    count = int((SUBSCRIBE_S + seconds) / EVENT_EVERY_S) + 2
+    stream = [{**later[i % len(later)], "time": EVENT_EVERY_S * (i + 1)} for i in range(count)]
+    end = EVENT_EVERY_S * (count + 1)
+    return {**spec, "events": preload + stream, "event_timeline_end": end, "condition_at": None}
 
 
 def server_cpu_s() -> float:
@@ -266,7 +265,7 @@ class Command(BaseCommand):
         return sum(served) / (time.perf_counter() - started)
 
     def push_cpu_ms(self, protocol: Protocol, base_url: str, spec: dict, sizes: Sizes) -> float:
-        protocol.reset(soon(spec))
+        protocol.reset(watched(spec, sizes.watch_seconds))
         page = protocol.open()  # a live clock: event and clock-driven pushes both happen
         socket = LIVE_SOCKET.search(
             protocol.call("GET", page).text
@@ -319,9 +318,11 @@ async def watch(url: str, page: str, watchers: int, seconds: float) -> tuple[int
     stop = asyncio.Event()
     tasks = [asyncio.create_task(watcher(i, stop)) for i in range(watchers)]
     try:
-        await asyncio.wait_for(subscribed.wait(), 60)
+        await asyncio.wait_for(subscribed.wait(), SUBSCRIBE_S)
     except TimeoutError:
-        raise CommandError("the websocket watchers did not all subscribe within 60 s") from None
+        raise CommandError(
+            f"the websocket watchers did not all subscribe within {SUBSCRIBE_S:g} s"
+        ) from None
     counts[:] = [0] * watchers
     cpu_before = server_cpu_s()
     await asyncio.sleep(seconds)
