@@ -15,7 +15,10 @@ class LRU(Generic[K, V]):
     def __init__(self, size: int):
         self.size = size
         self._entries: OrderedDict[K, V] = OrderedDict()
-        self._lock = threading.Lock()  # request threads, the ticker and consumers share these
+        # Request threads, the ticker and consumers share these. Reentrant: dropping an entry
+        # can free the last reference to a state whose weakly held entry then leaves too
+        # (apps.kit.derived), on the same thread, under the same lock.
+        self._lock = threading.RLock()
 
     def get(self, key: K) -> V | None:
         with self._lock:
