@@ -12,6 +12,8 @@ from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from typing import Any
 
+from django.db.models import Count, Q
+
 from events.clock import TICKING
 from events.lifecycle import CONTACT_GET, CONTACT_POST, complete
 from events.models import Event, EventKind, Run
@@ -173,7 +175,10 @@ def evaluate(run: Run) -> Verdict:
     reaction = None
     if success and run.condition_at is not None and contacts.first_at is not None:
         reaction = to_wall(contacts.first_at - run.condition_at, sf)
-    counts = Event.objects.filter(run_id=run.pk)
+    counts = Event.objects.filter(run_id=run.pk).aggregate(
+        views=Count("pk", filter=Q(kind=EventKind.VIEW)),
+        actions=Count("pk", filter=Q(kind=EventKind.ACTION)),
+    )  # one read of the log for both
     return Verdict(
         success=success,
         detail=detail,
@@ -184,7 +189,7 @@ def evaluate(run: Run) -> Verdict:
         contact_message=contacts.message,
         run=run.pk,
         reaction_time=reaction,
-        views=counts.filter(kind=EventKind.VIEW).count(),
-        actions=counts.filter(kind=EventKind.ACTION).count(),
+        views=counts["views"],
+        actions=counts["actions"],
         graded_at_seq=graded_at,
     )

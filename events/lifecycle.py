@@ -13,7 +13,7 @@ from typing import Any
 from django.db import transaction
 from django.utils import timezone
 
-from events import notifications
+from events import notifications, projection, scheduler
 from events.catalog import load_catalog
 from events.clock import sim_now, wall_now
 from events.models import ClockMode, Event, EventKind, Run, RunStatus
@@ -64,8 +64,11 @@ def create_run(
             catalog_hash=catalog.content_hash,
             is_default_slot=default_slot,
         )
+    run.remember_spec()  # the ticker, /status and the pages read it deferred
     _log(run, "init", 0.0, {"speed_factor": speed_factor, "clock_mode": clock_mode})
-    fire_due(run)  # the t ≤ 0 preload, which also captures the baselines
+    # The t ≤ 0 preload, which also captures the baselines. The run was written just now and
+    # nothing of its timeline has fired: no re-read, no search for the first unfired entry.
+    fire_due(run, reload=False, next_index=0)
     return run
 
 
@@ -132,10 +135,14 @@ def complete(run: Run, *, wall: float | None = None) -> Run:
     fire_due(run, wall=wall)
     if run.status != RunStatus.COMPLETED:
         now = sim_now(run, wall)
-        Run.objects.filter(pk=run.pk).exclude(status=RunStatus.COMPLETED).update(
-            status=RunStatus.COMPLETED, sim_time=now
-        )
-        run.refresh_from_db()
+        if (
+            Run.objects.filter(pk=run.pk)
+            .exclude(status=RunStatus.COMPLETED)
+            .update(status=RunStatus.COMPLETED, sim_time=now)
+        ):
+            run.status, run.sim_time = RunStatus.COMPLETED, now  # what was just written
+        else:  # another caller completed it first: its frozen time is the one
+            run.refresh_from_db(fields=["status", "sim_time"])
     return run
 
 
@@ -154,9 +161,15 @@ def contact(
 
 
 def close(run: Run) -> None:
+    """Close the run, and forget what this process kept for it (its fold, its scenario): a
+    server that has served a thousand runs holds what one that served ten holds."""
     Run.objects.filter(pk=run.pk, closed_at__isnull=True).update(closed_at=timezone.now())
-    run.refresh_from_db()
+    run.refresh_from_db(fields=["status", "sim_time", "closed_at"])
     _log(run, "close", run.sim_time)
+    projection.forget(run)
+    scheduler.forget(run)
+    run.forget_spec()
+    notifications.run_closed(run.pk)
 
 
 def status_snapshot(run: Run) -> dict[str, Any]:

@@ -15,7 +15,10 @@ class LRU(Generic[K, V]):
     def __init__(self, size: int):
         self.size = size
         self._entries: OrderedDict[K, V] = OrderedDict()
-        self._lock = threading.Lock()  # request threads, the ticker and consumers share these
+        # Request threads, the ticker and consumers share these. Reentrant: dropping an entry
+        # can free the last reference to a state whose weakly held entry then leaves too
+        # (apps.kit.derived), on the same thread, under the same lock.
+        self._lock = threading.RLock()
 
     def get(self, key: K) -> V | None:
         with self._lock:
@@ -35,6 +38,16 @@ class LRU(Generic[K, V]):
             self._entries.move_to_end(key)
             while len(self._entries) > self.size:
                 self._entries.popitem(last=False)
+
+    def pop(self, key: K) -> V | None:
+        with self._lock:
+            return self._entries.pop(key, None)
+
+    def discard_where(self, drop: Callable[[K], bool]) -> None:
+        """Forget every entry whose key `drop` selects (a closed run's)."""
+        with self._lock:
+            for key in [key for key in self._entries if drop(key)]:
+                del self._entries[key]
 
     def clear(self) -> None:
         with self._lock:

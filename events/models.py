@@ -53,19 +53,28 @@ class RunQuerySet(models.QuerySet):
         database. The scenario column stays deferred (read it through `Run.spec`, cached per
         process): it holds the whole timeline, and decoding it on every request was wasted.
         """
-        found = list(self.raw(_open_by_token_sql(self.db), [token]))
+        found = list(self.raw(_open_run_sql(self.db, "{token} = %s"), [token]))
+        return found[0] if found else None
+
+    def open_default(self) -> Run | None:
+        """The open run of the default slot (the flat endpoints' one session), or None: read
+        by every /status, /init, /evaluate and /close, so written once, like `open_by_token`.
+        The condition is the partial unique index's own, so SQLite reads the index instead of
+        scanning every run ever created (`is_default_slot = 1` does not imply it)."""
+        found = list(self.raw(_open_run_sql(self.db, "{is_default_slot}")))
         return found[0] if found else None
 
 
 @functools.cache
-def _open_by_token_sql(alias: str) -> str:
+def _open_run_sql(alias: str, condition: str) -> str:
     quote = connections[alias].ops.quote_name
     columns = ", ".join(
         quote(field.column) for field in Run._meta.concrete_fields if field.name != "scenario"
     )
+    where = condition.format(token=quote("token"), is_default_slot=quote("is_default_slot"))
     return (
         f"SELECT {columns} FROM {quote(Run._meta.db_table)} "
-        f"WHERE {quote('token')} = %s AND {quote('closed_at')} IS NULL"
+        f"WHERE {where} AND {quote('closed_at')} IS NULL"
     )
 
 
@@ -124,10 +133,18 @@ class Run(models.Model):
             return self.scenario
         key = (self.pk, self.token)
         spec = _spec_cache.get(key)
-        if spec is None:
+        if spec is None:  # another process created the run, or this one forgot it
             spec = Run.objects.filter(pk=self.pk).values_list("scenario", flat=True).get()
             _spec_cache.put(key, spec)
         return spec
+
+    def remember_spec(self) -> None:
+        """Keep the scenario this process just wrote, so its deferred reads cost no query."""
+        _spec_cache.put((self.pk, self.token), self.scenario)
+
+    def forget_spec(self) -> None:
+        """A closed run is never read again on the hot paths: its scenario need not be kept."""
+        _spec_cache.pop((self.pk, self.token))
 
     @property
     def event_timeline_end(self) -> float:

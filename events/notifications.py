@@ -1,4 +1,4 @@
-"""What the engine tells the rest of the site: a run's log grew, a run's clock was moved.
+"""What the engine tells the rest of the site: a run's log grew, its clock was moved, it closed.
 
 The engine never knows who listens (live pages, in apps.kit.live, push regions to browsers):
 listeners subscribe to these Django signals, and each notice is sent only once the write that
@@ -23,6 +23,8 @@ LIVE_KINDS = (EventKind.SCENARIO, EventKind.ACTION)
 log_grew_signal = Signal()
 # Sent with run_id: the run's clock was moved or started by hand (not by time passing).
 clock_moved_signal = Signal()
+# Sent with run_id: the run was closed; what a process keeps for it (rendered pages) can go.
+run_closed_signal = Signal()
 
 
 def _send_on_commit(signal: Signal, **details: int) -> None:
@@ -44,3 +46,8 @@ def log_grew(run_id: int, seq: int) -> None:
 def clock_moved(run_id: int) -> None:
     """The run's clock was moved or started; listeners hear it once the write is committed."""
     _send_on_commit(clock_moved_signal, run_id=run_id)
+
+
+def run_closed(run_id: int) -> None:
+    """The run was closed; listeners hear it once the write is committed."""
+    _send_on_commit(run_closed_signal, run_id=run_id)

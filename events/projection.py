@@ -111,6 +111,11 @@ def clear_cache() -> None:
     _cache.clear()
 
 
+def forget(run: Run) -> None:
+    """Drop the run's kept fold (a closed run's state is ≈1 MiB nobody reads again here)."""
+    _cache.pop((run.pk, run.catalog_hash))
+
+
 def folded_state(run: Run, seq: int | None = None) -> Folded:
     """The state of `run` as of log position `seq` (default: the whole log), with its position."""
     key = (run.pk, run.catalog_hash)

@@ -47,6 +47,11 @@ def _remember_next_unfired(run: Run, index: int) -> None:
     _next_unfired[key] = max(index, _next_unfired.get(key, 0))
 
 
+def forget(run: Run) -> None:
+    """Drop the hint of a closed run (nothing fires for it again)."""
+    _next_unfired.pop((run.pk, run.token), None)
+
+
 def _first_unfired(run: Run) -> int:
     known = _next_unfired.get((run.pk, run.token))
     return fired_through(run) + 1 if known is None else known

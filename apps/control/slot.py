@@ -38,7 +38,7 @@ def flat_endpoint(view: Callable[..., HttpResponse]) -> Callable[..., HttpRespon
 
 
 def default_run() -> Run | None:
-    return Run.objects.filter(is_default_slot=True, closed_at__isnull=True).first()
+    return Run.objects.open_default()
 
 
 def require_default_run() -> Run:

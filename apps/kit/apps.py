@@ -7,6 +7,9 @@ class KitConfig(AppConfig):
     verbose_name = "Environment kit (pages, live regions, state helpers)"
 
     def ready(self) -> None:
-        from apps.kit import live
+        from apps.kit import live, screen_cache
+        from events.notifications import run_closed_signal
 
         live.connect()  # live pages hear the engine's notices (events.notifications)
+        # A closed run's kept pages are dropped, so memory comes back as runs end.
+        run_closed_signal.connect(screen_cache.on_run_closed, dispatch_uid="kit.screens.closed")

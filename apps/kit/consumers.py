@@ -55,6 +55,21 @@ def _finite(value: object) -> float | None:
     return number if math.isfinite(number) else None
 
 
+# Readings of a run's clock in flight on this event loop: every socket on a page wakes at the
+# same due time, and one read taken after they woke serves them all (50 sockets made 50 reads).
+_readings: dict[int, asyncio.Task] = {}
+
+
+async def shared_clock_reading(run_id: int) -> dict | None:
+    """The run's clock, fresh from the database: joins a read already under way, else starts one."""
+    task = _readings.get(run_id)
+    if task is None:
+        task = asyncio.ensure_future(database_sync_to_async(live.clock_reading)(run_id))
+        _readings[run_id] = task
+        task.add_done_callback(lambda _: _readings.pop(run_id, None))
+    return await asyncio.shield(task)  # one socket closing does not cancel the others' read
+
+
 class RunLiveConsumer(AsyncJsonWebsocketConsumer):
     async def connect(self) -> None:
         token = self.scope["url_route"]["kwargs"]["token"]
@@ -203,7 +218,7 @@ class RunLiveConsumer(AsyncJsonWebsocketConsumer):
         # else: the previous one is still rendering and re-arms when done
 
     async def clock_due(self) -> None:
-        reading = await database_sync_to_async(live.clock_reading)(self.run.pk)
+        reading = await shared_clock_reading(self.run.pk)
         if reading is None or self.next_change is None:
             return
         self.clock = live.with_clock(self.run, reading)  # a fresh read: it may have stopped

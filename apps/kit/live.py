@@ -53,7 +53,12 @@ from apps.kit.visible import visible_signature
 from events.clock import CLOCK_FIELDS
 from events.lru import LRU
 from events.models import Event, Run
-from events.notifications import LIVE_KINDS, clock_moved_signal, log_grew_signal
+from events.notifications import (
+    LIVE_KINDS,
+    clock_moved_signal,
+    log_grew_signal,
+    run_closed_signal,
+)
 
 log = logging.getLogger(__name__)
 
@@ -84,16 +89,22 @@ def on_clock_moved(sender: object, *, run_id: int, **_: object) -> None:
         _send(run_id, {"type": CLOCK_MOVED, "run": run_id, "clock": reading})
 
 
+def on_run_closed(sender: object, *, run_id: int, **_: object) -> None:
+    """Forget the renders of a closed run: its pages are never pushed again."""
+    _renders.discard_where(lambda key: key[0] == run_id)
+
+
 def connect() -> None:
     log_grew_signal.connect(on_log_grew, dispatch_uid="kit.live.log_grew")
     clock_moved_signal.connect(on_clock_moved, dispatch_uid="kit.live.clock_moved")
+    run_closed_signal.connect(on_run_closed, dispatch_uid="kit.live.run_closed")
 
 
 def _send(run_id: int, message: dict) -> None:
     from channels.layers import get_channel_layer
 
     layer = get_channel_layer()
-    if layer is None:
+    if layer is None or nobody_listens(layer, group_name(run_id)):
         return
     try:
         loop = asyncio.get_running_loop()
@@ -106,6 +117,15 @@ def _send(run_id: int, message: dict) -> None:
             async_to_sync(layer.group_send)(group_name(run_id), message)
     except Exception:  # e.g. Redis unreachable: the page falls back to polling
         log.warning("live push for run %s failed", run_id, exc_info=True)
+
+
+def nobody_listens(layer: object, group: str) -> bool:
+    """True when the in-process layer (embedded) has no socket in `group`: most runs have no
+    open page, and handing each notice to the event loop cost a thread hop per fire (≈1 ms of a
+    reset). A shared layer (Redis) reaches other processes' sockets: always sent."""
+    from channels.layers import InMemoryChannelLayer
+
+    return isinstance(layer, InMemoryChannelLayer) and not layer.groups.get(group)
 
 
 def last_live_seq(run_id: int) -> int:

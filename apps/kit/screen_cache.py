@@ -29,7 +29,8 @@ from django.middleware.csrf import get_token
 CSRF_PLACEHOLDER = "__sentinel_csrf_token__"
 # Request headers a view may read to decide what to render (django-htmx's request.htmx).
 _HTMX_HEADERS = ("HTTP_HX_REQUEST", "HTTP_HX_BOOSTED", "HTTP_HX_TARGET", "HTTP_HX_TRIGGER")
-MAX_SCREENS = 512  # ≈ 50 MB at the largest pages (~100 KB); oldest dropped first
+MAX_SCREENS = 512  # oldest dropped first…
+MAX_SCREEN_BYTES = 24 * 1024 * 1024  # …and beyond this much HTML (512 of the largest: 50 MB)
 
 
 @dataclass(frozen=True)
@@ -43,6 +44,7 @@ class Screen:
 
 
 _screens: OrderedDict[tuple, Screen] = OrderedDict()
+_held = [0]  # characters of HTML the kept screens hold (≈ bytes: the pages are ASCII markup)
 _lock = threading.Lock()
 _counts = {"hits": 0, "misses": 0}
 
@@ -100,13 +102,29 @@ def cached_render(
         until = page.reads_same_until
         valid_until = until if until is not None else float("inf")
         with _lock:
+            _drop(key)
             _screens[key] = Screen(
                 page.state, page.live_seq, page.now, valid_until, html, page.next_change
             )
-            _screens.move_to_end(key)
-            while len(_screens) > MAX_SCREENS:
-                _screens.popitem(last=False)
+            _held[0] += len(html)
+            while len(_screens) > MAX_SCREENS or _held[0] > MAX_SCREEN_BYTES:
+                _drop(next(iter(_screens)))
     return _with_token(request, html, status)
+
+
+def _drop(key: tuple) -> None:
+    """Forget one screen (under the lock)."""
+    screen = _screens.pop(key, None)
+    if screen is not None:
+        _held[0] -= len(screen.html)
+
+
+def on_run_closed(sender: object, *, run_id: int, **_: object) -> None:
+    """Drop a closed run's screens (each holds its HTML and the state it was rendered from):
+    connected to the engine's `run_closed` notice in KitConfig.ready()."""
+    with _lock:
+        for key in [key for key in _screens if key[0] == run_id]:
+            _drop(key)
 
 
 def cache_info() -> tuple[int, int]:
@@ -118,4 +136,5 @@ def clear() -> None:
     """Forget every kept screen and the counts (tests; memory is otherwise bounded by the LRU)."""
     with _lock:
         _screens.clear()
+        _held[0] = 0
         _counts.update(hits=0, misses=0)

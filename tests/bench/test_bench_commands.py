@@ -44,3 +44,13 @@ def test_bench_quiet_counts_pushes_per_minute_of_pages_with_nothing_due():
 def test_an_unknown_environment_is_named_with_the_valid_ones(command):
     with pytest.raises(CommandError, match=r"unknown --env 'nope'; valid: .*micromail"):
         run(command, "--env", "nope", "--seconds", "1")
+
+
+def test_bench_protocol_ends_with_the_worst_figures_of_the_protocol():
+    line = run("bench_protocol", "--quick", "--env", "micromail")
+    assert re.fullmatch(
+        r"bench_protocol: reset_ms_median=[\d.]+ evaluate_ms_median=[\d.]+ "
+        r"status_ms_p99=[\d.]+ pages_per_s_min=[\d.]+ push_cpu_ms=([\d.]+|nan) "
+        r"rss_growth_mib=-?[\d.]+",
+        line,
+    )

@@ -114,3 +114,23 @@ def test_off_every_load_is_rendered(mail_url, settings):
     html = load(client, mail_url("?folder=inbox"))
     assert screen_cache.cache_info() == (0, 0)
     assert screen_cache.CSRF_PLACEHOLDER not in html
+
+
+def test_closing_the_run_forgets_its_screens(
+    mail_run, mail_url, django_capture_on_commit_callbacks
+):
+    load(Client(), mail_url("?folder=inbox"))
+    with django_capture_on_commit_callbacks(execute=True):
+        lifecycle.close(mail_run)
+    assert not [key for key in screen_cache._screens if key[0] == mail_run.pk]
+    assert screen_cache._held[0] == 0
+
+
+def test_kept_screens_are_bounded_by_their_size(mail_url, monkeypatch):
+    inbox = load(Client(), mail_url("?folder=inbox"))
+    monkeypatch.setattr(screen_cache, "MAX_SCREEN_BYTES", len(inbox) + 1)
+    load(Client(), mail_url("?folder=sent"))  # the older screen goes to make room
+    assert [key[1] for key in screen_cache._screens] == [mail_url("?folder=sent")]
+    assert screen_cache._held[0] == len(
+        screen_cache._screens[next(iter(screen_cache._screens))].html
+    )

@@ -44,7 +44,7 @@ from events.models import Event, EventKind, Run
 from events.registry import environment_names, get_environment
 from events.timing import SpeedFactorError, validate_speed_factor
 from sentinel_site.figures import percentile
-from sentinel_site.processes import live_pids, parent_of
+from sentinel_site.processes import descendants, rss_kib
 from sentinel_site.site_server import ServerDidNotStart, site_server
 
 KNEE_MS = 100.0  # page p95 beyond this is where the server "breaks"
@@ -288,26 +288,3 @@ class RssSampler:
         while not self._stop.wait(self.every_s):
             total_kib = sum(rss_kib(pid) for pid in descendants(os.getpid()))
             self.peak_mib = max(self.peak_mib, total_kib / 1024)
-
-
-def descendants(root: int) -> list[int]:
-    """Every live process below `root`, from /proc (Linux)."""
-    children: dict[int, list[int]] = {}
-    for pid in live_pids():
-        children.setdefault(parent_of(pid), []).append(pid)
-    found, todo = [], [root]
-    while todo:
-        for child in children.get(todo.pop(), []):
-            found.append(child)
-            todo.append(child)
-    return found
-
-
-def rss_kib(pid: int) -> int:
-    try:
-        for line in Path(f"/proc/{pid}/status").read_text().splitlines():
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    except OSError:
-        pass
-    return 0
