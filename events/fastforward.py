@@ -123,7 +123,12 @@ def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
     """Take `wait` on `run` at wall time `wall` (default now; read once): move the clock, log the
     skip and fire what it passed. Raises WaitRefused when the run cannot wait."""
     wall = wall_now() if wall is None else wall
-    for _ in range(MAX_ATTEMPTS):
+    for attempt in range(MAX_ATTEMPTS):
+        if attempt:
+            # Lost the race to another wait, which was applied at a later reading than ours:
+            # starting from our older one would begin this skip before that one ended (the
+            # clock read backwards by the difference). It starts now instead.
+            wall = max(wall, wall_now())
         run.refresh_from_db(fields=[*CLOCK_FIELDS, "closed_at"])
         refused = refusal(run)
         if refused is not None:
