@@ -52,6 +52,13 @@ class ShownCount(Generic[S]):
         ]
 
 
+def item_on_screen(path: str, prefix: str) -> str:
+    """The item a page's path names after `prefix` (`stocks/MRDN?range=1D`, "stocks/" →
+    "MRDN"); "" on any other page: what a per-item count reads its item from."""
+    page = path.partition("?")[0]
+    return page.removeprefix(prefix) if page.startswith(prefix) else ""
+
+
 def shown_numbers(text: str, pattern: re.Pattern[str]) -> list[tuple[str, int]]:
     """Every (key, number) `pattern` finds in `text`, the number as an int ("1,325" → 1325),
     the key "" unless the phrase names one."""

@@ -14,7 +14,7 @@ from typing import Annotated, Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, item_on_screen
 from apps.kit.state import with_items
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
@@ -213,9 +213,7 @@ def materialize(hood: Hood, now: float, conn: sqlite3.Connection) -> None:
 
 
 def _stock_on_screen(path: str) -> str:
-    """`stocks/MRDN?range=1D` → "MRDN" ("" on any other page)."""
-    page = path.partition("?")[0]
-    return page.removeprefix("stocks/") if page.startswith("stocks/") else ""
+    return item_on_screen(path, "stocks/")
 
 
 # The numbers shown in more than one place (apps.kit.counts): a position's shares in the home

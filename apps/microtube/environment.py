@@ -19,7 +19,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, item_on_screen
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
 from apps.microtube import screens as tube_screens
@@ -228,8 +228,7 @@ def _on_screen(path: str, page: str, key: str) -> str:
 
 
 def _channel_on_screen(path: str) -> str:
-    name = path.partition("?")[0]
-    return name.removeprefix("channel/") if name.startswith("channel/") else ""
+    return item_on_screen(path, "channel/")
 
 
 # The numbers shown in more than one place (apps.kit.counts): a channel's video count in its
