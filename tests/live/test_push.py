@@ -90,19 +90,7 @@ def test_a_fired_event_is_pushed_to_its_own_run_only():
 
 def test_an_action_in_one_tab_updates_another_tab_of_the_same_run():
     run = new_run()
-    tab_a = Client()
-
-    async def story():
-        tab_b = await subscribe(run, inbox(run))
-        response = await database_sync_to_async(tab_a.post)(
-            inbox(run, "emails/budget-review/flag"), {"back": "?folder=inbox"}
-        )
-        assert response.status_code == 302
-        message = await tab_b.receive_json_from(timeout=WAIT_S)
-        await tab_b.disconnect()
-        return message
-
-    message = run_async(story)
+    message = pushed_after_a_flag(run, inbox(run))
     assert 'aria-label="Unflag “Q3 budget review”"' in regions(message)["message-list"]
 
 
@@ -297,12 +285,21 @@ def test_a_log_that_grows_without_changing_what_a_page_shows_moves_only_its_posi
     """Nothing moves without a cause: flagging an inbox message changes nothing on Sent Items,
     so that tab gets no regions, only its new log position (a fast-forward agent reads it)."""
     run = new_run()
-    tab_a = Client()
     sent = inbox(run, "?folder=sent")
+    message = pushed_after_a_flag(run, sent, settled_first=True)
+    assert message["type"] == "regions" and message["url"] == sent
+    assert message["html"] == "" and message["seq"] == last_live_seq(run.pk)
+
+
+def pushed_after_a_flag(run, url: str, *, settled_first: bool = False) -> dict:
+    """What a tab subscribed to `url` is pushed when another tab flags "Q3 budget review"
+    (`settled_first`: the subscription pushes nothing before it)."""
+    tab_a = Client()
 
     async def story():
-        tab_b = await subscribe(run, sent)
-        assert await tab_b.receive_nothing(timeout=0.5)  # subscribed: the page as it is noted
+        tab_b = await subscribe(run, url)
+        if settled_first:
+            assert await tab_b.receive_nothing(timeout=0.5)  # subscribed: the page as it is noted
         response = await database_sync_to_async(tab_a.post)(
             inbox(run, "emails/budget-review/flag"), {"back": "?folder=inbox"}
         )
@@ -311,6 +308,4 @@ def test_a_log_that_grows_without_changing_what_a_page_shows_moves_only_its_posi
         await tab_b.disconnect()
         return message
 
-    message = run_async(story)
-    assert message["type"] == "regions" and message["url"] == sent
-    assert message["html"] == "" and message["seq"] == last_live_seq(run.pk)
+    return run_async(story)
