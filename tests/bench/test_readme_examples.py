@@ -24,9 +24,10 @@ from tests.first_hour.test_readme_harness import (
     command_line,
     fresh_clone,
     readme_section,
+    user_env,
 )
 
-pytestmark = pytest.mark.e2e
+pytestmark = [pytest.mark.e2e, pytest.mark.user_clone]
 
 TASK = "micromail-sender-absolute-passive"
 
@@ -34,15 +35,6 @@ TASK = "micromail-sender-absolute-passive"
 def demo_script() -> str:
     blocks = code_blocks(readme_section("The paper's reference agents"))
     return next(code for lang, code, _ in blocks if lang == "bash" and "scripted_model" in code)
-
-
-def user_env() -> dict[str, str]:
-    """A user's shell: none of the test suite's settings, databases or scenario folders."""
-    return {
-        key: value
-        for key, value in os.environ.items()
-        if not key.startswith(("DJANGO_", "SENTINEL_", "DATABASE_", "REDIS_", "CELERY_"))
-    }
 
 
 def run_demo(clone, port: int) -> subprocess.CompletedProcess:
