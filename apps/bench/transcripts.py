@@ -1,7 +1,8 @@
 """An agent's transcript (`transcript.jsonl` in its task folder), rendered as one HTML page.
 
-The reference agents write one JSON object per step — `{"step", "t", "url", "text", "tool",
-"arguments", "result", "screenshot", "usage"}` — and the screenshots under `transcript/`. An
+The reference agents write one JSON object per step — `{"step", "t", "sim_start", "sim_time",
+"url", "text", "tool", "arguments", "result", "screenshot", "usage"}`, and `checks` on a
+wait_for step (apps/browser_agent/transcript.py) — and the screenshots under `transcript/`. An
 agent killed at its deadline can leave a half-written last line, and any agent may write what it
 likes: every line that is not such an object is shown as unreadable, a jump in step numbers as
 missing steps, a screenshot that is not there as missing; none of them stops the page.
@@ -39,6 +40,9 @@ class Step:
     result: Any
     screenshot: Any
     usage: Any
+    sim_start: float | None = None  # the run's simulated time the model's page showed
+    sim_time: float | None = None  # … and when the step ended
+    checks: Any = None  # wait_for: its judge's questions
 
 
 @dataclass(frozen=True)
@@ -75,6 +79,9 @@ def read_transcript(path: Path) -> list[Step | Unreadable]:
                 result=data.get("result"),
                 screenshot=data.get("screenshot"),
                 usage=data.get("usage"),
+                sim_start=_number(data.get("sim_start"), float),
+                sim_time=_number(data.get("sim_time"), float),
+                checks=data.get("checks"),
             )
         )
     return entries
@@ -142,6 +149,8 @@ def _step_html(step: Step, task_folder: Path, page_folder: Path) -> str:
         if step.t is not None
         else ""
     )
+    if step.sim_time is not None:
+        when += f' <span class="t" title="the run\'s simulated clock">· sim {step.sim_time:.1f} s</span>'
     parts = [f'<section class="step" id="line-{step.line}"><div class="body">']
     parts.append(f"<h2>{escape(heading)}{when}</h2>")
     if step.url:
