@@ -196,6 +196,7 @@ class AgentLoop:
         """Run the reply's tool calls; returns why the task ended, if it did."""
         messages.append(_assistant_message(reply))
         text, screenshot = reply.content, observation.jpeg or None
+        seen: str | None = observation.description
         if not reply.tool_calls:
             step = self.transcript.record(
                 url=observation.url,
@@ -206,6 +207,7 @@ class AgentLoop:
                 screenshot=screenshot,
                 usage=usage,
                 sim_start=seen_at,
+                observation=seen,
             )
             self.say(f"{step:>3} (no tool call) {short({'text': text})}")
             return "the model answered without calling a tool"
@@ -234,11 +236,12 @@ class AgentLoop:
                 usage=spent,
                 sim_start=seen_at,
                 checks=checks,
+                observation=seen,
             )
             self.say(f"{step:>3} {name}({short(arguments)}) → {outcome[:160]}")
             messages.append({"role": "tool", "tool_call_id": call.id, "content": outcome})
-            # A reply's text, screenshot and own tokens go with the first of its calls.
-            usage, text, screenshot = Usage(), None, None
+            # A reply's text, page, screenshot and own tokens go with the first of its calls.
+            usage, text, screenshot, seen = Usage(), None, None, None
             if ended:
                 return ended
         return None

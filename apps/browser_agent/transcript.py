@@ -4,8 +4,9 @@ One JSON object per line, one line per step, written (and flushed) as the step e
 killed at its deadline leaves every finished step readable:
 
     {"step": 3, "t": 12.41, "sim_start": 41.2, "sim_time": 49.75, "url": "http://…",
-     "text": "…" | null, "tool": "click" | null, "arguments": {"target": 12},
-     "result": "clicked [12] button \"Archive\"", "screenshot": "transcript/step-003.jpg" | null,
+     "observation": "URL: …\nTitle: …" | null, "text": "…" | null, "tool": "click" | null,
+     "arguments": {"target": 12}, "result": "clicked [12] button \"Archive\"",
+     "screenshot": "transcript/step-003.jpg" | null,
      "usage": {"input_tokens": 5120, "output_tokens": 38},
      "checks": [{"sim_time": 45.1, "blocks": ["+ …"], "met": false, "why": "…",
                  "usage": {"input_tokens": 310, "output_tokens": 12}}]}
@@ -13,8 +14,9 @@ killed at its deadline leaves every finished step readable:
 `t` is wall seconds since the agent started, when the step ended; `sim_time` is the run's
 simulated time then and `sim_start` when the page the model chose the step on was seen (both as
 the server last reported them, carried forward: apps.browser_agent.sim_clock; null when no page
-of the run has answered yet). `url` and `screenshot` are what the model saw when it chose the
-step; `usage` is every token the step spent — the agent's call and, for wait_for, its judge's —
+of the run has answered yet). `url`, `observation` (the page's description as the model read
+it) and `screenshot` are what the model saw when it chose the step — the first call of a reply
+only; `usage` is every token the step spent — the agent's call and, for wait_for, its judge's —
 so the lines add up to costs.json. A `wait_for` step also has `checks`: every question its judge
 was asked, in order, with the diff blocks it was shown, its answer and that question's tokens
 (empty when no change ever reached it). The HTML report and the task timeline render this
@@ -66,6 +68,7 @@ class Transcript:
         usage: Usage,
         sim_start: float | None = None,
         checks: list[dict[str, Any]] | None = None,
+        observation: str | None = None,
     ) -> int:
         """Write one step; returns its number."""
         self.steps += 1
@@ -79,6 +82,7 @@ class Transcript:
             "sim_start": sim_start,
             "sim_time": self.sim_clock(),
             "url": url,
+            "observation": observation,
             "text": text,
             "tool": tool,
             "arguments": arguments,
