@@ -43,6 +43,7 @@ class Step:
     sim_start: float | None = None  # the run's simulated time the model's page showed
     sim_time: float | None = None  # … and when the step ended
     checks: Any = None  # wait_for: its judge's questions
+    observation: str | None = None  # the page's description the model read
 
 
 @dataclass(frozen=True)
@@ -82,6 +83,7 @@ def read_transcript(path: Path) -> list[Step | Unreadable]:
                 sim_start=_number(data.get("sim_start"), float),
                 sim_time=_number(data.get("sim_time"), float),
                 checks=data.get("checks"),
+                observation=_text(data.get("observation")),
             )
         )
     return entries
