@@ -8,6 +8,8 @@ from django.urls import reverse
 from django.utils.html import format_html
 
 from apps.bench.models import BenchmarkRun, TaskResult
+from apps.bench.timeline_page import task_file_view, task_timeline_view
+from apps.replay.admin import add_run_page
 
 
 def _run_link(result: TaskResult) -> str:
@@ -113,3 +115,8 @@ class TaskResultAdmin(admin.ModelAdmin):
     @admin.display(description="harness error", boolean=True)
     def has_error(self, result):
         return bool(result.error)
+
+
+# The task timeline, under each run in the admin (apps.replay.admin serves it there).
+add_run_page("task/", task_timeline_view, "events_run_task", "task timeline")
+add_run_page("task/file/<path:name>", task_file_view, "events_run_task_file")

@@ -529,6 +529,7 @@ class Command(BaseCommand):
     ):
         from apps.bench import grading, report
         from apps.bench.judge import JudgeError, model_asker
+        from apps.bench.timeline_links import timelines_section
 
         if config is None and Path(DEFAULT_CONFIG).exists():
             config = DEFAULT_CONFIG
@@ -559,13 +560,20 @@ class Command(BaseCommand):
             render = grading.render_comparison_csv if csv else grading.render_comparison
             text = render(sets, window)
         self.stdout.write(text, ending="")
+        if not csv:
+            self.stdout.write(timelines_section(sets, cfg.server_url), ending="")
         if html:
             if len(sets) == 1:
                 report.write_report(
-                    Path(html), sets[0].name, sets[0].rows, window, result_set=sets[0]
+                    Path(html),
+                    sets[0].name,
+                    sets[0].rows,
+                    window,
+                    result_set=sets[0],
+                    site=cfg.server_url,
                 )
             else:
-                report.write_comparison_report(Path(html), sets, window)
+                report.write_comparison_report(Path(html), sets, window, site=cfg.server_url)
             if not csv:
                 self.stdout.write(f"HTML report -> {html}")
 
