@@ -321,12 +321,12 @@ STYLE = """
 #tl-list{list-style:none;padding:0;margin:8px 0}
 #tl-list li{border-top:1px solid #eee;padding:3px 0;margin:0}
 #tl-list summary{cursor:pointer;font-size:13px}
-#tl-list .when{display:inline-block;width:7em;font-variant-numeric:tabular-nums;color:#444}
+#tl-list .when{display:inline-block;width:8.5em;font-variant-numeric:tabular-nums;color:#444}
 #tl-list .lane{display:inline-block;width:10em;color:#777;font-size:12px}
 #tl-list .dot{display:inline-block;width:9px;height:9px;border-radius:50%;margin-right:6px}
 #tl-list .kind-trigger summary{font-weight:700;color:#c8322d}
 #tl-list .tokens{color:#777;font-size:12px;margin-left:8px}
-#tl-list .body{padding:6px 0 8px 7em;display:flex;gap:16px;align-items:flex-start}
+#tl-list .body{padding:6px 0 8px 8.5em;display:flex;gap:16px;align-items:flex-start}
 #tl-list .body pre{white-space:pre-wrap;font-size:12px;background:#f6f6f6;padding:6px;margin:4px 0;
   max-height:360px;overflow:auto}
 #tl-list .body .text{flex:1;min-width:0}
@@ -375,9 +375,12 @@ def _mark(timeline: Timeline, index: int, entry: Entry) -> str:
 def _vertical(timeline: Timeline, at: float, label: str, color: str, dash: str = "") -> str:
     x = _x(timeline, at)
     style = f' stroke-dasharray="{dash}"' if dash else ""
+    # A label near the right edge reads leftwards, so it is never cut off.
+    anchor = ' text-anchor="end"' if x > WIDTH - 120 else ""
+    shift = -3 if anchor else 3
     return (
         f'<line x1="{x:.1f}" x2="{x:.1f}" y1="16" y2="{HEIGHT - 22}" stroke="{color}"{style}/>'
-        f'<text x="{x + 3:.1f}" y="14" fill="{color}">{escape(label)}</text>'
+        f'<text x="{x + shift:.1f}" y="14" fill="{color}"{anchor}>{escape(label)}</text>'
     )
 
 
@@ -476,7 +479,7 @@ def _facts(timeline: Timeline) -> str:
 def _row(index: int, entry: Entry, links: Links) -> str:
     when = f"{entry.at:.1f} s"
     if entry.until is not None and entry.until > entry.at:
-        when += f"–{entry.until:.1f}"
+        when = f"{entry.at:.1f}–{entry.until:.1f} s"
     tokens = (
         f'<span class="tokens">{entry.tokens[0]} in, {entry.tokens[1]} out tokens</span>'
         if entry.tokens
