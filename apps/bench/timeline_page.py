@@ -8,7 +8,9 @@ gets the same page from its log alone (no transcript, the last recorded verdict)
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
+from urllib.parse import quote
 
 from django.http import FileResponse, Http404, HttpRequest, HttpResponse
 from django.template.response import TemplateResponse
@@ -25,6 +27,7 @@ from apps.replay.timetravel import site_url
 from events.models import Event, Run
 from events.timing import REACTION_WINDOW
 
+PATH_SAFE = "!$&'()*+,;=/~:@"  # as Django's reverse() quotes a <path:> argument
 LOG_FIELDS = ("seq", "at", "kind", "type", "payload", "timeline_index")
 
 
@@ -47,6 +50,20 @@ def task_timeline_url(run_id: int) -> str:
     return reverse("admin:events_run_task", args=[run_id])
 
 
+def site_at_maker(run: Run) -> Callable[[int, str], str]:
+    """site_url(run, seq, page) for every row, reversing the URL once: a reverse per row was
+    two fifths of the page's time."""
+    marker = "987654321"
+    root = site_url(run, int(marker))  # …/at/<seq>/site/
+
+    def site_at(seq: int, page: str) -> str:
+        path, _, query = page.lstrip("/").partition("?")
+        url = root.replace(f"/{marker}/", f"/{seq}/", 1) + quote(path, safe=PATH_SAFE)
+        return url + (f"?{query}" if query else "")
+
+    return site_at
+
+
 def task_timeline_view(request: HttpRequest, run: Run, admin_context: dict) -> HttpResponse:
     task = task_of(run)
     rows = Event.objects.filter(run_id=run.pk).order_by("seq").values(*LOG_FIELDS)
@@ -62,10 +79,7 @@ def task_timeline_view(request: HttpRequest, run: Run, admin_context: dict) -> H
         recorded=recorded.as_dict() if recorded else None,
     )
     files = reverse("admin:events_run_task_file", args=[run.pk, "x"])[:-1]
-    links = Links(
-        site_at=lambda seq, page: site_url(run, seq, page),
-        screenshot=lambda name: files + name,
-    )
+    links = Links(site_at=site_at_maker(run), screenshot=lambda name: files + name)
     context = {
         **admin_context,
         "title": f"Run {run.pk} · {run.scenario_id} — task timeline",
