@@ -16,9 +16,10 @@ def _run_link(result: TaskResult) -> str:
     if result.run_id is None:
         return "—"
     return format_html(
-        '<a href="{}">run {}</a>',
+        '<a href="{}">run {}</a> · <a href="{}">timeline</a>',
         reverse("admin:events_run_change", args=[result.run_id]),
         result.run_id,
+        reverse("admin:events_run_task", args=[result.run_id]),
     )
 
 

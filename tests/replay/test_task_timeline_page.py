@@ -28,3 +28,8 @@ def test_a_run_without_a_task_shows_its_log_on_the_axis_in_time_order(finished_r
 def test_a_file_outside_the_task_folder_is_not_served(finished_run, admin_client):
     page = admin_client.get(f"/admin/events/run/{finished_run.pk}/task/file/../../etc/passwd")
     assert page.status_code == 404
+
+
+def test_the_runs_admin_page_links_its_task_timeline(finished_run, admin_client):
+    page = admin_client.get(f"/admin/events/run/{finished_run.pk}/change/").content.decode()
+    assert f'href="/admin/events/run/{finished_run.pk}/task/">task timeline</a>' in page
