@@ -144,6 +144,28 @@ def _usage(usage: Any) -> str:
     return f'<p class="usage">tokens: {escape(", ".join(counts) or "none reported")}</p>'
 
 
+def _checks(checks: Any) -> str:
+    """A wait_for step's judge questions: when, the diff blocks shown, the answer."""
+    if not isinstance(checks, list) or not checks:
+        return ""
+    asked = []
+    for check in checks:
+        if not isinstance(check, dict):
+            continue
+        when = check.get("sim_time")
+        when = f"sim {when:.1f} s" if isinstance(when, int | float) else "sim ?"
+        blocks = "".join(f"<pre>{escape(str(b))}</pre>" for b in check.get("blocks") or [])
+        answer = "met" if check.get("met") else "not met"
+        asked.append(
+            f'<li class="check"><p>{when}: {answer} — {escape(str(check.get("why") or ""))}</p>'
+            f"{blocks}</li>"
+        )
+    return (
+        f"<details><summary>wait_for asked the model {len(asked)} "
+        f"time{'s' if len(asked) != 1 else ''}</summary><ol>{''.join(asked)}</ol></details>"
+    )
+
+
 def _step_html(step: Step, task_folder: Path, page_folder: Path) -> str:
     heading = f"Step {step.number}" if step.number is not None else f"Step ? (line {step.line})"
     when = (
@@ -172,6 +194,7 @@ def _step_html(step: Step, task_folder: Path, page_folder: Path) -> str:
             f"<details{fold}><summary>result ({len(result)} characters)</summary>"
             f'<pre class="result">{escape(result)}</pre></details>'
         )
+    parts.append(_checks(step.checks))
     parts.append(_usage(step.usage))
     parts.append("</div>")
     parts.append(_screenshot(step.screenshot, step.number, task_folder, page_folder))
