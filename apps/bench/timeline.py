@@ -34,6 +34,9 @@ LANES = (WORLD, LOGGED, MODEL)
 CONTACTS = ("contact_get", "contact_post")
 SHOWN_LIFECYCLE = ("start", "skip", *CONTACTS)
 TEXT_LIMIT = 4000  # characters of a result or an observation shown in a row
+# Moments drawn and listed: an agent that floods its log (up to SENTINEL_AGENT_LOG_BUDGET
+# entries) must not make a page of tens of thousands of rows; the run's whole log pages them.
+MAX_SHOWN = 2000
 
 
 @dataclass(frozen=True)
@@ -413,7 +416,8 @@ def render_axis(timeline: Timeline) -> str:
         parts.append(_vertical(timeline, timeline.condition_at, "condition_at", "#c8322d", "4 3"))
     if timeline.kill_at is not None:
         parts.append(_vertical(timeline, timeline.kill_at, "kill_at", "#333", "2 3"))
-    parts += [_mark(timeline, n, entry) for n, entry in enumerate(timeline.entries)]
+    shown = timeline.entries[:MAX_SHOWN]
+    parts += [_mark(timeline, n, entry) for n, entry in enumerate(shown)]
     parts.append("</svg>")
     return "".join(parts)
 
@@ -521,8 +525,15 @@ def render_timeline(timeline: Timeline, links: Links) -> str:
         if timeline.has_transcript
         else "<p>No transcript: the agent's side is what the run logged.</p>"
     )
-    rows = "".join(_row(n, entry, links) for n, entry in enumerate(timeline.entries))
+    rows = "".join(_row(n, e, links) for n, e in enumerate(timeline.entries[:MAX_SHOWN]))
+    left = len(timeline.entries) - MAX_SHOWN
+    cut = (
+        f'<p id="tl-cut">{left} later moments not shown (the first {MAX_SHOWN} are): the run\'s '
+        "whole log lists them all.</p>"
+        if left > 0
+        else ""
+    )
     return (
         f"<style>{STYLE}</style>{_facts(timeline)}{render_axis(timeline)}{_legend()}{note}"
-        f'<ol id="tl-list">{rows}</ol>'
+        f'<ol id="tl-list">{rows}</ol>{cut}'
     )

@@ -88,3 +88,13 @@ def test_the_page_shows_the_diff_the_model_was_given_under_its_question(tmp_path
     assert "its answer: Kevin wrote" in question.group(0)
     assert 'href="/at/5/?folder=inbox"' in question.group(0)
     assert "reaction window" in html and "condition_at" in html
+
+
+def test_a_flooded_log_shows_its_first_moments_and_says_how_many_more():
+    views = [LogEntry(n, n * 0.01, "view", "page", {"path": f"{ROOT}/"}) for n in range(1, 2501)]
+    trace = TaskTrace(scenario=SCENARIO, log=views, steps=[], result={}, prompt=None)
+    built = build_timeline(trace, title="flood", environment_root=ROOT, window=30.0)
+    links = Links(site_at=lambda seq, page: f"/at/{seq}", screenshot=lambda n: n)
+    html = render_timeline(built, links)
+    assert html.count('<li id="tl-') == 2000 and html.count('class="mark kind-view"') == 2000
+    assert "500 later moments not shown" in html
