@@ -84,6 +84,7 @@ MIDDLEWARE = [
     "django.contrib.messages.middleware.MessageMiddleware",
     "django.middleware.clickjacking.XFrameOptionsMiddleware",
     "django_htmx.middleware.HtmxMiddleware",
+    "apps.kit.sim_clock_header.SimClockHeaderMiddleware",  # the run's clock, for agents
 ]
 
 ROOT_URLCONF = "sentinel_site.urls"

@@ -204,7 +204,7 @@ class Command(BaseCommand):
 
     def add_arguments(self, parser):
         sub = parser.add_subparsers(
-            dest="subcommand", required=True, metavar="{run,grade,validate}"
+            dest="subcommand", required=True, metavar="{run,grade,validate,export-trajectories}"
         )
 
         run = sub.add_parser("run", help="run an agent on every selected scenario")
@@ -297,6 +297,24 @@ class Command(BaseCommand):
         grade.add_argument("--config", help=f"for prices (default: {DEFAULT_CONFIG} when present)")
         grade.add_argument("--results-dir", default="results")
 
+        export = sub.add_parser(
+            "export-trajectories",
+            help="a result set as training data: one JSON object per task (README, "
+            "'Trajectories for training')",
+        )
+        export.add_argument(
+            "results",
+            metavar="RESULTS",
+            help="a result set's folder, or its name under --results-dir",
+        )
+        export.add_argument("--format", choices=["jsonl"], default="jsonl")
+        export.add_argument("--out", metavar="FILE", help="default: standard output")
+        export.add_argument("--results-dir", default="results")
+        export.add_argument(
+            "--timely-window", type=float, default=REACTION_WINDOW, metavar="S",
+            help="the reward's timely: passed with reaction time <= S seconds (default 30)",
+        )  # fmt: skip
+
         validate = sub.add_parser("validate", help="run the control agents on every scenario")
         validate.add_argument("--speed-factor", type=float, default=4.0)
         validate.add_argument(
@@ -323,7 +341,7 @@ class Command(BaseCommand):
     def handle(self, *args, subcommand: str, **options):
         try:
             with terminate_as_interrupt():
-                return getattr(self, f"handle_{subcommand}")(**options)
+                return getattr(self, f"handle_{subcommand.replace('-', '_')}")(**options)
         except (ConfigError, BenchError, SpeedFactorError) as exc:
             raise _usage(str(exc)) from None
         except HarnessError as exc:
@@ -511,6 +529,7 @@ class Command(BaseCommand):
     ):
         from apps.bench import grading, report
         from apps.bench.judge import JudgeError, model_asker
+        from apps.bench.timeline_links import timelines_section
 
         if config is None and Path(DEFAULT_CONFIG).exists():
             config = DEFAULT_CONFIG
@@ -541,15 +560,38 @@ class Command(BaseCommand):
             render = grading.render_comparison_csv if csv else grading.render_comparison
             text = render(sets, window)
         self.stdout.write(text, ending="")
+        if not csv:
+            self.stdout.write(timelines_section(sets, cfg.server_url), ending="")
         if html:
             if len(sets) == 1:
                 report.write_report(
-                    Path(html), sets[0].name, sets[0].rows, window, result_set=sets[0]
+                    Path(html),
+                    sets[0].name,
+                    sets[0].rows,
+                    window,
+                    result_set=sets[0],
+                    site=cfg.server_url,
                 )
             else:
-                report.write_comparison_report(Path(html), sets, window)
+                report.write_comparison_report(Path(html), sets, window, site=cfg.server_url)
             if not csv:
                 self.stdout.write(f"HTML report -> {html}")
+
+    def handle_export_trajectories(self, *, results, out, results_dir, timely_window, **_):
+        from apps.bench.trajectories import export_trajectories
+
+        run_dir = Path(results)
+        if not run_dir.is_dir() and (Path(results_dir) / results).is_dir():
+            run_dir = Path(results_dir) / results
+        if not run_dir.is_dir():
+            raise _usage(f"RESULTS: no result set at {results} (nor under {results_dir}/)")
+        if out:
+            with open(out, "w", encoding="utf-8") as file:
+                written, errors = export_trajectories(run_dir, file, timely_window)
+        else:
+            written, errors = export_trajectories(run_dir, self.stdout._out, timely_window)
+        left_out = f", {errors} errors left out (no result)" if errors else ""
+        self.stderr.write(f"{written} trajectories{left_out}" + (f" -> {out}" if out else ""))
 
     # --- validate --------------------------------------------------------------------------
 
