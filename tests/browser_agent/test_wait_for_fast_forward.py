@@ -28,6 +28,9 @@ from tests.browser_agent.test_wait_for import (
     scenario,
 )
 
+pytestmark = pytest.mark.slow
+
+
 DUE = re.compile(r'id="sentinel-live"[^>]*data-due="([^"]*)"')
 
 
