@@ -359,7 +359,7 @@ class Command(BaseCommand):
         sealed = {"SENTINEL_CONTROL_TOKEN": token, "SENTINEL_FLAT_ENDPOINTS": "0"}
         try:
             with site_server(
-                log_path=Path(settings.BASE_DIR) / "var" / "bench-server.log", extra_env=sealed
+                log_path=Path(settings.VAR_DIR) / "bench-server.log", extra_env=sealed
             ) as url:
                 self.stdout.write(f"Embedded server on {url}")
                 yield url, token
