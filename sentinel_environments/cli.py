@@ -18,7 +18,9 @@ import os
 import sys
 from pathlib import Path
 
-USAGE_EPILOG = "State goes to --data DIR, SENTINEL_DATA_DIR or ~/.local/share/sentinel-environments."
+USAGE_EPILOG = (
+    "State goes to --data DIR, SENTINEL_DATA_DIR or ~/.local/share/sentinel-environments."
+)
 
 
 def _parser() -> argparse.ArgumentParser:
