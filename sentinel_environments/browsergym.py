@@ -23,8 +23,8 @@ page shows the new moment; on a live run it sleeps, as BrowserGym's noop does. T
 Debian's Chromium (`SENTINEL_CHROMIUM`, else `chromium` on the PATH), never Playwright's
 download: BrowserGym's browser launches are given its path.
 
-`task_metadata()` lists the tasks with the paper's categories; `benchmark()` is the same list as
-an AgentLab benchmark (needs `browsergym-experiments`).
+`task_metadata()` lists the tasks with the paper's categories; `sentinel_environments.agentlab`
+makes them an AgentLab benchmark.
 """
 
 from __future__ import annotations
@@ -165,29 +165,6 @@ def _quiet_reregistration():
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message=".*Overriding environment.*")
         yield
-
-
-def benchmark(folder: Path | str | None = None, *, max_steps: int = 200, headless: bool = True):
-    """The tasks as an AgentLab benchmark (`browsergym.experiments.benchmark.Benchmark`), with
-    `task_metadata()` as its metadata: `study = make_study(agent_args, benchmark=benchmark())`.
-    The action set is BrowserGym's chat + bid + nav subsets (noop, click, send_msg_to_user…)."""
-    import pandas as pd
-    from browsergym.experiments.benchmark.base import Benchmark, HighLevelActionSetArgs
-    from browsergym.experiments.loop import EnvArgs
-
-    metadata = task_metadata(folder)
-    return Benchmark(
-        name="sentinelbench",
-        high_level_action_set_args=HighLevelActionSetArgs(subsets=("chat", "bid", "nav")),
-        is_multi_tab=False,
-        supports_parallel_seeds=True,
-        backends=[],
-        env_args_list=[
-            EnvArgs(task_name=row["task_name"], task_seed=0, max_steps=max_steps, headless=headless)
-            for row in metadata
-        ],
-        task_metadata=pd.DataFrame(metadata),
-    )
 
 
 # --- the server -----------------------------------------------------------------------------
