@@ -35,12 +35,9 @@ import json
 import os
 import secrets
 import shutil
-import signal
-import socket
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 from typing import Any
 
@@ -175,49 +172,34 @@ _embedded: dict[str, Any] = {}
 def embedded_server(startup_s: float = 120.0) -> tuple[str, str]:
     """(base URL, control token) of this process's own server, started on first use: `sentinel
     serve` on a free loopback port with a fresh temporary data folder, stopped at exit."""
+    from sentinel_site.site_server import free_port, wait_until_serving  # no Django set up
+
     if _embedded.get("process") is not None and _embedded["process"].poll() is None:
         return _embedded["url"], _embedded["token"]
     data = Path(tempfile.mkdtemp(prefix="sentinel-browsergym-"))
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        port = sock.getsockname()[1]
-    token = secrets.token_urlsafe(24)
+    port, token = free_port(), secrets.token_urlsafe(24)
     env = dict(os.environ, SENTINEL_CONTROL_TOKEN=token, SENTINEL_FLAT_ENDPOINTS="0")
     command = [sys.executable, "-P", "-m", "sentinel_environments.cli", "--data", str(data)]
-    log = open(data / "server.log", "wb")  # noqa: SIM115 (kept open for the server's life)
-    process = subprocess.Popen(
-        [*command, "serve", "--port", str(port)],
-        env=env,
-        stdout=log,
-        stderr=subprocess.STDOUT,
-        start_new_session=True,
-    )
+    log_path = data / "server.log"
+    with open(log_path, "wb") as log:
+        process = subprocess.Popen(
+            [*command, "serve", "--port", str(port)],
+            env=env,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
     atexit.register(_stop, process, data)
     url = f"http://127.0.0.1:{port}"
-    deadline = time.monotonic() + startup_s
-    with Client(url, token=token, timeout=10) as probe:
-        while True:
-            try:
-                probe.request("GET", "/api/scenarios/")
-                break
-            except SentinelError:
-                if process.poll() is not None or time.monotonic() > deadline:
-                    raise SentinelError(
-                        f"the embedded server did not start; see {data / 'server.log'}"
-                    ) from None
-                time.sleep(0.2)
+    wait_until_serving(process, url, log_path, startup_s)
     _embedded.update(process=process, url=url, token=token)
     return url, token
 
 
 def _stop(process: subprocess.Popen, data: Path) -> None:
-    with contextlib.suppress(ProcessLookupError):
-        os.killpg(process.pid, signal.SIGTERM)
-    try:
-        process.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(process.pid, signal.SIGKILL)
+    from sentinel_site.site_server import stop_process_group
+
+    stop_process_group(process)
     shutil.rmtree(data, ignore_errors=True)
 
 
