@@ -314,7 +314,7 @@ class SentinelTask(AbstractBrowserTask):
             if not page.is_closed():
                 page.wait_for_function(SHOWS_SEQ, arg=waited.raw.get("seq", 0))
 
-        page.wait_for_timeout = wait_for_timeout  # type: ignore[method-assign]
+        page.wait_for_timeout = wait_for_timeout  # type: ignore[method-assign,assignment]
 
     def validate(
         self, page: playwright.sync_api.Page, chat_messages: list[dict]

@@ -366,9 +366,11 @@ class Client:
     ) -> Run:
         """A new run of a library scenario (its id or file path) or of a whole scenario
         document (a dict in the scenario file format)."""
-        key = "scenario" if isinstance(scenario, str) else "scenario_json"
-        body = {key: scenario if isinstance(scenario, str) else dict(scenario)}
-        body |= {"speed_factor": speed_factor, "clock_mode": clock}
+        body: dict[str, Any] = {"speed_factor": speed_factor, "clock_mode": clock}
+        if isinstance(scenario, str):
+            body["scenario"] = scenario
+        else:
+            body["scenario_json"] = dict(scenario)
         return Run(self, self.request("POST", "/api/runs/", json=body))
 
     def run(self, run_id: int) -> Run:
