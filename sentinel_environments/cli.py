@@ -95,16 +95,22 @@ def serve(host: str, port: int, data: str | None) -> int:
     return 0  # not reached
 
 
+def with_results_dir(args: list[str], data: Path) -> list[str]:
+    """`bench run` and `bench grade` keep their result sets in the data folder unless told
+    otherwise (`manage.py bench` keeps `results/` of the folder it runs from)."""
+    if args[:1] not in (["run"], ["grade"]) or any(
+        a == "--results-dir" or a.startswith("--results-dir=") for a in args
+    ):
+        return args
+    return [*args, "--results-dir", str(data / "results")]
+
+
 def bench(args: list[str], data: str | None) -> int:
     folder = _setup(data)
     _migrate()
-    if args[:1] in (["run"], ["grade"]) and not any(
-        a == "--results-dir" or a.startswith("--results-dir=") for a in args
-    ):
-        args = [*args, "--results-dir", str(folder / "results")]
     from django.core.management import execute_from_command_line
 
-    execute_from_command_line(["sentinel", "bench", *args])
+    execute_from_command_line(["sentinel", "bench", *with_results_dir(args, folder)])
     return 0
 
 

@@ -23,7 +23,8 @@ RESOURCES_DIR = CODE_DIR if IS_CHECKOUT else CODE_DIR / "sentinel_environments" 
 def user_data_dir(environ: os._Environ[str] | dict[str, str] = os.environ) -> Path:
     """The per-user folder of an installed package's state (database, logs, results)."""
     xdg = environ.get("XDG_DATA_HOME", "").strip()
-    root = Path(xdg) if xdg else Path.home() / ".local" / "share"
+    home = Path(environ.get("HOME") or Path.home())
+    root = Path(xdg) if xdg else home / ".local" / "share"
     return root / "sentinel-environments"
 
 
