@@ -70,3 +70,16 @@ def test_an_empty_set_is_valid_and_a_missing_field_is_named():
     with pytest.raises(jsonschema.ValidationError) as missing:
         jsonschema.validate(empty, schema())
     assert missing.value.message == "'tasks' is a required property"
+
+
+def test_grading_a_set_it_cannot_write_to_still_prints_its_figures(tmp_path):
+    from apps.bench.manifest import write_manifest
+
+    folder = tmp_path / "published"
+    write_manifest(folder, {"format": "sentinel-results/1", "config": {}})
+    (folder / SUMMARY).mkdir()  # in the way (a read-only folder is no obstacle to root)
+    out, err = io.StringIO(), io.StringIO()
+    call_command("bench", "grade", "published", "--results-dir", str(tmp_path), stdout=out,
+                 stderr=err)  # fmt: skip
+    assert "summary.json not written: Is a directory" in err.getvalue()
+    assert "Total Tasks: 0" in out.getvalue()  # the figures are printed all the same

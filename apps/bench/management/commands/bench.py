@@ -533,9 +533,11 @@ class Command(BaseCommand):
             raise CommandError(f"bench grade --judge: {error}") from None
         if not (task or filter):  # a summary.json is always of a whole set
             for result_set in sets:
-                write_summary(
-                    Path(results_dir) / result_set.name, build_summary(result_set, window)
-                )
+                folder = Path(results_dir) / result_set.name
+                try:
+                    write_summary(folder, build_summary(result_set, window))
+                except OSError as error:  # a set graded where it cannot be written: say so
+                    self.stderr.write(f"{folder}/summary.json not written: {error.strerror}")
         if len(sets) == 1:  # one set: the upstream table, as before
             (one,) = sets
             text = (
