@@ -61,6 +61,7 @@ from apps.bench.runner import (
     discover,
     run_pool,
 )
+from apps.bench.summary import build_summary, write_set_summary, write_summary
 from apps.scenarios.library import library, scenario_root
 from apps.scenarios.watching import WatchCheck, unseen_triggers
 from events.timing import (
@@ -376,7 +377,7 @@ class Command(BaseCommand):
         sealed = {"SENTINEL_CONTROL_TOKEN": token, "SENTINEL_FLAT_ENDPOINTS": "0"}
         try:
             with site_server(
-                log_path=Path(settings.BASE_DIR) / "var" / "bench-server.log", extra_env=sealed
+                log_path=Path(settings.VAR_DIR) / "bench-server.log", extra_env=sealed
             ) as url:
                 self.stdout.write(f"Embedded server on {url}")
                 yield url, token
@@ -495,6 +496,7 @@ class Command(BaseCommand):
         record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=used)
         errors = task_errors(run_dir) if run_dir.is_dir() else []
         update_manifest(name, run_dir, used, tasks, started_at, base_dir, errors)
+        write_set_summary(Path(results_dir), name, cfg, cfg.reaction_window)
         counts = {s: sum(o.status == s for o in outcomes) for s in ("passed", "failed", "error")}
         self.stdout.write(
             f"Done. ran={len(outcomes)} passed={counts['passed']} failed={counts['failed']} "
@@ -548,6 +550,13 @@ class Command(BaseCommand):
                 grading.judge_reports(result_set.rows, ask, judge or "")
         except JudgeError as error:  # ours or the judge's, never the agent's: no figures
             raise CommandError(f"bench grade --judge: {error}") from None
+        if not (task or filter):  # a summary.json is always of a whole set
+            for result_set in sets:
+                folder = Path(results_dir) / result_set.name
+                try:
+                    write_summary(folder, build_summary(result_set, window))
+                except OSError as error:  # a set graded where it cannot be written: say so
+                    self.stderr.write(f"{folder}/summary.json not written: {error.strerror}")
         if len(sets) == 1:  # one set: the upstream table, as before
             (one,) = sets
             text = (
