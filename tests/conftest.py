@@ -53,7 +53,12 @@ def pytest_collection_modifyitems(items):
     On the production shape, the tests that run the README in a user's fresh clone are skipped:
     they drop the suite's settings and run on embedded defaults whatever the leg, so the
     embedded leg has already run exactly them."""
-    items.sort(key=lambda item: not any(item.get_closest_marker(m) for m in SLOW_MARKERS))
+    items.sort(
+        key=lambda item: (
+            not any(item.get_closest_marker(m) for m in SLOW_MARKERS),
+            item.get_closest_marker("user_clone") is None,  # the longest of all, first of all
+        )
+    )
     if PRODUCTION_SHAPE:
         repeat = pytest.mark.skip(reason="a user's clone on embedded defaults: the embedded leg")
         for item in items:
