@@ -18,8 +18,10 @@ how far apart), sampled from one `random.Random`:
 
 A process gives background arrival times (`arrival_times`) and one condition time
 (`condition_time`): the trigger arrives by the same process, restricted to [10, 574] s, the
-window in which a contact can still be timely (README "What an agent can reach"); every profile
-stays within a factor 4 of its mean, so every 100-second bin gets its share of triggers.
+window in which a contact can still be timely (README "What an agent can reach"), and to one of
+six equal strata of it, taken in turn by a family's variants, so that condition times spread
+over the whole window as the paper's do (no 100-second bin above a quarter, `checkscenarios`)
+while within a stratum they follow the environment's profile.
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from dataclasses import dataclass
 
 CONDITION_WINDOW = (10.0, 574.0)  # simulated seconds: where a generated trigger may arrive
 GRID_S = 1.0  # the profile is sampled every simulated second
+STRATA = 6  # parts of CONDITION_WINDOW a family's variants take in turn
 
 
 @dataclass(frozen=True)
@@ -55,8 +58,15 @@ class Process:
         start = rng.choices(grid, weights=weights)[0]
         return min(high, start + rng.random() * GRID_S)
 
-    def condition_time(self, rng: random.Random) -> float:
-        return round(self._draw(rng, *CONDITION_WINDOW), 2)
+    def condition_time(self, rng: random.Random, stratum: int | None = None) -> float:
+        """A trigger's arrival in CONDITION_WINDOW, or in its `stratum`-th of STRATA equal
+        parts: the generator gives a family's successive variants successive strata (in an
+        order of its own), so its condition times cover the window whatever the profile."""
+        low, high = CONDITION_WINDOW
+        if stratum is not None:
+            width = (high - low) / STRATA
+            low, high = low + stratum * width, low + (stratum + 1) * width
+        return round(self._draw(rng, low, high), 2)
 
     def arrival_times(self, rng: random.Random, count: int, low: float, high: float) -> list[float]:
         """`count` sorted times in (low, high): leaders drawn by the profile, followers by the

@@ -5,8 +5,9 @@ What varies (`ASPECTS`, all by default; the admin's "Generate variants…" may p
 - timing — the trigger arrives at a new `condition_at` drawn from the environment's arrival
   process (apps.scenarios.generation.arrivals); the story events keep their order, moved by a
   piecewise-linear warp of the timeline that sends the old condition time to the new one (what
-  came before the trigger still comes before it, in the same proportions); background events
-  are re-timed by the process (bursts, morning peaks, jumps);
+  came before the trigger still comes before it, in the same proportions; waypoints inside a
+  preload's payload too); background events are re-timed by the process (bursts, morning
+  peaks, jumps), as many before the trigger as there were;
 - distractors — some background items are replaced by other catalog items of the same kind and
   one to three more arrive, preferring near misses: the items that share the most catalog fields
   with the trigger (the right sender with the wrong subject, the same channel, the same
@@ -56,6 +57,39 @@ def _warp(time: float, anchor: float, target: float, end: float) -> float:
     else:
         moved = time
     return max(0.01, round(moved, 2))
+
+
+def waypoint_lists(event: dict[str, Any]):
+    """Every [[time, value], …] list in the event's payload (`price_waypoints` per symbol,
+    `star_waypoints`)."""
+    for key, value in (event.get("payload") or {}).items():
+        if not key.endswith("_waypoints"):
+            continue
+        yield from value.values() if isinstance(value, dict) else [value]
+
+
+def _pin_waypoints(events: list[dict[str, Any]], at: float) -> None:
+    """Add a waypoint at `at` on every trajectory that passes it between two waypoints, with
+    the value it has there, so that warping the times keeps the value at `at` (in place)."""
+    for event in events:
+        for points in waypoint_lists(event):
+            for i in range(len(points) - 1):
+                (t0, v0), (t1, v1) = points[i], points[i + 1]
+                if t0 < at < t1:
+                    value = v0 + (v1 - v0) * (at - t0) / (t1 - t0)
+                    both_int = isinstance(v0, int) and isinstance(v1, int)
+                    points.insert(i + 1, [at, round(value) if both_int else round(value, 4)])
+                    break
+
+
+def _warp_waypoints(event: dict[str, Any], anchor: float, target: float, end: float):
+    """The event with its payload's waypoint times warped as timeline times are."""
+    if not any(True for _ in waypoint_lists(event)):
+        return event
+    event = copy.deepcopy(event)
+    for points in waypoint_lists(event):
+        points[:] = [[_warp(float(t), anchor, target, end), v] for t, v in points]
+    return event
 
 
 def _kin(catalog: Catalog, environment: str, table: str, trigger_id: str, pool: list[str]):
@@ -109,7 +143,12 @@ def compose(
     pool: dict[str, list[str]],
     aspects: tuple[str, ...] = ASPECTS,
     note: str = "",
+    quiet: bool = False,
+    stratum: int | None = None,
 ) -> Candidate:
+    """A candidate of `template`'s family. `quiet`: the fallback when a full draw fails its
+    proofs — no distractors added, and the background moved with the story instead of re-timed
+    (a count that the re-timed background reached early, a no-op it satisfied)."""
     document = copy.deepcopy(template.document)
     process = process_for(template.environment)
     end = float(document["event_timeline_end"])
@@ -117,24 +156,33 @@ def compose(
     condition = document.get("condition_at")
     story_times = [float(events[i]["time"]) for i in sorted(template.story)]
     anchor = float(condition) if condition is not None else _middle(story_times, end)
-    target = process.condition_time(rng) if "timing" in aspects else anchor
+    target = process.condition_time(rng, stratum) if "timing" in aspects else anchor
+    if condition is not None and template.trigger is None:
+        # A condition met between timeline entries (a price or a star count crossing between
+        # waypoints): the trajectory must pass the old condition time exactly where it did.
+        _pin_waypoints(events, anchor)
 
     timed: list[tuple[float, int, dict[str, Any]]] = []  # (time, file order, event)
     background = []
     for i, event in enumerate(events):
         if template.withheld and i == template.trigger:
             continue
-        if i in template.story or "timing" not in aspects:
+        if i in template.story or quiet or "timing" not in aspects:
+            event = _warp_waypoints(event, anchor, target, end)
             timed.append((_warp(float(event["time"]), anchor, target, end), i, event))
         else:
             background.append((i, event))
-    if background:
-        times = process.arrival_times(rng, len(background), 0.5, end - 1.0)
-        rng.shuffle(background)
-        timed += [(t, i, e) for t, (i, e) in zip(times, background, strict=True)]
+    # Re-timed on each side of the trigger as many as were there: a count the trigger completes
+    # stays one short before it.
+    for side, low, high in ((True, 0.5, target - 0.01), (False, target + 0.01, end - 1.0)):
+        group = [(i, e) for i, e in background if (float(e["time"]) <= anchor) == side]
+        if group:
+            times = process.arrival_times(rng, len(group), low, high)
+            rng.shuffle(group)
+            timed += [(t, i, e) for t, (i, e) in zip(times, group, strict=True)]
 
     added: list[str] = []
-    if "distractors" in aspects and pool:
+    if "distractors" in aspects and pool and not quiet:
         timed = _with_distractors(template, timed, rng, catalog, pool, process, end, added)
 
     timed.sort(key=lambda entry: (entry[0], entry[1]))

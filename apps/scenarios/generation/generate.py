@@ -2,9 +2,10 @@
 
 The count is shared evenly among the environments; within one, the families take turns
 (round robin), so every family of the hand-written scenarios is represented wherever it exists.
-Each turn composes one candidate from its own random stream (`random.Random` seeded with
+Each turn composes a candidate from its own random stream (`random.Random` seeded with
 "seed:environment:family:turn", so a family's draws do not depend on another's discards) and
-proves it; a candidate that fails a proof is discarded and counted by reason, one that repeats
+proves it; a candidate that fails a proof is discarded and counted by reason, and the turn
+tries a quieter one (`_fallbacks`); one that repeats
 an earlier one's condition on the same items at the same second is discarded as a duplicate, and
 a family with `GIVE_UP` discards and no proven scenario leaves the rotation. Same seed, same
 templates and catalog: byte-identical files and manifest.
@@ -27,6 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from apps.scenarios.generation.arrivals import STRATA
 from apps.scenarios.generation.compose import ASPECTS, Candidate, compose
 from apps.scenarios.generation.proofs import Proof, prove
 from apps.scenarios.generation.templates import Template, item_of, item_pool, read_templates
@@ -51,6 +53,8 @@ class Generated:
     discarded_by_family: Counter = field(default_factory=Counter)
     duplicates: int = 0
     abandoned: list[str] = field(default_factory=list)  # families that left the rotation
+    # family -> why its template, unvaried, fails the proofs (it is not generated from)
+    unprovable: dict[str, str] = field(default_factory=dict)
 
 
 def _reason(proof: Proof) -> str:
@@ -174,12 +178,45 @@ def generate(
     return result
 
 
+def _fallbacks(aspects: tuple[str, ...]) -> list[tuple[bool, tuple[str, ...]]]:
+    """A turn's tries, each only if the one before fails a proof: a full draw; a quiet one
+    (no added distractors, the background moved with the story: a count kept); one that keeps
+    the template's times (a value moving between waypoints that the warp would bend)."""
+    tries = [(False, aspects), (True, aspects)]
+    if "timing" in aspects and len(aspects) > 1:
+        tries.append((False, tuple(a for a in aspects if a != "timing")))
+    return tries
+
+
+def _provable(template, seed, catalog, prover, result) -> bool:
+    """Whether the family's template itself, unvaried (a withheld family: only withheld),
+    passes the proofs; if not, no variant is tried (a count that later items reach anyway
+    cannot be withheld into a no-op) and the reason is kept for the manifest."""
+    candidate = compose(
+        template,
+        random.Random(f"{seed}:{template.environment}:{template.family}:as-is"),
+        scenario_id=f"{template.environment}-{template.family}",
+        catalog=catalog,
+        pool={},
+        aspects=(),
+    )
+    proof = prover(candidate)
+    if not proof.ok:
+        result.unprovable[f"{template.environment}/{template.family}"] = proof.problems[0]
+    return proof.ok
+
+
 def _generate_environment(environment, templates, share, seed, aspects, catalog, prover, result):
-    rotation = list(templates)
+    rotation = [t for t in templates if _provable(t, seed, catalog, prover, result)]
     pools = {t.family: item_pool(t, catalog) for t in templates}
     proven = Counter()
     failures = Counter()
     seen: set[tuple] = set()
+    strata = {}  # family -> the order in which its variants take the window's strata
+    for template in rotation:
+        order = list(range(STRATA))
+        random.Random(f"{seed}:{environment}:{template.family}:strata").shuffle(order)
+        strata[template.family] = order
     kept = turn = 0
     while kept < share and rotation and turn < share * TURNS_PER_SCENARIO:
         template = rotation[turn % len(rotation)]
@@ -187,25 +224,33 @@ def _generate_environment(environment, templates, share, seed, aspects, catalog,
         turn += 1
         number = proven[template.family] + 1
         scenario_id = f"{environment}-{template.family}-g{seed}-{number:04d}"
-        candidate = compose(
-            template,
-            random.Random(stream),
-            scenario_id=scenario_id,
-            catalog=catalog,
-            pool=pools[template.family],
-            aspects=aspects,
-            note=f"Generated from {template.source} (family {template.family}, seed {seed}).",
-        )
-        result.candidates += 1
-        key = _duplicate_key(candidate.document, template.family)
-        if key in seen:
-            result.duplicates += 1
-            continue
-        proof = prover(candidate)
-        if not proof.ok:
-            reason = _reason(proof)
-            result.discarded[reason] += 1
+        rng = random.Random(stream)
+        for quiet, varied in _fallbacks(aspects):
+            candidate = compose(
+                template,
+                rng,
+                scenario_id=scenario_id,
+                catalog=catalog,
+                pool=pools[template.family],
+                aspects=varied,
+                note=f"Generated from {template.source} (family {template.family}, seed {seed}).",
+                quiet=quiet,
+                stratum=strata[template.family][number % STRATA],
+            )
+            result.candidates += 1
+            key = _duplicate_key(candidate.document, template.family)
+            if key in seen:
+                result.duplicates += 1
+                proof = None
+                break
+            proof = prover(candidate)
+            if proof.ok:
+                break
+            result.discarded[_reason(proof)] += 1
             result.discarded_by_family[f"{environment}/{template.family}"] += 1
+        if proof is None:
+            continue
+        if not proof.ok:
             failures[template.family] += 1
             if failures[template.family] >= GIVE_UP and not proven[template.family]:
                 rotation.remove(template)
@@ -251,6 +296,7 @@ def write(out: Path, seed: int, aspects, result: Generated, protected: Iterable[
         "discarded_by_reason": dict(sorted(result.discarded.items())),
         "discarded_by_family": dict(sorted(result.discarded_by_family.items())),
         "abandoned_families": result.abandoned,
+        "unprovable_families": dict(sorted(result.unprovable.items())),
         "scenarios": result.entries,
     }
     (out / MANIFEST).write_text(render_json(manifest), encoding="utf-8")

@@ -29,8 +29,9 @@ from apps.bench.agents import CONDITION_MARGIN_S, FIXED_CONTACT_AT, SLEEPER_MARG
 from apps.bench.everything import every_item_steps
 from apps.bench.management.commands.bench import cheating_problems
 from apps.bench.runner import deadline_s
-from apps.scenarios.dry_run import dry_run
+from apps.scenarios.dry_run import TOLERANCE_S, dry_run
 from apps.scenarios.format import ScenarioError
+from apps.scenarios.generation.compose import waypoint_lists
 from apps.scenarios.serialization import render_json, scenario_file_of
 from events.catalog import load_catalog
 from events.evaluation import GradingSnapshot
@@ -78,6 +79,43 @@ class _Play:
             LoggedEvent(seq, float(e["time"]), "scenario", e["type"], e.get("payload") or {})
             for seq, e in enumerate(fired, 1)
         ]
+
+    def first_holds(self, moments: list[float]) -> float | None:
+        """The first of `moments` (sorted) at which eval_sql holds with no agent action,
+        folding the timeline once."""
+        env = self.environment
+        state, baselines = env.initial_state(load_catalog()), EMPTY
+        pending = list(self.events)
+        for at in moments:
+            due = [e for e in pending if e.at <= at]
+            pending = pending[len(due) :]
+            state, baselines = env.fold(state, due, baselines)
+            snapshot = GradingSnapshot(env, state, baselines, at, SPEED_FACTOR, self.end)
+            outcome = run_eval_sql(self.sql, snapshot.write)
+            if outcome.ok and is_truthy(outcome.value):
+                return at
+        return None
+
+    def passive_problem(self) -> str:
+        """A passive condition must first hold at condition_at (±TOLERANCE_S), checked at every
+        timeline entry and waypoint before it (a value moving between waypoints is extreme at
+        one), just before the tolerance, and at condition_at: the dry run samples entries
+        only, so a price crossing between them would read late."""
+        condition = float(self.condition)
+        early = condition - TOLERANCE_S
+        moments = {e.at for e in self.events if e.at < early}
+        for event in self.spec["events"]:
+            for points in waypoint_lists(event):
+                moments |= {float(t) for t, _ in points if float(t) < early}
+        late = condition + TOLERANCE_S
+        first = self.first_holds(sorted(moments | {max(0.0, early), condition, late}))
+        if first is not None and abs(first - condition) <= TOLERANCE_S:
+            return ""
+        if first is None:
+            return f"passive task: the condition does not hold by condition_at {condition:g} s"
+        return (
+            f"passive task: the condition holds at {first:g} s, before condition_at {condition:g} s"
+        )
 
     def holds(self, at: float, steps: list[dict], *, skip_refused: bool) -> bool:
         """eval_sql as of `at` after the timeline up to `at` and the agent's `steps` then."""
@@ -170,10 +208,19 @@ def prove(document: dict[str, Any], proven: dict[str, Any] | None = None) -> Pro
     except ScenarioError as error:
         return Proof(problems=(f"invalid: {error}",))
     checked = dry_run(dry.row, dry.events)
-    problems = [f"dry run: {w}" for w in checked.warnings]
-    watch = next((n for n in checked.notes + checked.warnings if "watched page" in n), "")
     play = _Play(document)
+    passive = play.condition is not None and not _is_active(document)
+    # A passive condition's timing is checked here, precisely (see _Play.passive_problem).
+    problems = [
+        f"dry run: {w}" for w in checked.warnings if not (passive and w.startswith("passive task:"))
+    ]
+    if passive and play.sql:
+        problems += [p for p in [play.passive_problem()] if p]
+    watch = next((n for n in checked.notes + checked.warnings if "watched page" in n), "")
     verdicts = play.verdicts()
-    active = (document.get("taxonomy") or {}).get("monitoring_approach") == "active"
-    problems += control_problems(verdicts, noop=play.condition is None, active=active)
+    problems += control_problems(verdicts, noop=play.condition is None, active=_is_active(document))
     return Proof(verdicts, tuple(problems), watch)
+
+
+def _is_active(document: dict[str, Any]) -> bool:
+    return (document.get("taxonomy") or {}).get("monitoring_approach") == "active"
