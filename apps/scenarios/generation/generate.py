@@ -30,6 +30,7 @@ from typing import Any
 
 from apps.scenarios.generation.arrivals import STRATA
 from apps.scenarios.generation.compose import ASPECTS, Candidate, compose
+from apps.scenarios.generation.naming import generated_id
 from apps.scenarios.generation.proofs import Proof, prove
 from apps.scenarios.generation.templates import Template, item_of, item_pool, read_templates
 from apps.scenarios.serialization import render_json
@@ -223,7 +224,7 @@ def _generate_environment(environment, templates, share, seed, aspects, catalog,
         stream = f"{seed}:{environment}:{template.family}:{turn}"
         turn += 1
         number = proven[template.family] + 1
-        scenario_id = f"{environment}-{template.family}-g{seed}-{number:04d}"
+        scenario_id = generated_id(environment, template.family, seed, number)
         rng = random.Random(stream)
         for quiet, varied in _fallbacks(aspects):
             candidate = compose(
