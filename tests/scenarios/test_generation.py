@@ -9,6 +9,7 @@ from __future__ import annotations
 import io
 import json
 import re
+import shlex
 from pathlib import Path
 
 import pytest
@@ -16,6 +17,7 @@ from django.core.management import CommandError, call_command
 
 from apps.scenarios.generation.generate import MANIFEST
 from tests.conftest import OUR_SCENARIOS
+from tests.first_hour.test_readme_harness import code_blocks, readme_section
 
 pytestmark = pytest.mark.django_db
 
@@ -117,3 +119,32 @@ def test_bad_input_is_refused_with_a_message_naming_it(tmp_path):
     with pytest.raises(CommandError, match=r"not empty and holds no manifest\.json"):
         generate(tmp_path / "busy", "--seed", "1", "--count", "1", "--env", "micromail")
     assert (tmp_path / "busy" / "notes.txt").read_text() == "mine"
+
+
+@pytest.mark.e2e
+@pytest.mark.django_db(transaction=True)
+def test_the_readme_example_generates_a_folder_that_bench_validate_passes(tmp_path):
+    """The README's two commands as written (the folder under this test's own): every
+    generated scenario passes the control agents through the real harness and server."""
+    (code,) = [
+        c for lang, c, _ in code_blocks(readme_section("Generating tasks")) if lang == "bash"
+    ]
+    outputs = []
+    for line in filter(None, code.splitlines()):
+        argv = shlex.split(line)
+        assert argv[:2] == [".venv/bin/python", "manage.py"], line
+        args = [str(tmp_path / a) if a.startswith("generated/") else a for a in argv[2:]]
+        out = io.StringIO()
+        call_command(*args, stdout=out)
+        outputs.append(out.getvalue().splitlines())
+    generated, validated = outputs
+    manifest = json.loads((tmp_path / "generated" / "small" / MANIFEST).read_text())
+    total = manifest["written"]
+    targeted = sum(1 for e in manifest["scenarios"] if e["kind"] != "noop")
+    assert generated[-1].startswith(f"generate: seed=7 written={total} ")
+    assert not [line for line in validated if line.startswith("PROBLEM")], validated
+    summary = validated[-1]
+    assert f"scenarios={total} oracle={total}/{total} " in summary, summary
+    assert f"early_fail={targeted}/{targeted} never_ok={total}/{total} " in summary, summary
+    assert f"act_all_timely=0/{targeted} " in summary and f"quitter=0/{total} " in summary
+    assert f"unseen=0/{targeted} " in summary, summary

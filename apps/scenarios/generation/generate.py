@@ -39,6 +39,7 @@ from events.catalog import load_catalog
 MANIFEST = "manifest.json"
 GIVE_UP = 12  # discards in a row, with nothing proven, before a family leaves the rotation
 TURNS_PER_SCENARIO = 6  # an environment stops after this many turns per scenario asked
+MAX_VARIANTS = 50  # the admin's "Generate variants…" at once
 
 
 class GenerationError(ValueError):
@@ -117,6 +118,12 @@ def select_templates(
     return by_env
 
 
+def _check_aspects(aspects: tuple[str, ...]) -> None:
+    unknown = sorted(set(aspects) - set(ASPECTS))
+    if unknown or not aspects:
+        raise GenerationError(f"vary: choose among {', '.join(ASPECTS)}; got {list(aspects)}")
+
+
 def _prepare(out: Path, protected: Iterable[Path]) -> None:
     """An empty output folder: new, empty, or a previous generation's (which is replaced)."""
     out = out.resolve()
@@ -158,9 +165,7 @@ def generate(
     """Compose, prove and (with `out`) write `count` scenarios; see the module doc."""
     if count < 1:
         raise GenerationError(f"--count must be >= 1, got {count}")
-    unknown = sorted(set(aspects) - set(ASPECTS))
-    if unknown or not aspects:
-        raise GenerationError(f"aspects: choose among {', '.join(ASPECTS)}; got {list(aspects)}")
+    _check_aspects(aspects)
     by_env = select_templates(read_templates(templates_root), environments, families)
     if not by_env:
         raise GenerationError(f"no templates to generate from in {templates_root}")
@@ -205,6 +210,27 @@ def _provable(template, seed, catalog, prover, result) -> bool:
     if not proof.ok:
         result.unprovable[f"{template.environment}/{template.family}"] = proof.problems[0]
     return proof.ok
+
+
+def variants(
+    template: Template,
+    *,
+    seed: int,
+    count: int,
+    aspects: tuple[str, ...] = ASPECTS,
+    prover: Callable[[Candidate], Proof] | None = None,
+) -> Generated:
+    """Up to `count` proven variants of one scenario (the admin's "Generate variants…"), drawn
+    as `generate` draws its family's: same streams, same proofs, same discards."""
+    if not 1 <= count <= MAX_VARIANTS:
+        raise GenerationError(f"how many: between 1 and {MAX_VARIANTS}, got {count}")
+    _check_aspects(aspects)
+    result = Generated()
+    prover = prover or (lambda c: prove(c.document, c.proven))
+    _generate_environment(
+        template.environment, [template], count, seed, aspects, load_catalog(), prover, result
+    )
+    return result
 
 
 def _generate_environment(environment, templates, share, seed, aspects, catalog, prover, result):

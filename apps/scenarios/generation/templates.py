@@ -92,6 +92,14 @@ def _split(document: dict[str, Any]) -> tuple[frozenset[int], int | None]:
     return frozenset(story), trigger
 
 
+def template_of(document: dict[str, Any], environment: str, source: str) -> Template:
+    """The family of one scenario document (a file's, or the admin's row), named by its
+    file `source` (`micromail/sender-absolute-passive.json`)."""
+    story, trigger = _split(document)
+    family = source.rsplit("/", 1)[-1].removesuffix(".json")
+    return Template(environment, family, source, document, story, trigger)
+
+
 def read_templates(root: Path) -> list[Template]:
     """Every family of the hand-written scenarios under `root` (sorted by environment, file),
     each passive template followed by its withheld no-op family. Files that do not parse, dev
@@ -106,19 +114,17 @@ def read_templates(root: Path) -> list[Template]:
             get_environment(parsed.environment)
         except (ScenarioError, UnknownEnvironment):
             continue
-        story, trigger = _split(document)
-        source = path.relative_to(root).as_posix()
-        template = Template(parsed.environment, path.stem, source, document, story, trigger)
+        template = template_of(document, parsed.environment, path.relative_to(root).as_posix())
         templates.append(template)
-        if template.kind == "passive" and trigger is not None:
+        if template.kind == "passive" and template.trigger is not None:
             templates.append(
                 Template(
-                    parsed.environment,
-                    path.stem + WITHHELD,
-                    source,
+                    template.environment,
+                    template.family + WITHHELD,
+                    template.source,
                     document,
-                    story - {trigger},
-                    trigger,
+                    template.story - {template.trigger},
+                    template.trigger,
                     withheld=True,
                 )
             )
