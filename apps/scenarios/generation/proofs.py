@@ -97,25 +97,30 @@ class _Play:
         return None
 
     def passive_problem(self) -> str:
-        """A passive condition must first hold at condition_at (±TOLERANCE_S), checked at every
-        timeline entry and waypoint before it (a value moving between waypoints is extreme at
-        one), just before the tolerance, and at condition_at: the dry run samples entries
-        only, so a price crossing between them would read late."""
+        """A passive condition must not hold before condition_at — checked at every timeline
+        entry before it (a distractor arriving even a moment before the trigger that meets the
+        condition is caught), every waypoint (a value moving between waypoints is extreme at
+        one) and TOLERANCE_S before it — and must hold by TOLERANCE_S after it (a crossing
+        between waypoints). The dry run samples entries only, with ±TOLERANCE_S either side."""
         condition = float(self.condition)
         early = condition - TOLERANCE_S
-        moments = {e.at for e in self.events if e.at < early}
+        moments = {e.at for e in self.events if e.at < condition}
         for event in self.spec["events"]:
             for points in waypoint_lists(event):
                 moments |= {float(t) for t, _ in points if float(t) < early}
-        late = condition + TOLERANCE_S
-        first = self.first_holds(sorted(moments | {max(0.0, early), condition, late}))
-        if first is not None and abs(first - condition) <= TOLERANCE_S:
-            return ""
+        moments |= {max(0.0, early), condition, condition + TOLERANCE_S}
+        first = self.first_holds(sorted(moments))
         if first is None:
             return f"passive task: the condition does not hold by condition_at {condition:g} s"
-        return (
-            f"passive task: the condition holds at {first:g} s, before condition_at {condition:g} s"
-        )
+        if first < condition and (first != early or self._entry_at(first)):
+            return (
+                f"passive task: the condition holds at {first:g} s, "
+                f"before condition_at {condition:g} s"
+            )
+        return ""
+
+    def _entry_at(self, at: float) -> bool:
+        return any(e.at == at for e in self.events)
 
     def holds(self, at: float, steps: list[dict], *, skip_refused: bool) -> bool:
         """eval_sql as of `at` after the timeline up to `at` and the agent's `steps` then."""
