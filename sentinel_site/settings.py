@@ -54,6 +54,7 @@ INSTALLED_APPS = [
     "django_htmx",
     "events",
     "apps.scenarios",
+    "apps.generate",  # task generation: after apps.scenarios, whose admin it extends
     "apps.control",
     "apps.kit",
     "apps.bench",

@@ -42,7 +42,7 @@ from apps.bench.stats import (
     pass_hat_k,
     wilson,
 )
-from apps.scenarios.generation.naming import family_of
+from apps.scenarios.generated_names import family_of
 from events.timing import REACTION_WINDOW
 
 COLUMNS = (

@@ -28,7 +28,6 @@ from apps.scenarios.sync import (
     sync_from_files,
     write_through,
 )
-from apps.scenarios.variants import VariantsForm, generate_variants
 from events import lifecycle
 from events.registry import UnknownEnvironment, all_environments, get_environment
 from events.schemas import schema_fields
@@ -216,9 +215,6 @@ class ScenarioAdmin(admin.ModelAdmin):
             path("<int:pk>/dry-run/", view(self.dry_run_view), name="scenarios_scenario_dry_run"),
             path("<int:pk>/export/", view(self.export_view), name="scenarios_scenario_export"),
             path(
-                "<int:pk>/variants/", view(self.variants_view), name="scenarios_scenario_variants"
-            ),
-            path(
                 "<int:pk>/start-run/",
                 view(self.start_run_view),
                 name="scenarios_scenario_start_run",
@@ -271,9 +267,6 @@ class ScenarioAdmin(admin.ModelAdmin):
             )
             extra_context["start_run_url"] = reverse(
                 "admin:scenarios_scenario_start_run", args=[scenario.pk]
-            )
-            extra_context["variants_url"] = reverse(
-                "admin:scenarios_scenario_variants", args=[scenario.pk]
             )
             extra_context["reference"] = _reference(scenario.environment)
         return super().change_view(request, object_id, form_url, extra_context)
@@ -337,29 +330,6 @@ class ScenarioAdmin(admin.ModelAdmin):
             ],
         }
         return TemplateResponse(request, "admin/scenarios/scenario/dry_run.html", context)
-
-    def variants_view(self, request, pk: int):
-        """ "Generate variants…": the form, then the proven variants written (apps.scenarios.
-        variants), listed for review."""
-        scenario = get_object_or_404(Scenario, pk=pk)
-        if not self.has_add_permission(request):
-            from django.core.exceptions import PermissionDenied
-
-            raise PermissionDenied
-        form = VariantsForm(request.POST or None)
-        outcome = None
-        if request.method == "POST" and form.is_valid():
-            outcome = generate_variants(scenario, **form.cleaned_data)
-        context = {
-            **self.admin_site.each_context(request),
-            "title": f"Generate variants · {scenario.scenario_id}",
-            "opts": self.model._meta,
-            "original": scenario,
-            "scenario": scenario,
-            "form": form,
-            "outcome": outcome,
-        }
-        return TemplateResponse(request, "admin/scenarios/scenario/variants.html", context)
 
     def export_view(self, request, pk: int):
         scenario = get_object_or_404(Scenario, pk=pk)

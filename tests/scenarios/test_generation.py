@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from django.core.management import CommandError, call_command
 
-from apps.scenarios.generation.generate import MANIFEST
+from apps.generate.generate import MANIFEST
 from tests.conftest import OUR_SCENARIOS
 from tests.first_hour.test_readme_harness import code_blocks, readme_section
 

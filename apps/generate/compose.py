@@ -3,7 +3,7 @@
 What varies (`ASPECTS`, all by default; the admin's "Generate variants…" may pick):
 
 - timing — the trigger arrives at a new `condition_at` drawn from the environment's arrival
-  process (apps.scenarios.generation.arrivals); the story events keep their order, moved by a
+  process (apps.generate.arrivals); the story events keep their order, moved by a
   piecewise-linear warp of the timeline that sends the old condition time to the new one (what
   came before the trigger still comes before it, in the same proportions; waypoints inside a
   preload's payload too); background events are re-timed by the process (bursts, morning
@@ -12,7 +12,7 @@ What varies (`ASPECTS`, all by default; the admin's "Generate variants…" may p
   one to three more arrive, preferring near misses: the items that share the most catalog fields
   with the trigger (the right sender with the wrong subject, the same channel, the same
   symbol…). A near miss that satisfies the condition is not avoided here: the proofs discard it;
-- phrasing — the prompt reworded (apps.scenarios.generation.phrasing).
+- phrasing — the prompt reworded (apps.generate.phrasing).
 
 A withheld family's candidate drops the trigger: it is written as a no-op (no `condition_at`, no
 `eval_sql`, no solution), and proven with the template's `eval_sql`, which must never hold.
@@ -25,9 +25,9 @@ import random
 from dataclasses import dataclass
 from typing import Any
 
-from apps.scenarios.generation.arrivals import process_for
-from apps.scenarios.generation.phrasing import rephrase
-from apps.scenarios.generation.templates import Template, item_of
+from apps.generate.arrivals import process_for
+from apps.generate.phrasing import rephrase
+from apps.generate.templates import Template, item_of
 from events.catalog import Catalog
 from events.registry import get_environment
 

@@ -1,5 +1,5 @@
 """`manage.py generate --seed S --count N --out DIR [--env E …] [--families F …]`: new scenarios
-composed from the hand-written ones, each proven before it is written (apps.scenarios.generation).
+composed from the hand-written ones, each proven before it is written (apps.generate).
 
 Prints progress per environment, the discards by reason, the diversity figures and the wall
 time; exit 2 on bad input (the message names it).
@@ -13,9 +13,9 @@ from pathlib import Path
 from django.conf import settings
 from django.core.management.base import BaseCommand, CommandError
 
-from apps.scenarios.generation.compose import ASPECTS
-from apps.scenarios.generation.figures import diversity
-from apps.scenarios.generation.generate import GenerationError, generate
+from apps.generate.compose import ASPECTS
+from apps.generate.figures import diversity
+from apps.generate.generate import GenerationError, generate
 from apps.scenarios.library import scenario_root
 
 

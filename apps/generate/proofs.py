@@ -29,9 +29,9 @@ from apps.bench.agents import CONDITION_MARGIN_S, FIXED_CONTACT_AT, SLEEPER_MARG
 from apps.bench.everything import every_item_steps
 from apps.bench.management.commands.bench import cheating_problems
 from apps.bench.runner import deadline_s
+from apps.generate.compose import waypoint_lists
 from apps.scenarios.dry_run import TOLERANCE_S, dry_run
 from apps.scenarios.format import ScenarioError
-from apps.scenarios.generation.compose import waypoint_lists
 from apps.scenarios.serialization import render_json, scenario_file_of
 from events.catalog import load_catalog
 from events.evaluation import GradingSnapshot

@@ -28,11 +28,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from apps.scenarios.generation.arrivals import STRATA
-from apps.scenarios.generation.compose import ASPECTS, Candidate, compose
-from apps.scenarios.generation.naming import generated_id
-from apps.scenarios.generation.proofs import Proof, prove
-from apps.scenarios.generation.templates import Template, item_of, item_pool, read_templates
+from apps.generate.arrivals import STRATA
+from apps.generate.compose import ASPECTS, Candidate, compose
+from apps.generate.proofs import Proof, prove
+from apps.generate.templates import Template, item_of, item_pool, read_templates
+from apps.scenarios.generated_names import generated_id
 from apps.scenarios.serialization import render_json
 from events.catalog import load_catalog
 

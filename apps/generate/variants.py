@@ -1,7 +1,7 @@
 """The admin's "Generate variants…": proven variants of one scenario, kept as new files.
 
 The author picks how many, what to vary (timing, distractors, phrasing) and a seed; the
-scenario as saved is the template (apps.scenarios.generation: the same draws and proofs as
+scenario as saved is the template (apps.generate: the same draws and proofs as
 `manage.py generate`). Each proven variant is written beside it as an ordinary scenario file,
 `<environment>/<family>-g<seed>-<nnnn>.json`, and imported, so the author reviews, edits, runs
 or deletes it like any other; a path already taken is left alone and reported.
@@ -13,10 +13,10 @@ from dataclasses import dataclass, field
 
 from django import forms
 
+from apps.generate.compose import ASPECTS
+from apps.generate.generate import MAX_VARIANTS, GenerationError, variants
+from apps.generate.templates import template_of
 from apps.scenarios.format import ScenarioError
-from apps.scenarios.generation.compose import ASPECTS
-from apps.scenarios.generation.generate import MAX_VARIANTS, GenerationError, variants
-from apps.scenarios.generation.templates import template_of
 from apps.scenarios.models import Scenario
 from apps.scenarios.serialization import (
     parsed_scenario,
