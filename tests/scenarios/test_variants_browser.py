@@ -10,7 +10,7 @@ from django.contrib.auth import get_user_model
 from django.core.management import call_command
 
 from apps.scenarios.models import Scenario
-from tests.browser_story import TIMEOUT_MS
+from tests.browser_story import admin_page
 from tests.conftest import OUR_SCENARIOS
 
 pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
@@ -30,12 +30,7 @@ def sender_scenario(own_scenarios, live_site):
 
 def test_generate_variants_writes_proven_scenarios_the_author_can_open(sender_scenario, browser):
     live_site, folder, pk = sender_scenario
-    page = browser.new_page()
-    page.set_default_timeout(TIMEOUT_MS)
-    page.goto(f"{live_site}/admin/login/")
-    page.fill("#id_username", AUTHOR)
-    page.fill("#id_password", PASSWORD)
-    page.click("input[type=submit]")
+    page = admin_page(browser, live_site, AUTHOR, PASSWORD)
     page.goto(f"{live_site}/admin/scenarios/scenario/{pk}/change/")
     page.click("#variants-link")
 
