@@ -148,3 +148,9 @@ def test_the_readme_example_generates_a_folder_that_bench_validate_passes(tmp_pa
     assert f"early_fail={targeted}/{targeted} never_ok={total}/{total} " in summary, summary
     assert f"act_all_timely=0/{targeted} " in summary and f"quitter=0/{total} " in summary
     assert f"unseen=0/{targeted} " in summary, summary
+
+
+def test_bench_refuses_a_scenario_folder_that_is_not_there(tmp_path):
+    for subcommand in (["run", "nightly", "--agent", "oracle"], ["validate"]):
+        with pytest.raises(CommandError, match=r"--scenarios .*missing: no such folder"):
+            call_command("bench", *subcommand, "--scenarios", str(tmp_path / "missing"))
