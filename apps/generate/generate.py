@@ -18,6 +18,7 @@ results, and the discards by reason and by family.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import random
 import re
@@ -57,6 +58,7 @@ class Generated:
     abandoned: list[str] = field(default_factory=list)  # families that left the rotation
     # family -> why its template, unvaried, fails the proofs (it is not generated from)
     unprovable: dict[str, str] = field(default_factory=dict)
+    templates_hash: str = ""  # sha256 of the templates drawn from, for the manifest
 
 
 def _reason(proof: Proof) -> str:
@@ -118,6 +120,15 @@ def select_templates(
     return by_env
 
 
+def _templates_hash(templates: Iterable[Template]) -> str:
+    """What the files depend on besides the seed and the catalog: the templates' documents."""
+    digest = hashlib.sha256()
+    for template in templates:
+        digest.update(template.source.encode() + b"\0")
+        digest.update(json.dumps(template.document, sort_keys=True).encode() + b"\0")
+    return digest.hexdigest()
+
+
 def _check_aspects(aspects: tuple[str, ...]) -> None:
     unknown = sorted(set(aspects) - set(ASPECTS))
     if unknown or not aspects:
@@ -166,12 +177,13 @@ def generate(
     if count < 1:
         raise GenerationError(f"--count must be >= 1, got {count}")
     _check_aspects(aspects)
-    by_env = select_templates(read_templates(templates_root), environments, families)
+    templates = read_templates(templates_root)
+    by_env = select_templates(templates, environments, families)
     if not by_env:
         raise GenerationError(f"no templates to generate from in {templates_root}")
     prover = prover or (lambda c: prove(c.document, c.proven))
     catalog = load_catalog()
-    result = Generated()
+    result = Generated(templates_hash=_templates_hash(t for ts in by_env.values() for t in ts))
     for environment, share in _shares(count, sorted(by_env)).items():
         _generate_environment(
             environment, by_env[environment], share, seed, aspects, catalog, prover, result
@@ -316,6 +328,7 @@ def write(out: Path, seed: int, aspects, result: Generated, protected: Iterable[
         "seed": seed,
         "aspects": list(aspects),
         "catalog_hash": load_catalog().content_hash,
+        "templates_hash": result.templates_hash,
         "written": len(result.entries),
         "candidates": result.candidates,
         "discarded": sum(result.discarded.values()),
