@@ -11,7 +11,7 @@ from collections import Counter
 from typing import Any
 
 from apps.scenarios.format import parse_scenario
-from apps.scenarios.spread import condition_spread
+from apps.scenarios.spread import MAX_BIN_SHARE, condition_spread
 
 
 def diversity(entries: list[dict[str, Any]], documents: list[dict[str, Any]]) -> list[str]:
@@ -35,6 +35,12 @@ def diversity(entries: list[dict[str, Any]], documents: list[dict[str, Any]]) ->
         "kinds: " + ", ".join(f"{k} {share(n)}" for k, n in sorted(kinds.items())),
         "condition_at per 100 s bin: "
         + ", ".join(f"{b.label} {b.count} ({100 * b.share:.0f} %)" for b in spread.bins),
+        "condition_at spread: "
+        + (
+            "crowded: " + ", ".join(b.label for b in spread.crowded)
+            if spread.crowded
+            else f"ok: no bin above {100 * MAX_BIN_SHARE:.0f} %"
+        ),
         f"families: {len(families)}",
     ]
     by_env: dict[str, list[str]] = {}

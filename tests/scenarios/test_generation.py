@@ -53,6 +53,7 @@ def test_the_command_prints_the_diversity_figures_and_the_manifest_says_why(tmp_
     assert re.search(r"^distinct prompts: \d+; distinct trigger items: \d+$", text, re.M)
     assert re.search(r"^generated: 12 scenarios, \d+ targeted, no-ops \d+ \(", text, re.M)
     assert "condition_at per 100 s bin: [  0, 100) s" in text
+    assert "condition_at spread: ok: no bin above 25 %" in text  # a sample: not judged
     assert re.search(r"^generate: seed=7 written=12 candidates=\d+ .* wall_s=", lines[-1])
     manifest = json.loads((tmp_path / MANIFEST).read_text())
     assert manifest["written"] == 12
