@@ -19,7 +19,7 @@ how far apart), sampled from one `random.Random`:
 A process gives background arrival times (`arrival_times`) and one condition time
 (`condition_time`): the trigger arrives by the same process, restricted to [10, 574] s, the
 window in which a contact can still be timely (README "What an agent can reach"), and to one of
-six equal strata of it, taken in turn by a family's variants, so that condition times spread
+six equal strata of it, taken in turn by an environment's scenarios, so that condition times spread
 over the whole window as the paper's do (no 100-second bin above a quarter, `checkscenarios`)
 while within a stratum they follow the environment's profile.
 """
@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 CONDITION_WINDOW = (10.0, 574.0)  # simulated seconds: where a generated trigger may arrive
 GRID_S = 1.0  # the profile is sampled every simulated second
-STRATA = 6  # parts of CONDITION_WINDOW a family's variants take in turn
+STRATA = 6  # parts of CONDITION_WINDOW an environment's scenarios take in turn
 
 
 @dataclass(frozen=True)
@@ -60,8 +60,8 @@ class Process:
 
     def condition_time(self, rng: random.Random, stratum: int | None = None) -> float:
         """A trigger's arrival in CONDITION_WINDOW, or in its `stratum`-th of STRATA equal
-        parts: the generator gives a family's successive variants successive strata (in an
-        order of its own), so its condition times cover the window whatever the profile."""
+        parts: the generator gives an environment's successive scenarios successive strata (in
+        an order of its own), so condition times cover the window whatever the profile."""
         low, high = CONDITION_WINDOW
         if stratum is not None:
             width = (high - low) / STRATA

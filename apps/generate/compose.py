@@ -12,7 +12,11 @@ What varies (`ASPECTS`, all by default; the admin's "Generate variants…" may p
   one to three more arrive, preferring near misses: the items that share the most catalog fields
   with the trigger (the right sender with the wrong subject, the same channel, the same
   symbol…). A near miss that satisfies the condition is not avoided here: the proofs discard it;
-- phrasing — the prompt reworded (apps.generate.phrasing).
+- phrasing — the prompt reworded (apps.generate.phrasing);
+- trigger — another catalog item of the trigger's kind arrives as the trigger, drawn from its
+  closest kin (the same sender, channel, author…); wherever the scenario names the trigger by id
+  (its eval_sql, its solution) the new id takes its place. One that does not meet the condition
+  (the keyword is not in its body) fails the proofs and is discarded.
 
 A withheld family's candidate drops the trigger: it is written as a no-op (no `condition_at`, no
 `eval_sql`, no solution), and proven with the template's `eval_sql`, which must never hold.
@@ -21,17 +25,18 @@ A withheld family's candidate drops the trigger: it is written as a no-op (no `c
 from __future__ import annotations
 
 import copy
+import json
 import random
 from dataclasses import dataclass
 from typing import Any
 
 from apps.generate.arrivals import process_for
 from apps.generate.phrasing import rephrase
-from apps.generate.templates import Template, item_of
+from apps.generate.templates import Template, item_of, renamed
 from events.catalog import Catalog
 from events.registry import get_environment
 
-ASPECTS = ("timing", "distractors", "phrasing")
+ASPECTS = ("timing", "distractors", "phrasing", "trigger")
 NEAR_MISS_SHARE = 0.6  # of added or replacing items, drawn from the trigger's closest kin
 NEAR_MISS_POOL = 5  # how many of the closest kin a near miss is drawn from
 REPLACE_SHARE = 0.4  # of background items replaced by another of the same kind
@@ -107,7 +112,9 @@ def _kin(catalog: Catalog, environment: str, table: str, trigger_id: str, pool: 
 class _Distractors:
     """Draws distractor items without repeats: near misses of the trigger first, else any."""
 
-    def __init__(self, template: Template, catalog: Catalog, pool: dict[str, list[str]], rng):
+    def __init__(
+        self, template: Template, catalog: Catalog, pool: dict[str, list[str]], rng, used=()
+    ):
         self.rng, self.pool = rng, {k: list(v) for k, v in pool.items()}
         self.kin: dict[str, list[str]] = {}
         events = template.document["events"]
@@ -121,7 +128,7 @@ class _Distractors:
                     catalog, template.environment, table, item[1], self.pool[trigger["type"]]
                 )
                 self.kin[trigger["type"]] = kin[:NEAR_MISS_POOL]
-        self.used: list[str] = []
+        self.used: list[str] = list(used)  # never drawn again (a swapped-in trigger)
 
     def draw(self, kind: str) -> str | None:
         near = [i for i in self.kin.get(kind, []) if i not in self.used]
@@ -147,8 +154,9 @@ def compose(
     stratum: int | None = None,
 ) -> Candidate:
     """A candidate of `template`'s family. `quiet`: the fallback when a full draw fails its
-    proofs — no distractors added, and the background moved with the story instead of re-timed
-    (a count that the re-timed background reached early, a no-op it satisfied)."""
+    proofs — the template's trigger, no distractors added, and the background moved with the
+    story instead of re-timed (a count that the re-timed background reached early, a no-op it
+    satisfied)."""
     document = copy.deepcopy(template.document)
     process = process_for(template.environment)
     end = float(document["event_timeline_end"])
@@ -181,9 +189,13 @@ def compose(
             rng.shuffle(group)
             timed += [(t, i, e) for t, (i, e) in zip(times, group, strict=True)]
 
+    swapped = None
+    if "trigger" in aspects and not quiet and not template.withheld:
+        swapped = _swap_trigger(template, document, timed, rng, catalog, pool)
     added: list[str] = []
     if "distractors" in aspects and pool and not quiet:
-        timed = _with_distractors(template, timed, rng, catalog, pool, process, end, added)
+        used = [swapped[1]] if swapped else []
+        timed = _with_distractors(template, timed, rng, catalog, pool, process, end, added, used)
 
     timed.sort(key=lambda entry: (entry[0], entry[1]))
     document["events"] = [{**event, "time": time} for time, _, event in timed]
@@ -206,6 +218,8 @@ def compose(
         if condition is not None:
             document["condition_at"] = target
         proven = document
+    if swapped:
+        notes.append(f"The trigger is {swapped[1]} (the template's: {swapped[0]}).")
     if added:
         notes.append(f"Distractors added: {', '.join(added)}.")
     document["annotator_notes"] = " ".join(n for n in notes if n)
@@ -219,8 +233,32 @@ def _middle(times: list[float], end: float) -> float:
     return later[len(later) // 2] if later else end / 2
 
 
-def _with_distractors(template, timed, rng, catalog, pool, process, end, added):
-    draws = _Distractors(template, catalog, pool, rng)
+def _swap_trigger(template, document, timed, rng, catalog, pool) -> tuple[str, str] | None:
+    """Another item of the trigger's kind as the trigger (see the module doc): (old id, new
+    id), or None when the trigger is no catalog item or none of its kind is free."""
+    if template.trigger is None:
+        return None
+    event = template.document["events"][template.trigger]
+    item = item_of(event)
+    if item is None or not pool.get(event["type"]):
+        return None
+    table = get_environment(template.environment).event_types[event["type"]].catalog_refs
+    if item[0] not in table:
+        return None
+    kin = _kin(catalog, template.environment, table[item[0]], item[1], pool[event["type"]])
+    new = rng.choice(kin[: 2 * NEAR_MISS_POOL])
+    for i, (time, order, entry) in enumerate(timed):
+        if order == template.trigger:
+            timed[i] = (time, order, {**entry, "payload": {item[0]: new}})
+    for key in ("eval_sql", "solution", "contact_rubric"):
+        if document.get(key):
+            text = json.dumps(document[key])
+            document[key] = json.loads(renamed(text, item[1], new))
+    return item[1], new
+
+
+def _with_distractors(template, timed, rng, catalog, pool, process, end, added, used=()):
+    draws = _Distractors(template, catalog, pool, rng, used)
     out = []
     for time, order, event in timed:
         item = item_of(event)

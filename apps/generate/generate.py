@@ -3,12 +3,12 @@
 The count is shared evenly among the environments; within one, the families take turns
 (round robin), so every family of the hand-written scenarios is represented wherever it exists.
 Each turn composes a candidate from its own random stream (`random.Random` seeded with
-"seed:environment:family:turn", so a family's draws do not depend on another's discards) and
-proves it; a candidate that fails a proof is discarded and counted by reason, and the turn
-tries a quieter one (`_fallbacks`); one that repeats
-an earlier one's condition on the same items at the same second is discarded as a duplicate, and
-a family with `GIVE_UP` discards and no proven scenario leaves the rotation. Same seed, same
-templates and catalog: byte-identical files and manifest.
+"seed:environment:family:turn"), its condition time in the next of the window's strata
+(apps.generate.arrivals), and proves it; a candidate that fails a proof is discarded and counted
+by reason, and the turn tries a quieter one (`_fallbacks`); one that repeats an earlier one's
+condition on the same items at the same second is discarded as a duplicate, and a family with
+`GIVE_UP` discards and no proven scenario leaves the rotation. Same seed, same templates and
+catalog: byte-identical files and manifest.
 
 Output: `<out>/<environment>/<family>-g<seed>-<n>.json` (ordinary scenario files: `bench run`,
 `bench validate`, the server and the admin take the folder as `SENTINEL_SCENARIO_DIR` or
@@ -198,7 +198,8 @@ def generate(
 
 def _fallbacks(aspects: tuple[str, ...]) -> list[tuple[bool, tuple[str, ...]]]:
     """A turn's tries, each only if the one before fails a proof: a full draw; a quiet one
-    (no added distractors, the background moved with the story: a count kept); one that keeps
+    (the template's trigger, no added distractors, the background moved with the story: a count
+    kept); one that keeps
     the template's times (a value moving between waypoints that the warp would bend)."""
     tries = [(False, aspects), (True, aspects)]
     if "timing" in aspects and len(aspects) > 1:
@@ -251,11 +252,10 @@ def _generate_environment(environment, templates, share, seed, aspects, catalog,
     proven = Counter()
     failures = Counter()
     seen: set[tuple] = set()
-    strata = {}  # family -> the order in which its variants take the window's strata
-    for template in rotation:
-        order = list(range(STRATA))
-        random.Random(f"{seed}:{environment}:{template.family}:strata").shuffle(order)
-        strata[template.family] = order
+    # The order in which the environment's scenarios take the window's strata, one after the
+    # other: with the families in turn, every family and every stratum gets its share.
+    strata = list(range(STRATA))
+    random.Random(f"{seed}:{environment}:strata").shuffle(strata)
     kept = turn = 0
     while kept < share and rotation and turn < share * TURNS_PER_SCENARIO:
         template = rotation[turn % len(rotation)]
@@ -274,7 +274,7 @@ def _generate_environment(environment, templates, share, seed, aspects, catalog,
                 aspects=varied,
                 note=f"Generated from {template.source} (family {template.family}, seed {seed}).",
                 quiet=quiet,
-                stratum=strata[template.family][number % STRATA],
+                stratum=strata[kept % STRATA],
             )
             result.candidates += 1
             key = _duplicate_key(candidate.document, template.family)

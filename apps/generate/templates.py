@@ -62,9 +62,19 @@ def item_of(event: dict[str, Any]) -> tuple[str, str] | None:
     return None
 
 
+def _token(item_id: str) -> re.Pattern:
+    """`item_id` as a whole token (`base-1` is not in `base-12`)."""
+    return re.compile(rf"(?<![\w-]){re.escape(item_id)}(?![\w-])")
+
+
 def mentions(text: str, item_id: str) -> bool:
-    """Whether `text` names `item_id` as a whole token (`base-1` is not in `base-12`)."""
-    return re.search(rf"(?<![\w-]){re.escape(item_id)}(?![\w-])", text) is not None
+    """Whether `text` names `item_id` as a whole token."""
+    return _token(item_id).search(text) is not None
+
+
+def renamed(text: str, old: str, new: str) -> str:
+    """`text` with every whole-token `old` made `new`."""
+    return _token(old).sub(lambda _: new, text)
 
 
 def _named_text(document: dict[str, Any]) -> str:

@@ -37,7 +37,8 @@ class VariantsForm(forms.Form):
         initial=list(ASPECTS),
         widget=forms.CheckboxSelectMultiple,
         help_text="timing: a new condition time, the background re-timed; distractors: other "
-        "and added catalog items, near misses first; phrasing: the prompt reworded",
+        "and added catalog items, near misses first; phrasing: the prompt reworded; trigger: "
+        "another catalog item of its kind as the trigger",
     )
     seed = forms.IntegerField(label="Seed", min_value=0, initial=1)
 

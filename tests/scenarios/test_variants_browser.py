@@ -37,6 +37,7 @@ def test_generate_variants_writes_proven_scenarios_the_author_can_open(sender_sc
     page.fill("#id_count", "2")
     page.fill("#id_seed", "3")
     page.uncheck("input[name=vary][value=phrasing]")  # the prompt stays the author's
+    page.uncheck("input[name=vary][value=trigger]")  # and so does the trigger
     page.click("#generate-variants")
 
     page.wait_for_selector("#variants-summary")
