@@ -55,6 +55,7 @@ INSTALLED_APPS = [
     "django_htmx",
     "events",
     "apps.scenarios",
+    "apps.generate",  # task generation: after apps.scenarios, whose admin it extends
     "apps.control",
     "apps.kit",
     "apps.bench",

@@ -79,3 +79,14 @@ class BrowserStory:
         verdict = self.api("POST", f"/api/runs/{self.run['id']}/evaluate/")
         assert verdict["success"] is success, verdict["detail"]
         return self.actions()
+
+
+def admin_page(browser, site: str, username: str, password: str):
+    """A new page logged in to the admin as `username`, with the story's timeout."""
+    page = browser.new_page()
+    page.set_default_timeout(TIMEOUT_MS)
+    page.goto(f"{site}/admin/login/")
+    page.fill("#id_username", username)
+    page.fill("#id_password", password)
+    page.click("input[type=submit]")
+    return page

@@ -42,6 +42,7 @@ from apps.bench.stats import (
     pass_hat_k,
     wilson,
 )
+from apps.scenarios.generated_names import family_of
 from events.timing import REACTION_WINDOW
 
 COLUMNS = (
@@ -853,6 +854,13 @@ def category_table(rows: list[Row], window: float) -> TableCells:
     return breakdown_table(rows, window, lambda r: r.category, "category")
 
 
+def family_table(rows: list[Row], window: float) -> TableCells:
+    """Generated scenarios (`manage.py generate`) by their family; others under their id."""
+    return breakdown_table(
+        rows, window, lambda r: f"{r.environment}/{family_of(r.name) or r.name}", "family"
+    )
+
+
 def uncertainty_lines(rows: list[Row], window: float = REACTION_WINDOW) -> list[str]:
     """The figures with their 95 % intervals, pass@k/pass^k, by environment and by category."""
     if not rows:
@@ -864,6 +872,8 @@ def uncertainty_lines(rows: list[Row], window: float = REACTION_WINDOW) -> list[
         out += ["", line]
     out += ["", "By environment:", *aligned(*environment_table(rows, window))]
     out += ["", "By category:", *aligned(*category_table(rows, window))]
+    if any(family_of(r.name) for r in rows):
+        out += ["", "By family (generated scenarios):", *aligned(*family_table(rows, window))]
     return out
 
 

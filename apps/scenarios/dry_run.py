@@ -13,8 +13,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from apps.scenarios.format import ScenarioError
 from apps.scenarios.models import Scenario, TimelineEvent
-from apps.scenarios.serialization import timeline_of
+from apps.scenarios.serialization import parsed_scenario, timeline_of
 from apps.scenarios.watching import watch_check
 from events.catalog import load_catalog
 from events.evaluation import GradingSnapshot
@@ -153,6 +154,10 @@ def _check_solution(scenario: Scenario, environment, start, sql: str, result: Dr
 def _check_watched(scenario: Scenario, events, result: DryRun, catalog_dir) -> None:
     """Is the trigger there to be seen where the prompt says to watch?"""
     assert scenario.condition_at is not None
+    try:  # the run's spec, as `bench validate` renders it: some pages read its timeline end
+        spec = parsed_scenario(scenario, events).to_run_spec()
+    except ScenarioError:  # an edited timeline not valid yet: render without it
+        spec = None
     check = watch_check(
         scenario.environment,
         scenario.watch_page or scenario.start_page,
@@ -162,6 +167,7 @@ def _check_watched(scenario: Scenario, events, result: DryRun, catalog_dir) -> N
             for e in sorted(events, key=lambda e: (e.time, e.position))
         ],
         scenario.event_timeline_end,
+        spec=spec,
         catalog_dir=catalog_dir,
         source=scenario.path,
     )

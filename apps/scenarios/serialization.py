@@ -61,12 +61,17 @@ def _is_int(value: Any) -> bool:
 
 def read_scenario_file(path: Path, root: Path) -> ScenarioFile:
     """Validate `path` (raises ScenarioError, one line naming file and field) and capture it."""
-    source = str(path)
     text, data = read_json_file(path)
-    is_dev = path.name == DEV_FILENAME
+    return scenario_file_of(data, text, path.relative_to(root).as_posix(), source=str(path))
+
+
+def scenario_file_of(data: Any, text: str, relative_path: str, *, source: str) -> ScenarioFile:
+    """Validate a scenario document (raises ScenarioError) and capture it as an unsaved row,
+    as `read_scenario_file` does for a file (the generator proves documents not yet written)."""
+    is_dev = relative_path.rsplit("/", 1)[-1] == DEV_FILENAME
     parsed = (parse_dev_scenario if is_dev else parse_scenario)(data, source=source)
     row = Scenario(
-        path=path.relative_to(root).as_posix(),
+        path=relative_path,
         scenario_id=parsed.id,
         environment=parsed.environment,
         prompt=data.get("prompt", ""),

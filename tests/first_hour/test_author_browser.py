@@ -11,7 +11,7 @@ import pytest
 from django.contrib.auth import get_user_model
 
 from sentinel_site.site_server import site_server
-from tests.browser_story import TIMEOUT_MS
+from tests.browser_story import admin_page
 from tests.conftest import OUR_SCENARIOS
 
 pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
@@ -33,12 +33,7 @@ def author_site(transactional_db, tmp_path, settings):
 
 def test_an_author_creates_a_scenario_and_runs_it(author_site, browser):
     base_url, root = author_site
-    page = browser.new_page()
-    page.set_default_timeout(TIMEOUT_MS)
-    page.goto(f"{base_url}/admin/login/")
-    page.fill("#id_username", AUTHOR)
-    page.fill("#id_password", PASSWORD)
-    page.click("input[type=submit]")
+    page = admin_page(browser, base_url, AUTHOR, PASSWORD)
 
     page.goto(f"{base_url}/admin/scenarios/scenario/add/")
     reference = page.locator('#scenario-reference details[data-environment="micromail"]')

@@ -9,7 +9,7 @@ from django.contrib.auth import get_user_model
 from django.core.management import call_command
 
 from apps.scenarios.models import Scenario
-from tests.browser_story import TIMEOUT_MS
+from tests.browser_story import admin_page
 from tests.conftest import OUR_SCENARIOS
 
 pytestmark = [pytest.mark.browser, pytest.mark.django_db(transaction=True)]
@@ -33,12 +33,7 @@ def test_an_author_moves_the_trigger_event_and_the_dry_run_flags_it(inbox_scenar
     # The server comes from inbox_scenario, started after own_scenarios: a server started first
     # would write the edit into the copy every other test of the session plays.
     live_site, pk, trigger_time, event_count = inbox_scenario
-    page = browser.new_page()
-    page.set_default_timeout(TIMEOUT_MS)
-    page.goto(f"{live_site}/admin/login/")
-    page.fill("#id_username", AUTHOR)
-    page.fill("#id_password", PASSWORD)
-    page.click("input[type=submit]")
+    page = admin_page(browser, live_site, AUTHOR, PASSWORD)
     page.goto(f"{live_site}/admin/scenarios/scenario/{pk}/change/")
     assert page.locator("#timeline-chart").is_visible()
 

@@ -19,6 +19,7 @@ from django.core.management import call_command
 from django.core.management.base import BaseCommand, CommandError
 from django.db import connection
 from django.db.migrations.executor import MigrationExecutor
+from django.test.utils import override_settings
 from django.utils import timezone
 
 from apps.bench import preflight
@@ -198,6 +199,26 @@ def noop_rule(parser) -> None:
     )
 
 
+def scenario_folder(parser) -> None:
+    parser.add_argument(
+        "--scenarios",
+        metavar="DIR",
+        help="run this scenario folder (e.g. `manage.py generate`'s --out) instead of "
+        "SENTINEL_SCENARIO_DIR",
+    )
+
+
+def use_scenario_folder(folder: str | None):
+    """`--scenarios DIR`: the embedded server, the preflight and the checks read DIR (for this
+    command only: the settings are restored after it)."""
+    if folder is None:
+        return contextlib.nullcontext()
+    path = Path(folder).resolve()
+    if not path.is_dir():
+        raise _usage(f"--scenarios {folder}: no such folder")
+    return override_settings(SENTINEL_SCENARIO_DIR=path)
+
+
 class Command(BaseCommand):
     help = (
         "Benchmark harness: run an agent over the scenarios, grade the results, validate scenarios."
@@ -218,6 +239,7 @@ class Command(BaseCommand):
             help="exact scenario id, or a file's path (micromail/x.json); repeat for several",
         )
         run.add_argument("--filter", help="case-insensitive substring of the scenario id")
+        scenario_folder(run)
         run.add_argument("--speed-factor", type=float)
         run.add_argument("--server-url", help="use this server instead of starting an embedded one")
         run.add_argument(
@@ -322,6 +344,7 @@ class Command(BaseCommand):
             "--parallel", type=int, default=10, help="runs at once per control agent"
         )
         validate.add_argument("--filter")
+        scenario_folder(validate)
         validate.add_argument("--server-url")
         validate.add_argument(
             "--reaction-window",
@@ -341,7 +364,7 @@ class Command(BaseCommand):
 
     def handle(self, *args, subcommand: str, **options):
         try:
-            with terminate_as_interrupt():
+            with terminate_as_interrupt(), use_scenario_folder(options.pop("scenarios", None)):
                 return getattr(self, f"handle_{subcommand.replace('-', '_')}")(**options)
         except (ConfigError, BenchError, SpeedFactorError) as exc:
             raise _usage(str(exc)) from None
