@@ -101,9 +101,9 @@ def test_the_run_spec_is_json_with_exactly_the_scenario_fields(pingenv):
 
     spec = scenario.to_run_spec()
 
-    # watch_page and contact_rubric only when the scenario declares them: a run of one that does
-    # not is stored as runs always were.
-    optional = {"watch_page", "contact_rubric"}
+    # watch_page, contact_rubric and condition_until only when the scenario declares them: a
+    # run of one that does not is stored as runs always were.
+    optional = {"watch_page", "contact_rubric", "condition_until"}
     assert set(spec) == {f.name for f in dataclasses.fields(Scenario)} - optional
     watched = parse_scenario({**third_ping_scenario(), "watch_page": "HOST_ADDRESS/tally/x"})
     assert watched.to_run_spec()["watch_page"] == "HOST_ADDRESS/tally/x"
@@ -569,3 +569,27 @@ def test_every_upstream_dev_json_is_valid(environment):
 
     assert scenario.id == f"dev-{environment}"
     assert scenario.is_dev and scenario.event_timeline_end == 9999.0
+
+
+def test_persistence_and_criteria_default_to_the_papers_and_an_ephemeral_one_needs_its_end(
+    pingenv,
+):
+    plain = parse_scenario(third_ping_scenario())
+    assert (plain.persistence, plain.criteria, plain.condition_until) == (
+        "persistent",
+        "objective",
+        None,
+    )
+    taxonomy = {**third_ping_scenario()["taxonomy"], "event_persistence": "ephemeral"}
+    brief = {**third_ping_scenario(), "taxonomy": {**taxonomy, "criteria": "subjective"}}
+    with pytest.raises(ScenarioError, match="condition_until: is required"):
+        parse_scenario(brief)
+    with pytest.raises(ScenarioError, match="condition_at < condition_until"):
+        parse_scenario({**brief, "condition_until": 30.5})
+    ephemeral = parse_scenario({**brief, "condition_until": 90})
+    assert (ephemeral.persistence, ephemeral.criteria) == ("ephemeral", "subjective")
+    assert ephemeral.to_run_spec()["condition_until"] == 90.0
+    with pytest.raises(ScenarioError, match="only an \"ephemeral\""):
+        parse_scenario({**third_ping_scenario(), "condition_until": 90})
+    with pytest.raises(ScenarioError, match="taxonomy.criteria: is 'vague'"):
+        parse_scenario({**brief, "taxonomy": {**taxonomy, "criteria": "vague"}})

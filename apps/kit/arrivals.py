@@ -117,15 +117,20 @@ def arrival(
         return deliver(state, [event.payload[field]], event.at, preloaded=False)
 
     reduce.__doc__ = help
+    schema = id_payload(name, field, description)
+    refs = {field: table} if table else {}
+    return name, EventType(schema=schema, reduce=reduce, help=help, catalog_refs=refs)
+
+
+def id_payload(name: str, field: str, description: str | None = None) -> type[Payload]:
+    """The schema of the event `name {field: id}` naming one item (an arrival, a retraction)."""
     default = (
         f"catalog {field.removesuffix('_id').replace('_', ' ')} id"  # email_id → catalog email id
     )
     # Typed as create_model's **field_definitions: a literal dict would be matched against its
     # __config__, __base__… keywords too.
     fields: dict[str, Any] = {field: (str, Field(description=description or default))}
-    schema = create_model(_schema_name(name), __base__=Payload, **fields)
-    refs = {field: table} if table else {}
-    return name, EventType(schema=schema, reduce=reduce, help=help, catalog_refs=refs)
+    return create_model(_schema_name(name), __base__=Payload, **fields)
 
 
 Then = Callable[[S, Mapping[str, Any], float], S]  # (state, payload, at) → state

@@ -16,6 +16,7 @@ import uuid
 from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
 
+from apps.kit.retractions import is_gone
 from apps.kit.state import setting
 from events.registry import Action, ActionRejected, ImplicitAction, PageStep
 from events.schemas import Payload
@@ -42,7 +43,7 @@ def found(items: Mapping[str, Item], item_id: str, what: str, where: str) -> Ite
     """`items[item_id]`, or a 404 "no <what> '<id>' <where>". Unknown and not-yet-arrived ids look
     the same, so an agent cannot learn from a refusal what the scenario has in store."""
     item = items.get(item_id)
-    if item is None:
+    if item is None or is_gone(item):  # gone (apps.kit.retractions): there is nothing to act on
         raise ActionRejected(f"no {what} {item_id!r} {where}", status=404)
     return item
 

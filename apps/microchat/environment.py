@@ -11,6 +11,7 @@ from pydantic import Field
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
+from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.microchat import state as chats
 from apps.microchat.actions import ACTIONS
@@ -86,6 +87,13 @@ EVENT_TYPES = event_types(
     arrival(
         "new_call", "call_id", "calls", deliver_calls, help="One call appears in the call log."
     ),
+    retraction(
+        "unsend_message",
+        "message_id",
+        "messages",
+        "messages",
+        help='Its sender deletes a message: "This message has been deleted." takes its place.',
+    ),
 )
 
 
@@ -109,6 +117,7 @@ materialize = tables(
             "isUrgent INTEGER": "is_urgent",
             "mentionsMe INTEGER": "mentions_me",
             "hasAttachment INTEGER": "has_attachment",
+            **window("sent_at"),
         },
     ),
     Table.keyed(

@@ -9,12 +9,14 @@ from dataclasses import dataclass
 from datetime import date, timedelta
 
 from apps.kit.derived import per_state
+from apps.kit.retractions import present
 from apps.microchat import state as chats
 from apps.microchat.query import CallsQuery, ChatQuery
 from apps.microchat.state import Call, Chat, Conversation, Message, Team
 
 FILTER_LABELS = {"unread": "Unread", "chats": "Chats", "meetings": "Meeting chats"}
 PREVIEW_LENGTH = 90
+DELETED = "This message has been deleted."  # what Teams shows in place of a deleted message
 RUN_GAP_S = 5 * 60  # a sender's messages closer than this share one header (a "run")
 SPEED_DIAL = 8
 MEMBERS_SHOWN = 10
@@ -87,6 +89,8 @@ def people_of(chat: Chat, conversation: Conversation) -> tuple[str, ...]:
 def preview_of(message: Message | None) -> str:
     if message is None:
         return "No messages yet"
+    if message.gone_at is not None:
+        return DELETED
     text = " ".join(message.content.split()) or (
         "Sent an attachment" if message.has_attachment else ""
     )
@@ -300,7 +304,7 @@ def search(chat: Chat, q: str, root: str) -> SearchResults:
     )
     hits = [
         m
-        for m in chat.messages.values()
+        for m in present(chat.messages.values())  # a deleted message's text is not found
         if needle in m.content.casefold() or needle in m.sender_name.casefold()
     ]
     hits.sort(key=lambda m: m.sent_at, reverse=True)

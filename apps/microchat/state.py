@@ -48,6 +48,7 @@ class Message:
     by_self: bool = False  # written by the self user (from the catalog or sent in the run)
     sent_in_run: bool = False  # sent by the agent: not part of the original's tables
     edited: bool = False
+    gone_at: float | None = None  # deleted by its sender then (apps.kit.retractions)
 
 
 @dataclass(frozen=True)
@@ -173,7 +174,9 @@ def with_reaction(chat: Chat, message_id: str, reaction: str, user_id: str, on: 
 
 
 def unread_ids(chat: Chat) -> list[str]:
-    return [i for i, is_read in chat.read.items() if not is_read]
+    """Unread and still there: a message its sender deleted no longer asks to be read."""
+    messages = chat.messages
+    return [i for i, is_read in chat.read.items() if not is_read and messages[i].gone_at is None]
 
 
 def unread_in(chat: Chat, conversation_id: str) -> list[str]:

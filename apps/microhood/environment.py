@@ -191,6 +191,8 @@ write_tables = tables(
             **named("id TEXT", "symbol TEXT"),
             "action TEXT": "side",
             **named("quantity INTEGER", "price REAL", "type TEXT"),
+            # Ours: when it filled, so eval_sql can ask for a fill inside a price's window.
+            "filledAt REAL": "filled_at",
         },
     ),
     # The price at `now`, unrounded.

@@ -7,6 +7,7 @@ from apps.kit import feeds
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
+from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, Table, named, tables
 from apps.micromail import state as mailbox
 from apps.micromail.actions import ACTIONS
@@ -57,6 +58,14 @@ EVENT_TYPES = event_types(
         help="Mail already in the mailbox at the start; baselines are measured after it.",
     ),
     arrival("new_email", "email_id", "emails", deliver_emails, help="One message arrives, unread."),
+    retraction(
+        "recall_email",
+        "email_id",
+        "emails",
+        "emails",
+        help="Its sender recalls a message: it leaves every folder (opened, the reading pane "
+        "says it was recalled).",
+    ),
 )
 
 
@@ -76,6 +85,7 @@ materialize = tables(
             "isCC INTEGER": "is_cc",
             "body TEXT": "body",
             "attachment_name TEXT": "attachment_names",
+            **window("arrived_at"),
         },
     ),
     Table.keyed(

@@ -58,6 +58,7 @@ class Email:
     mentions_me: bool = False
     attachments: tuple[Attachment, ...] = ()
     arrived_at: float = 0.0  # simulated seconds, authored scale
+    gone_at: float | None = None  # recalled by its sender then (apps.kit.retractions)
 
     @property
     def preview(self) -> str:
@@ -121,8 +122,14 @@ def attachment_shelf(mail: Mail) -> tuple[Attachment, ...]:
 # --- counts (baselines and badges) ---------------------------------------------------------------
 
 
+def in_mailbox(mail: Mail) -> Iterable[tuple[str, EmailState]]:
+    """(id, state) of every message there: a recalled one has left every folder and count."""
+    emails = mail.emails
+    return ((i, s) for i, s in mail.states.items() if emails[i].gone_at is None)
+
+
 def counting(predicate: Callable[[Email, EmailState], bool]) -> Callable[[Mail], int]:
-    return lambda mail: sum(1 for i, s in mail.states.items() if predicate(mail.emails[i], s))
+    return lambda mail: sum(1 for i, s in in_mailbox(mail) if predicate(mail.emails[i], s))
 
 
 # Upstream's definitions (eval_sql reads them as baselines); unread_count is also the Inbox badge.
@@ -138,7 +145,7 @@ cc_count = counting(lambda e, s: e.is_cc and s.folder == "inbox")
 
 def folder_badges(mail: Mail) -> dict[str, int]:
     """Sidebar badges: Inbox shows its unread count, every other folder its total."""
-    totals = Counter(s.folder for s in mail.states.values())
+    totals = Counter(s.folder for _, s in in_mailbox(mail))
     return {folder: totals[folder] for folder in FOLDERS} | {"inbox": unread_count(mail)}
 
 
@@ -173,7 +180,7 @@ def matches_search(email: Email, query: str) -> bool:
 
 def in_folder(mail: Mail, folder: str | None) -> list[str]:
     """Ids in `folder` in delivery order; None means every folder."""
-    return [i for i, s in mail.states.items() if folder is None or s.folder == folder]
+    return [i for i, s in in_mailbox(mail) if folder is None or s.folder == folder]
 
 
 def filter_counts(mail: Mail, ids: Iterable[str]) -> dict[str, int]:

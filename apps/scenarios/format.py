@@ -38,6 +38,9 @@ INLINE = "<inline>"
 TAXONOMY_CHOICES: dict[str, tuple[str, ...]] = {
     "milestone_type": ("absolute", "relative"),
     "monitoring_approach": ("passive", "active"),
+    # The paper's two "future work" axes (upstream's keys; every upstream task is the first).
+    "event_persistence": ("persistent", "ephemeral"),
+    "criteria": ("objective", "subjective"),
 }
 
 
@@ -67,6 +70,19 @@ class Scenario:
     # Our extension: the page the prompt tells the agent to watch ("keep an eye on the jobs
     # page"), same form as start_page; "" when it is the start page.
     watch_page: str = ""
+    # Our extension: an ephemeral condition's end (it holds from condition_at until then);
+    # None for a persistent one.
+    condition_until: float | None = None
+
+    @property
+    def persistence(self) -> str:
+        """ "ephemeral" (the condition holds only until `condition_until`) or "persistent"."""
+        return str(self.taxonomy.get("event_persistence") or "persistent")
+
+    @property
+    def criteria(self) -> str:
+        """ "subjective" (the condition is a judgement, per the rubric) or "objective"."""
+        return str(self.taxonomy.get("criteria") or "objective")
 
     @property
     def watched_page(self) -> str:
@@ -83,8 +99,8 @@ class Scenario:
         spec = asdict(self)  # deep-copies, so the stored spec never aliases this object
         spec["events"] = list(spec["events"])
         spec["solution"] = list(spec["solution"])
-        for optional in ("watch_page", "contact_rubric"):
-            if not spec[optional]:
+        for optional in ("watch_page", "contact_rubric", "condition_until"):
+            if spec[optional] in (None, "", {}):
                 del spec[optional]  # a run of a scenario without one is stored as it was
         return spec
 
@@ -305,6 +321,28 @@ def _condition_at(data: dict, kill_at: float, end: float, source: str) -> float 
     return condition_at
 
 
+def _condition_until(
+    data: dict, condition_at: float | None, end: float, ephemeral: bool, source: str
+) -> float | None:
+    """An ephemeral condition's end: required for one (and only for one), after its start."""
+    if not ephemeral:
+        if data.get("condition_until") is not None:
+            _fail(source, "condition_until", 'only an "ephemeral" event_persistence has one')
+        return None
+    if condition_at is None:
+        _fail(source, "taxonomy.event_persistence", "a no-op cannot be ephemeral")
+    what = "a number: when the ephemeral condition stops holding"
+    until = _number(_require(data, "condition_until", source, what), "condition_until", source)
+    if not condition_at < until <= end:
+        _fail(
+            source,
+            "condition_until",
+            "must satisfy condition_at < condition_until <= event_timeline_end, "
+            f"got condition_at={condition_at}, condition_until={until}, event_timeline_end={end}",
+        )
+    return until
+
+
 def _watch_page(data: dict, environment: str, source: str) -> str:
     """Optional; one of the environment's pages on our site, written as start_page is."""
     page = _text(data.get("watch_page", ""), "watch_page", source)
@@ -340,6 +378,9 @@ def parse_scenario(data: object, *, source: str = INLINE) -> Scenario:
     eval_sql = _text(data.get("eval_sql", ""), "eval_sql", source)
     if condition_at is not None and not eval_sql.strip():
         _fail(source, "eval_sql", "is required (non-empty SQL) unless condition_at is null (no-op)")
+    taxonomy = _taxonomy(data, source)
+    ephemeral = taxonomy.get("event_persistence") == "ephemeral"
+    condition_until = _condition_until(data, condition_at, end, ephemeral, source)
     return Scenario(
         id=scenario_id,
         environment=environment,
@@ -350,13 +391,14 @@ def parse_scenario(data: object, *, source: str = INLINE) -> Scenario:
         kill_at=kill_at,
         events=_events(data, environment, source),
         eval_sql=eval_sql,
-        taxonomy=_taxonomy(data, source),
+        taxonomy=taxonomy,
         annotator_notes=_text(data.get("annotator_notes", ""), "annotator_notes", source),
         solution=_solution(data, environment, source),
         contact_rubric=_contact_rubric(data, source),
         is_dev=False,
         source=source,
         watch_page=watch_page,
+        condition_until=condition_until,
     )
 
 
