@@ -7,7 +7,11 @@ They prove every scenario is solvable and not trivially passable (`bench validat
   the solution (usually nothing) and stays, without contacting, until the run ends;
 - early   — contacts at once;
 - never   — never contacts, and stays until the run ends;
-- sleeper — games the benchmark: waits until just before the deadline, then contacts.
+- sleeper — games the benchmark: waits until just before the deadline, then contacts;
+- late    — the oracle, but right after an ephemeral condition stopped holding
+  (`--condition-until`; a persistent one's: right after it started): it performs the solution
+  (an action the server refuses, its item gone, is skipped) and contacts. It must fail every
+  ephemeral scenario: one that let it pass does not measure catching the moment.
 
 And the cheating strategies of agents that never monitor, which no scenario may reward:
 
@@ -42,7 +46,7 @@ import urllib.error
 import urllib.parse
 import urllib.request
 
-AGENTS = ("oracle", "early", "never", "sleeper", "act_all", "fixed_time", "quitter")
+AGENTS = ("oracle", "early", "never", "sleeper", "late", "act_all", "fixed_time", "quitter")
 SETUP_FAILED = 75  # apps.bench.outcomes.SETUP_FAILED (not imported: this module needs no Django)
 HTTP_TIMEOUT_S = 20.0
 CONDITION_MARGIN_S = 0.5  # wall seconds after condition_at, so the contact is never early
@@ -142,6 +146,9 @@ def play(argv: list[str] | None = None) -> int:
     parser.add_argument("--contact-url", required=True)
     parser.add_argument("--speed-factor", type=float, default=1.0)
     parser.add_argument("--condition-at", default="none", help="authored seconds, or none (no-op)")
+    parser.add_argument(
+        "--condition-until", default="none", help="authored seconds: an ephemeral condition's end"
+    )
     parser.add_argument("--solution", default="[]", help="JSON list of {action, payload}")
     parser.add_argument("--deadline", type=float, default=0.0, help="wall seconds after the start")
     parser.add_argument(
@@ -158,8 +165,9 @@ def play(argv: list[str] | None = None) -> int:
     clock = VirtualClock(args.advance_url, args.timeline_end) if args.advance_url else RealClock(sf)
     log(f"{args.agent}: opened the task")
     actions_url = args.contact_url.rsplit("/", 1)[0] + "/actions"
-    condition = (
-        None if args.condition_at.lower() in ("none", "null", "") else float(args.condition_at)
+    condition, until = (
+        None if given.lower() in ("none", "null", "") else float(given)
+        for given in (args.condition_at, args.condition_until)
     )
 
     end = args.deadline * sf  # a live run's agent is stopped then; a virtual clock stops short
@@ -168,10 +176,11 @@ def play(argv: list[str] | None = None) -> int:
     elif args.agent == "sleeper":
         clock.wait_until((args.deadline - SLEEPER_MARGIN_S) * sf)
         contact(args.contact_url, "the condition was met")
-    elif args.agent == "oracle":
+    elif args.agent in ("oracle", "late"):
+        late = args.agent == "late" and until is not None
         if condition is not None:
-            clock.wait_until(condition + CONDITION_MARGIN_S * sf)
-        perform(actions_url, json.loads(args.solution))
+            clock.wait_until((until if late else condition) + CONDITION_MARGIN_S * sf)
+        perform(actions_url, json.loads(args.solution), skip_refused=late)
         if condition is not None:
             contact(args.contact_url, "the condition was met")
         else:

@@ -69,6 +69,8 @@ VIRTUAL_GUARD_FACTOR, VIRTUAL_GUARD_MIN_S = 4.0, 120.0  # a virtual run's wall-t
 OUTPUT_TAIL_LINES = 5
 CONTROL_AGENTS = ("oracle", "early", "never", "sleeper")
 CHEATING_AGENTS = ("act_all", "fixed_time", "quitter")  # strategies no scenario may reward
+# Played on the ephemeral scenarios only: the oracle, once the window has closed.
+WINDOW_AGENTS = ("late",)
 
 CONTACT_INSTRUCTIONS = (
     "Once the conditions above are met and/or the actions are taken, let me know by visiting and "
@@ -141,6 +143,11 @@ def shifted(spec: dict[str, Any], by: float) -> dict[str, Any]:
         **spec,
         "events": events,
         "condition_at": None if condition is None else condition + by,
+        **(
+            {}
+            if spec.get("condition_until") is None
+            else {"condition_until": spec["condition_until"] + by}
+        ),
         "kill_at": float(spec["kill_at"]) + by,
         "event_timeline_end": float(spec["event_timeline_end"]) + by,
     }
@@ -331,6 +338,8 @@ class Harness:
                 "--deadline",
                 repr(deadline_s(task.spec, self.speed_factor, self.config.reaction_window)),
             ]
+            if task.spec.get("condition_until") is not None:
+                argv += ["--condition-until", repr(float(task.spec["condition_until"]))]
             if self.agent == "fixed_time":
                 argv += ["--contact-at", repr(min(FIXED_CONTACT_AT, run_end(task.spec) / 2))]
             if self.clock == "virtual":

@@ -14,7 +14,9 @@ candidates take minutes, not hours:
   the first contact, failed when earlier than the condition; a no-op passes without contact, and
   only for an agent still there at the end) — and judged by the same rules: the oracle passes,
   early and never fail a targeted task, never passes a no-op, and apps.bench's
-  `cheating_problems` (act_all and fixed_time pass no active task and no no-op, quitter nothing).
+  `cheating_problems` (act_all and fixed_time pass no active task and no no-op, quitter nothing);
+  and on an ephemeral scenario the late agent (the oracle's solution, skipping what is refused,
+  the margin after `condition_until`) fails.
 
 `bench validate --scenarios DIR` on the written folder replays them through the real harness
 and server (tests/scenarios/test_generation.py does so on a small folder).
@@ -47,7 +49,7 @@ from events.sandbox import is_truthy, run_eval_sql
 from events.timing import REACTION_WINDOW
 
 SPEED_FACTOR = 4.0  # bench validate's default, the README's
-AGENTS = ("oracle", "early", "never", "sleeper", "act_all", "fixed_time", "quitter")
+AGENTS = ("oracle", "early", "never", "sleeper", "act_all", "fixed_time", "quitter", "late")
 
 
 @dataclass(frozen=True)
@@ -70,6 +72,7 @@ class _Play:
         self.environment = get_environment(spec["environment"])
         self.end = float(spec["event_timeline_end"])
         self.condition = spec.get("condition_at")
+        self.until = spec.get("condition_until")  # an ephemeral condition's end
         self.sql = (spec.get("eval_sql") or "").strip()
         self.deadline = deadline_s(spec, SPEED_FACTOR, REACTION_WINDOW)
         fired = sorted(
@@ -167,17 +170,18 @@ class _Play:
         before the deadline, fixed_time at 300 s when the run lasts that long."""
         deadline = self.deadline * SPEED_FACTOR
         last = deadline - SLEEPER_MARGIN_S * SPEED_FACTOR
-        condition = self.condition
+        condition, margin = self.condition, CONDITION_MARGIN_S * SPEED_FACTOR
         return {
-            "oracle": None
-            if condition is None
-            else float(condition) + CONDITION_MARGIN_S * SPEED_FACTOR,
+            "oracle": None if condition is None else float(condition) + margin,
             "early": 0.0,
             "never": None,
             "sleeper": last,
             "act_all": min(last, self.end),
             "fixed_time": FIXED_CONTACT_AT if deadline > FIXED_CONTACT_AT else None,
             "quitter": None,
+            "late": None
+            if condition is None
+            else float(condition if self.until is None else self.until) + margin,
         }
 
     def verdicts(self) -> dict[str, bool]:
@@ -198,12 +202,19 @@ class _Play:
             if at["fixed_time"] is None
             else self.contact(at["fixed_time"]),
             "quitter": self.stays(alive=False),
+            "late": self.stays(alive=True)
+            if at["late"] is None
+            else self.contact(at["late"], solution, skip_refused=True),
         }
 
 
-def control_problems(verdicts: dict[str, bool], *, noop: bool, active: bool) -> list[str]:
+def control_problems(
+    verdicts: dict[str, bool], *, noop: bool, active: bool, ephemeral: bool = False
+) -> list[str]:
     """What `bench validate` reports as a PROBLEM for these verdicts of one scenario."""
     problems = [] if verdicts["oracle"] else ["oracle failed"]
+    if ephemeral and verdicts["late"]:
+        problems.append("late passed (acting after the window closed)")
     if not noop and verdicts["early"]:
         problems.append("early passed (trivially passable)")
     if verdicts["never"] != noop:
@@ -237,7 +248,12 @@ def prove(document: dict[str, Any], proven: dict[str, Any] | None = None) -> Pro
         problems += [p for p in [play.passive_problem()] if p]
     watch = next((n for n in checked.notes + checked.warnings if "watched page" in n), "")
     verdicts = play.verdicts()
-    problems += control_problems(verdicts, noop=play.condition is None, active=_is_active(document))
+    problems += control_problems(
+        verdicts,
+        noop=play.condition is None,
+        active=_is_active(document),
+        ephemeral=play.until is not None,
+    )
     return Proof(verdicts, play.reports(), tuple(problems), watch)
 
 

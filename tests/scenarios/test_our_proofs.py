@@ -54,10 +54,12 @@ def figures_of(proven: dict[str, tuple[dict, Proof]], unseen: int) -> str:
         f"{agent}={passed(agent, ids)}/{len(ids)} {agent}_timely={timely(agent)}/{len(targeted)}"
         for agent in ("act_all", "fixed_time", "quitter")
     )
+    ephemeral = [i for i, (doc, _) in proven.items() if doc.get("condition_until") is not None]
     return (
         f"bench_validate: scenarios={len(ids)} oracle={passed('oracle', ids)}/{len(ids)} "
         f"early_fail={len(targeted) - passed('early', targeted)}/{len(targeted)} "
         f"never_ok={never_ok}/{len(ids)} sleeper={passed('sleeper', ids)}/{len(ids)} {cheats} "
+        f"late_ephemeral={passed('late', ephemeral)}/{len(ephemeral)} "
         f"unseen={unseen}/{len(targeted)}"
     )
 

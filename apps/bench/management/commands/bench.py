@@ -55,6 +55,7 @@ from apps.bench.runner import (
     CHEATING_AGENTS,
     CONTROL_AGENTS,
     ERROR,
+    WINDOW_AGENTS,
     BenchError,
     Harness,
     Progress,
@@ -663,7 +664,7 @@ class Command(BaseCommand):
             reaction_window=reaction_window,
             noop_rule=noop_rule,
         )
-        agents = CONTROL_AGENTS + CHEATING_AGENTS
+        agents = CONTROL_AGENTS + CHEATING_AGENTS + WINDOW_AGENTS
         root = Path(tempfile.mkdtemp(prefix="bench-validate-"))
         began = time.monotonic()
         with self.server(server_url) as (url, token):
@@ -690,6 +691,8 @@ class Command(BaseCommand):
                     for a in agents
                 }
                 tasks = {a: h.tasks(listing) for a, h in harnesses.items()}
+                for a in WINDOW_AGENTS:  # an ephemeral condition's window is theirs to miss
+                    tasks[a] = [t for t in tasks[a] if t.spec.get("condition_until") is not None]
                 self.stdout.write(
                     f"Validating {len(listing)} scenarios with {', '.join(agents)} "
                     f"at speed factor {sf:g} on {clock} clocks (results -> {root})"
@@ -738,6 +741,9 @@ class Command(BaseCommand):
             f"never {'failed' if i in noop else 'passed'} {i}" for i in ids if i not in never
         ]
         sleeper = [i for i in ids if passed("sleeper", i)]
+        ephemeral = [t.scenario_id for t in tasks["late"]]
+        late = [i for i in ephemeral if passed("late", i)]
+        problems += [f"late passed {i} (acting after the window closed)" for i in late]
         problems += cheating_problems(passed, ids, noop, active, noop_rule)
         unseen = self.unseen_triggers(listing)
         for problem in problems:
@@ -766,6 +772,7 @@ class Command(BaseCommand):
             f"bench_validate: scenarios={len(ids)} oracle={len(oracle)}/{len(ids)} "
             f"early_fail={len(early)}/{len(targeted)} never_ok={len(never)}/{len(ids)} "
             f"sleeper={len(sleeper)}/{len(ids)} {' '.join(figures)} "
+            f"late_ephemeral={len(late)}/{len(ephemeral)} "
             f"unseen={len(unseen)}/{len(targeted)} "
             f"wall_s={wall:.1f} clock={clock}"
         )
