@@ -1,0 +1,74 @@
+"""Items that go away at their time, in Chromium on the live site: each ephemeral scenario's
+item appears in the open page by a push, then goes away at `condition_until` by another, the
+page never reloading — MicroChat's message deleted by its sender (Teams' notice in its place),
+MicroMail's recalled mail (out of the list; the open reading pane says so), MicroHood's dip
+(the price below the level, then recovered)."""
+
+from __future__ import annotations
+
+import pytest
+from playwright.sync_api import expect
+
+from tests.browser_story import BrowserStory
+
+pytestmark = pytest.mark.browser
+
+
+def opened(live_site, browser, scenario: str, path: str) -> BrowserStory:
+    story = BrowserStory.start(live_site, browser, scenario, open_task=False)
+    story.page.goto(f"{live_site}/r/{story.run['token']}/{path}")
+    story.watch_for_reload()
+    return story
+
+
+def test_a_chat_message_deleted_by_its_sender_is_replaced_by_teams_notice(live_site, browser):
+    story = opened(
+        live_site,
+        browser,
+        "microchat-unsent-build-ephemeral-active",
+        "microchat/?conversation=direct-hana",
+    )
+    message = story.page.locator("#msg-dm-hana-06")
+    expect(message).to_have_count(0)
+    story.advance(402.0)
+    expect(message).to_contain_text("New TestFlight build is up")
+    story.advance(492.0)
+    expect(message).to_contain_text("This message has been deleted.")
+    expect(message).not_to_contain_text("TestFlight")
+    expect(message.get_by_role("group", name="Message options")).to_have_count(0)
+    story.assert_not_reloaded()
+    story.page.screenshot(path="/tmp/ephemeral-microchat.png")
+
+
+def test_a_recalled_mail_leaves_the_list_and_its_open_reading_pane_says_so(live_site, browser):
+    story = opened(
+        live_site, browser, "micromail-recalled-payroll-ephemeral-active", "micromail/?folder=inbox"
+    )
+    row = story.page.locator('#message-list a.row-link[href*="email=base-38"]')
+    story.advance(288.4)
+    expect(row).to_have_count(1)
+    story.assert_not_reloaded()
+    story.page.goto(f"{live_site}/r/{story.run['token']}/micromail/?folder=inbox&email=base-38")
+    expect(story.page.locator("#reading-pane h2")).to_have_text(
+        "Payroll date shift for the long weekend"
+    )
+    story.watch_for_reload()
+    story.advance(397.6)
+    expect(story.page.locator("#reading-pane")).to_have_text("The sender recalled this message.")
+    expect(row).to_have_count(0)
+    story.assert_not_reloaded()
+    story.page.screenshot(path="/tmp/ephemeral-micromail.png")
+
+
+def test_a_dip_shows_below_the_level_then_recovered(live_site, browser):
+    story = opened(
+        live_site, browser, "microhood-orch-dip-ephemeral-active", "microhood/stocks/ORCH"
+    )
+    price = story.page.locator("main")
+    story.advance(390.0)
+    expect(price).to_contain_text("$177.20")
+    story.advance(520.0)
+    expect(price).to_contain_text("$184.50")
+    expect(price).to_contain_text("Today's low$177.2")  # the dip, in the day's range
+    story.assert_not_reloaded()
+    story.page.screenshot(path="/tmp/ephemeral-microhood.png")
