@@ -91,6 +91,16 @@ class Row:
     def is_noop(self) -> bool:
         return self.category == "noop"
 
+    @property
+    def persistence(self) -> str:
+        """persistent | ephemeral (results from before the axis was recorded: persistent)."""
+        return str(self.result.get("persistence") or "persistent")
+
+    @property
+    def criteria(self) -> str:
+        """objective | subjective (results from before the axis was recorded: objective)."""
+        return str(self.result.get("criteria") or "objective")
+
     def in_group(self, group: str) -> bool:
         if group == "overall":
             return True
@@ -851,7 +861,13 @@ def environment_table(rows: list[Row], window: float) -> TableCells:
 
 
 def category_table(rows: list[Row], window: float) -> TableCells:
-    return breakdown_table(rows, window, lambda r: r.category, "category")
+    """The paper's categories, then the tasks by persistence and by criteria (the axes its
+    future work names: an ephemeral condition holds only briefly, a subjective one is a
+    judgement against a rubric)."""
+    header, lines = breakdown_table(rows, window, lambda r: r.category, "category")
+    for axis in ("persistence", "criteria"):
+        lines += breakdown_table(rows, window, lambda r, a=axis: f"{a}: {getattr(r, a)}", axis)[1]
+    return header, lines
 
 
 def family_table(rows: list[Row], window: float) -> TableCells:

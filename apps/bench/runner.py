@@ -101,6 +101,16 @@ def category_of(spec: dict[str, Any]) -> str:
     return f"{approach}-{milestone}"
 
 
+def axes_of(spec: dict[str, Any]) -> dict[str, str]:
+    """The paper's "future work" axes of a scenario: persistence and criteria (a scenario that
+    does not say is persistent and objective, as every upstream task is)."""
+    taxonomy = spec.get("taxonomy") or {}
+    return {
+        "persistence": str(taxonomy.get("event_persistence") or "persistent"),
+        "criteria": str(taxonomy.get("criteria") or "objective"),
+    }
+
+
 def run_end(spec: dict[str, Any]) -> float:
     """Authored seconds: the last moment a condition may come (kill_at, at most 600). The
     deadline counts from it, and an agent still there then was there at the end of the run
@@ -502,6 +512,7 @@ class Harness:
             "scenario_id": task.scenario_id,
             "environment": task.environment,
             "category": task.category,
+            **axes_of(task.spec),
             "speed_factor": sf,
             "clock": self.clock,
             "deadline_s": limit,
