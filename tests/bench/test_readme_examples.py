@@ -90,8 +90,8 @@ def test_the_readme_demo_runs_and_refuses_a_taken_port(tmp_path):
 
 
 def test_the_readme_validate_command_gives_the_verdicts_played_in_memory(tmp_path):
-    """The README's `bench validate` as written, narrowed to MicroMail (all 103 scenarios are
-    the test above's), in a fresh clone: each of its 78 verdicts, control agent by scenario (the
+    """The README's `bench validate` as written, narrowed to MicroMail (all 105 scenarios are
+    the test above's), in a fresh clone: each of its 85 verdicts, control agent by scenario (the
     late agent on the ephemeral one only), is the one the in-memory play gives."""
     blocks = code_blocks(readme_section("Benchmarking an agent"))
     commands = next(code for lang, code, _ in blocks if lang == "bash" and "bench run" in code)
@@ -103,7 +103,7 @@ def test_the_readme_validate_command_gives_the_verdicts_played_in_memory(tmp_pat
     )  # fmt: skip
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr
     assert re.fullmatch(
-        r"bench_validate: scenarios=11 oracle=11/11 early_fail=9/9 never_ok=11/11 .* "
+        r"bench_validate: scenarios=12 oracle=12/12 early_fail=10/10 never_ok=12/12 .* "
         r"wall_s=[\d.]+ clock=virtual",
         done.stdout.strip().splitlines()[-1],
     )
@@ -120,5 +120,5 @@ def test_the_readme_validate_command_gives_the_verdicts_played_in_memory(tmp_pat
         if agent != "late" or doc.get("condition_until") is not None
     }
     shutil.rmtree(kept)
-    assert len(on_the_server) == 78
+    assert len(on_the_server) == 85
     assert on_the_server == in_memory
