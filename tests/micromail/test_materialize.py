@@ -18,7 +18,8 @@ def columns(conn, table: str) -> list[str]:
     return [row[1] for row in conn.execute(f"PRAGMA table_info({table})")]
 
 
-def test_emails_columns_are_upstreams():
+def test_emails_columns_are_upstreams_then_ours():
+    # Upstream's, then when each message was there (apps.kit.retractions: a recall ends it).
     assert columns(tables(CAST.preloaded()), "emails") == [
         "id",
         "subject",
@@ -31,6 +32,8 @@ def test_emails_columns_are_upstreams():
         "isCC",
         "body",
         "attachment_name",
+        "appeared_at",
+        "gone_at",
     ]
 
 
