@@ -21,6 +21,16 @@ def opened(live_site, browser, scenario: str, path: str) -> BrowserStory:
     return story
 
 
+def held_then_gone(story: BrowserStory, region, at: float, shown: str, until: float, gone: str):
+    """The page's `region` shows `shown` once the clock passes `at`, then `gone` once it passes
+    `until`: both pushed, the page never reloading."""
+    story.advance(at)
+    expect(region).to_contain_text(shown)
+    story.advance(until)
+    expect(region).to_contain_text(gone)
+    story.assert_not_reloaded()
+
+
 def test_a_chat_message_deleted_by_its_sender_is_replaced_by_teams_notice(live_site, browser):
     story = opened(
         live_site,
@@ -30,14 +40,11 @@ def test_a_chat_message_deleted_by_its_sender_is_replaced_by_teams_notice(live_s
     )
     message = story.page.locator("#msg-dm-hana-06")
     expect(message).to_have_count(0)
-    story.advance(402.0)
-    expect(message).to_contain_text("New TestFlight build is up")
-    story.advance(492.0)
-    expect(message).to_contain_text("This message has been deleted.")
+    held_then_gone(
+        story, message, 402.0, "New TestFlight build is up", 492.0, "This message has been deleted."
+    )
     expect(message).not_to_contain_text("TestFlight")
     expect(message.get_by_role("group", name="Message options")).to_have_count(0)
-    story.assert_not_reloaded()
-    story.page.screenshot(path="/tmp/ephemeral-microchat.png")
 
 
 def test_a_recalled_mail_leaves_the_list_and_its_open_reading_pane_says_so(live_site, browser):
@@ -49,26 +56,22 @@ def test_a_recalled_mail_leaves_the_list_and_its_open_reading_pane_says_so(live_
     expect(row).to_have_count(1)
     story.assert_not_reloaded()
     story.page.goto(f"{live_site}/r/{story.run['token']}/micromail/?folder=inbox&email=base-38")
-    expect(story.page.locator("#reading-pane h2")).to_have_text(
-        "Payroll date shift for the long weekend"
-    )
     story.watch_for_reload()
-    story.advance(397.6)
-    expect(story.page.locator("#reading-pane")).to_have_text("The sender recalled this message.")
+    held_then_gone(
+        story,
+        story.page.locator("#reading-pane"),
+        288.4,
+        "Payroll date shift for the long weekend",
+        397.6,
+        "The sender recalled this message.",
+    )
     expect(row).to_have_count(0)
-    story.assert_not_reloaded()
-    story.page.screenshot(path="/tmp/ephemeral-micromail.png")
 
 
 def test_a_dip_shows_below_the_level_then_recovered(live_site, browser):
     story = opened(
         live_site, browser, "microhood-orch-dip-ephemeral-active", "microhood/stocks/ORCH"
     )
-    price = story.page.locator("main")
-    story.advance(390.0)
-    expect(price).to_contain_text("$177.20")
-    story.advance(520.0)
-    expect(price).to_contain_text("$184.50")
-    expect(price).to_contain_text("Today's low$177.2")  # the dip, in the day's range
-    story.assert_not_reloaded()
-    story.page.screenshot(path="/tmp/ephemeral-microhood.png")
+    main = story.page.locator("main")
+    held_then_gone(story, main, 390.0, "$177.20", 520.0, "$184.50")
+    expect(main).to_contain_text("Today's low$177.2")  # the dip, in the day's range
