@@ -90,7 +90,7 @@ def test_the_readme_demo_runs_and_refuses_a_taken_port(tmp_path):
 
 
 def test_the_readme_validate_command_gives_the_verdicts_played_in_memory(tmp_path):
-    """The README's `bench validate` as written, narrowed to MicroMail (all 105 scenarios are
+    """The README's `bench validate` as written, narrowed to MicroMail (all 106 scenarios are
     the test above's), in a fresh clone: each of its 85 verdicts, control agent by scenario (the
     late agent on the ephemeral one only), is the one the in-memory play gives."""
     blocks = code_blocks(readme_section("Benchmarking an agent"))
