@@ -589,7 +589,7 @@ def test_persistence_and_criteria_default_to_the_papers_and_an_ephemeral_one_nee
     ephemeral = parse_scenario({**brief, "condition_until": 90})
     assert (ephemeral.persistence, ephemeral.criteria) == ("ephemeral", "subjective")
     assert ephemeral.to_run_spec()["condition_until"] == 90.0
-    with pytest.raises(ScenarioError, match="only an \"ephemeral\""):
+    with pytest.raises(ScenarioError, match='only an "ephemeral"'):
         parse_scenario({**third_ping_scenario(), "condition_until": 90})
-    with pytest.raises(ScenarioError, match="taxonomy.criteria: is 'vague'"):
+    with pytest.raises(ScenarioError, match=r"taxonomy\.criteria: is 'vague'"):
         parse_scenario({**brief, "taxonomy": {**taxonomy, "criteria": "vague"}})
