@@ -36,6 +36,15 @@ def sim_now(run: Run, wall: float) -> float:
     return run.sim_time
 
 
+def sim_rate(run: Run, now: float) -> float:
+    """Simulated seconds `run`'s clock moves per wall second from `now` (its `sim_now`) until
+    something changes it: 0 when it does not move with the wall (not started, virtual, over,
+    at its timeline end). What a client needs to carry a reading of the clock forward."""
+    if run.status != RunStatus.RUNNING_AUTO or run.started_at is None:
+        return 0.0
+    return run.speed_factor if now < run.event_timeline_end else 0.0
+
+
 def wall_due(run: Run, sim_seconds: float) -> float | None:
     """The wall time at which `sim_seconds` happens on a ticking clock if nobody skips before
     then (None if not started)."""

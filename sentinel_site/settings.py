@@ -4,8 +4,6 @@ Embedded defaults need nothing installed: SQLite (WAL), the in-memory channel la
 in-process ticker. Set DATABASE_URL / REDIS_URL / SENTINEL_TICKER=celery for production.
 """
 
-from pathlib import Path
-
 from sentinel_site.config import (
     database_from_url,
     env_bool,
@@ -16,9 +14,12 @@ from sentinel_site.config import (
     env_str,
     env_url,
 )
+from sentinel_site.locations import RESOURCES_DIR, data_dir
 
-BASE_DIR = Path(__file__).resolve().parent.parent
-VAR_DIR = BASE_DIR / "var"
+# A checkout's top folder, or the installed package's copy of its folders (locations.py).
+BASE_DIR = RESOURCES_DIR
+# State (the SQLite database, logs): var/ of a checkout, else SENTINEL_DATA_DIR or a per-user folder.
+VAR_DIR = data_dir()
 
 SECRET_KEY = env_str("SENTINEL_SECRET_KEY", "dev-insecure-change-me-for-any-public-deployment")
 DEBUG = env_bool("SENTINEL_DEBUG", False)
@@ -85,6 +86,7 @@ MIDDLEWARE = [
     "django.contrib.messages.middleware.MessageMiddleware",
     "django.middleware.clickjacking.XFrameOptionsMiddleware",
     "django_htmx.middleware.HtmxMiddleware",
+    "apps.kit.sim_clock_header.SimClockHeaderMiddleware",  # the run's clock, for agents
 ]
 
 ROOT_URLCONF = "sentinel_site.urls"
@@ -111,7 +113,7 @@ DATABASES = {
         "DATABASE_URL",
         env_url(
             "DATABASE_URL",
-            "sqlite:///var/sentinel.sqlite3",
+            f"sqlite:///{VAR_DIR / 'sentinel.sqlite3'}",  # var/sentinel.sqlite3 in a checkout
             schemes=("sqlite", "postgres", "postgresql"),
         ),
         base=BASE_DIR,

@@ -103,7 +103,7 @@ def site_server(
 ) -> Iterator[str]:
     """Start Daphne, wait until it answers, yield its base URL (no trailing slash), stop it."""
     base = Path(settings.BASE_DIR)
-    log_path = log_path or base / "var" / "site-server.log"
+    log_path = log_path or Path(settings.VAR_DIR) / "site-server.log"
     log_path.parent.mkdir(parents=True, exist_ok=True)
     env = child_environment(database_url, extra_env)
     port = free_port()

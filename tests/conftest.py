@@ -37,16 +37,33 @@ def pytest_configure(config):
         database["CONN_MAX_AGE"] = 0
 
 
-SLOW_MARKERS = ("e2e", "browser")
+SLOW_MARKERS = ("e2e", "browser", "slow")
+# The suite runs on the production shape when it is given a database or a channel layer of its
+# own (.ci/run's second leg); a `user_clone` test sets both aside and would repeat itself there.
+PRODUCTION_SHAPE = bool(os.environ.get("DATABASE_URL") or os.environ.get("REDIS_URL"))
 
 
 def pytest_collection_modifyitems(items):
-    """Tests that drive real browsers and subprocesses first, in their random order (this runs
-    after pytest-randomly's shuffle), then the rest in theirs. Most of their time is spent
+    """Tests that drive real browsers and subprocesses, or are slow in one process, first, in
+    their random order (this runs after pytest-randomly's shuffle), then the rest in theirs. Most of their time is spent
     waiting on wall time (a clock at speed 4, a server's start), so begun early they overlap
     the quick tests in the other processes; drawn last, one minute-long test would be the only
-    thing left running at the end while the other processes sat idle."""
-    items.sort(key=lambda item: not any(item.get_closest_marker(m) for m in SLOW_MARKERS))
+    thing left running at the end while the other processes sat idle.
+
+    On the production shape, the tests that run the README in a user's fresh clone are skipped:
+    they drop the suite's settings and run on embedded defaults whatever the leg, so the
+    embedded leg has already run exactly them."""
+    items.sort(
+        key=lambda item: (
+            not any(item.get_closest_marker(m) for m in SLOW_MARKERS),
+            item.get_closest_marker("user_clone") is None,  # the longest of all, first of all
+        )
+    )
+    if PRODUCTION_SHAPE:
+        repeat = pytest.mark.skip(reason="a user's clone on embedded defaults: the embedded leg")
+        for item in items:
+            if item.get_closest_marker("user_clone"):
+                item.add_marker(repeat)
 
 
 @pytest.fixture(scope="session")

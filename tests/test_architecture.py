@@ -2,7 +2,8 @@
 
 Every import counts, also one inside a function: a lazy import is still a dependency, and a
 cycle hidden in a function is still a cycle. Modules are the project's own (`events`, `apps`,
-`sentinel_site`, `tests`); a package is `events`, `sentinel_site`, `tests` or one `apps.<name>`.
+`sentinel_site`, `sentinel_environments`, `tests`); a package is one of those or one
+`apps.<name>`.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from collections import defaultdict
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
-OWN = ("events", "apps", "sentinel_site", "tests")
+OWN = ("events", "apps", "sentinel_site", "sentinel_environments", "tests")
 
 
 def module_name(path: Path) -> str:

@@ -8,15 +8,18 @@ from django.urls import reverse
 from django.utils.html import format_html
 
 from apps.bench.models import BenchmarkRun, TaskResult
+from apps.bench.timeline_page import task_file_view, task_timeline_view
+from apps.replay.admin import add_run_page
 
 
 def _run_link(result: TaskResult) -> str:
     if result.run_id is None:
         return "—"
     return format_html(
-        '<a href="{}">run {}</a>',
+        '<a href="{}">run {}</a> · <a href="{}">timeline</a>',
         reverse("admin:events_run_change", args=[result.run_id]),
         result.run_id,
+        reverse("admin:events_run_task", args=[result.run_id]),
     )
 
 
@@ -113,3 +116,8 @@ class TaskResultAdmin(admin.ModelAdmin):
     @admin.display(description="harness error", boolean=True)
     def has_error(self, result):
         return bool(result.error)
+
+
+# The task timeline, under each run in the admin (apps.replay.admin serves it there).
+add_run_page("task/", task_timeline_view, "events_run_task", "task timeline")
+add_run_page("task/file/<path:name>", task_file_view, "events_run_task_file")

@@ -16,6 +16,7 @@ import platform
 import subprocess
 import sys
 from datetime import datetime
+from importlib import metadata
 from pathlib import Path
 from typing import Any
 
@@ -30,12 +31,17 @@ def scenario_hash(spec: dict[str, Any]) -> str:
 
 
 def project_version(base_dir: Path) -> str:
+    """The checkout's pyproject.toml version, else the installed package's (`sentinel`)."""
     try:
         import tomllib
 
         with open(base_dir / "pyproject.toml", "rb") as fh:
             return str(tomllib.load(fh)["project"]["version"])
     except (OSError, KeyError, ValueError):
+        pass
+    try:
+        return metadata.version("sentinel-environments")
+    except metadata.PackageNotFoundError:
         return "unknown"
 
 

@@ -45,6 +45,7 @@ from apps.bench.report_sections import (
     reports_section,
     uncertainty_section,
 )
+from apps.bench.timeline_links import timeline_url
 from apps.bench.transcripts import has_transcript, relative_href, render_transcript_page
 from events.timing import REACTION_WINDOW
 
@@ -305,6 +306,7 @@ def render_report(
     window: float = REACTION_WINDOW,
     links: TranscriptLinks | None = None,
     result_set: ResultSet | None = None,
+    site: str | None = None,
 ) -> str:
     rs = result_set or ResultSet(name, rows, [])
     plots = [success_plot(rows), cost_plot(rows), time_plot(rows), cost_time_plot(rows)]
@@ -317,7 +319,7 @@ def render_report(
         f'<div class="plots">{"".join(plots)}</div>{errors_section(rs)}{reports_section(rs)}'
         f"<h2>Tasks</h2><pre>{escape(render_table(rows, rs.errors, window))}</pre>"
         f"<h2>Per task</h2>{_timely_note(window)}"
-        f"{tasks_table([rs], window, links or {})}"
+        f"{tasks_table([rs], window, links or {}, site)}"
         "</body></html>\n"
     )
 
@@ -328,15 +330,18 @@ def write_report(
     rows: list[Row],
     window: float = REACTION_WINDOW,
     result_set: ResultSet | None = None,
+    site: str | None = None,
 ) -> None:
     rs = result_set or ResultSet(name, rows, [])
     links = write_transcripts(path, [rs], window)
-    path.write_text(render_report(name, rows, window, links, rs), encoding="utf-8")
+    path.write_text(render_report(name, rows, window, links, rs, site), encoding="utf-8")
 
 
-def write_comparison_report(path: Path, sets: list[ResultSet], window: float) -> None:
+def write_comparison_report(
+    path: Path, sets: list[ResultSet], window: float, site: str | None = None
+) -> None:
     links = write_transcripts(path, sets, window)
-    path.write_text(render_comparison_report(sets, window, links), encoding="utf-8")
+    path.write_text(render_comparison_report(sets, window, links, site), encoding="utf-8")
 
 
 # --- several result sets ---------------------------------------------------------------------
@@ -514,7 +519,10 @@ def _timely_note(window: float) -> str:
 
 
 def render_comparison_report(
-    sets: list[ResultSet], window: float, links: TranscriptLinks | None = None
+    sets: list[ResultSet],
+    window: float,
+    links: TranscriptLinks | None = None,
+    site: str | None = None,
 ) -> str:
     summaries = [(rs, summarise(rs.rows, window)) for rs in sets]
     names = " vs ".join(rs.name for rs in sets)
@@ -551,7 +559,7 @@ def render_comparison_report(
         f"<h2>Reaction time (passed targeted tasks)</h2>{reaction}"
         f"{''.join(errors_section(rs) for rs in sets)}"
         f"{''.join(reports_section(rs) for rs in sets)}"
-        f"<h2>Per task</h2>{tasks_table(sets, window, links or {})}"
+        f"<h2>Per task</h2>{tasks_table(sets, window, links or {}, site)}"
         "</body></html>\n"
     )
 
@@ -592,8 +600,11 @@ def task_facts(set_name: str, row: Row, window: float) -> list[tuple[str, str]]:
     return list(zip(TASK_COLUMNS, values, strict=True))
 
 
-def tasks_table(sets: list[ResultSet], window: float, links: TranscriptLinks) -> str:
-    """Every task of every set, a task's sets next to each other, linked to its transcript."""
+def tasks_table(
+    sets: list[ResultSet], window: float, links: TranscriptLinks, site: str | None = None
+) -> str:
+    """Every task of every set, a task's sets next to each other, linked to its transcript and
+    to its timeline in the admin of `site` (apps.bench.timeline_links)."""
     entries = sorted(
         (
             (row.environment, row.label, i, rs.name, row)
@@ -611,8 +622,16 @@ def tasks_table(sets: list[ResultSet], window: float, links: TranscriptLinks) ->
         )
         href = links.get((set_name, environment, name))
         link = f'<a class="transcript" href="{href}">transcript</a>' if href else "none"
-        body.append(f'<tr class="{"ok" if row.success else "fail"}">{cells}<td>{link}</td></tr>')
-    head = "".join(f"<th>{escape(h)}</th>" for h in (*TASK_COLUMNS, "transcript"))
+        timeline = (
+            f'<a class="timeline" href="{escape(timeline_url(site, row.run))}">timeline</a>'
+            if row.run is not None
+            else "none"
+        )
+        body.append(
+            f'<tr class="{"ok" if row.success else "fail"}">{cells}<td>{timeline}</td>'
+            f"<td>{link}</td></tr>"
+        )
+    head = "".join(f"<th>{escape(h)}</th>" for h in (*TASK_COLUMNS, "timeline", "transcript"))
     return f'<table id="tasks"><thead><tr>{head}</tr></thead><tbody>{"".join(body)}</tbody></table>'
 
 

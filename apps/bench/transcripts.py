@@ -1,7 +1,8 @@
 """An agent's transcript (`transcript.jsonl` in its task folder), rendered as one HTML page.
 
-The reference agents write one JSON object per step — `{"step", "t", "url", "text", "tool",
-"arguments", "result", "screenshot", "usage"}` — and the screenshots under `transcript/`. An
+The reference agents write one JSON object per step — `{"step", "t", "sim_start", "sim_time",
+"url", "text", "tool", "arguments", "result", "screenshot", "usage"}`, and `checks` on a
+wait_for step (apps/browser_agent/transcript.py) — and the screenshots under `transcript/`. An
 agent killed at its deadline can leave a half-written last line, and any agent may write what it
 likes: every line that is not such an object is shown as unreadable, a jump in step numbers as
 missing steps, a screenshot that is not there as missing; none of them stops the page.
@@ -39,6 +40,10 @@ class Step:
     result: Any
     screenshot: Any
     usage: Any
+    sim_start: float | None = None  # the run's simulated time the model's page showed
+    sim_time: float | None = None  # … and when the step ended
+    checks: Any = None  # wait_for: its judge's questions
+    observation: str | None = None  # the page's description the model read
 
 
 @dataclass(frozen=True)
@@ -75,6 +80,10 @@ def read_transcript(path: Path) -> list[Step | Unreadable]:
                 result=data.get("result"),
                 screenshot=data.get("screenshot"),
                 usage=data.get("usage"),
+                sim_start=_number(data.get("sim_start"), float),
+                sim_time=_number(data.get("sim_time"), float),
+                checks=data.get("checks"),
+                observation=_text(data.get("observation")),
             )
         )
     return entries
@@ -135,6 +144,28 @@ def _usage(usage: Any) -> str:
     return f'<p class="usage">tokens: {escape(", ".join(counts) or "none reported")}</p>'
 
 
+def _checks(checks: Any) -> str:
+    """A wait_for step's judge questions: when, the diff blocks shown, the answer."""
+    if not isinstance(checks, list) or not checks:
+        return ""
+    asked = []
+    for check in checks:
+        if not isinstance(check, dict):
+            continue
+        when = check.get("sim_time")
+        when = f"sim {when:.1f} s" if isinstance(when, int | float) else "sim ?"
+        blocks = "".join(f"<pre>{escape(str(b))}</pre>" for b in check.get("blocks") or [])
+        answer = "met" if check.get("met") else "not met"
+        asked.append(
+            f'<li class="check"><p>{when}: {answer} — {escape(str(check.get("why") or ""))}</p>'
+            f"{blocks}</li>"
+        )
+    return (
+        f"<details><summary>wait_for asked the model {len(asked)} "
+        f"time{'s' if len(asked) != 1 else ''}</summary><ol>{''.join(asked)}</ol></details>"
+    )
+
+
 def _step_html(step: Step, task_folder: Path, page_folder: Path) -> str:
     heading = f"Step {step.number}" if step.number is not None else f"Step ? (line {step.line})"
     when = (
@@ -142,6 +173,8 @@ def _step_html(step: Step, task_folder: Path, page_folder: Path) -> str:
         if step.t is not None
         else ""
     )
+    if step.sim_time is not None:
+        when += f' <span class="t" title="the run\'s simulated clock">· sim {step.sim_time:.1f} s</span>'
     parts = [f'<section class="step" id="line-{step.line}"><div class="body">']
     parts.append(f"<h2>{escape(heading)}{when}</h2>")
     if step.url:
@@ -161,6 +194,7 @@ def _step_html(step: Step, task_folder: Path, page_folder: Path) -> str:
             f"<details{fold}><summary>result ({len(result)} characters)</summary>"
             f'<pre class="result">{escape(result)}</pre></details>'
         )
+    parts.append(_checks(step.checks))
     parts.append(_usage(step.usage))
     parts.append("</div>")
     parts.append(_screenshot(step.screenshot, step.number, task_folder, page_folder))

@@ -27,6 +27,7 @@ from apps.browser_agent.browser import CHROMIUM, Browser, first_line
 from apps.browser_agent.fast_forward import RunClock, post_json
 from apps.browser_agent.loop import DEFAULT_MAX_STEPS, AgentLoop, Task, WallBudget
 from apps.browser_agent.model import COSTS_FILE, ChatModel, CostLedger, make_client
+from apps.browser_agent.sim_clock import sim_time_now
 from apps.browser_agent.tools import WAIT_KINDS, TaskClock, Toolbox
 from apps.browser_agent.transcript import Transcript
 
@@ -137,9 +138,12 @@ def main(argv: list[str] | None = None) -> int:
         with Browser.launch(contact_url=task.contact_url) as browser:
             browser_started = True
             clock: TaskClock | RunClock = TaskClock(args.speed_factor)
+            readings = [browser.clock_reading]  # the run's clock, as its pages report it
             if args.wait_url:
                 clock = RunClock(post_json(args.wait_url), browser)
                 wall.skipped = clock.skipped_wall  # a skip spends the budget as the wait would
+                readings.append(clock.reading)  # … and as its waits do
+            transcript.sim_clock = functools.partial(sim_time_now, *readings)
             toolbox = Toolbox(
                 browser,
                 model,
@@ -147,6 +151,7 @@ def main(argv: list[str] | None = None) -> int:
                 contact_url=task.contact_url,
                 clock=clock,
                 wall_left=wall.left,
+                sim_clock=transcript.sim_clock,
             )
             loop = AgentLoop(
                 task,

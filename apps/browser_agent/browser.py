@@ -16,6 +16,7 @@ from __future__ import annotations
 import base64
 import contextlib
 import re
+import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -23,8 +24,9 @@ from typing import TypeVar
 from urllib.parse import urlsplit
 
 from playwright.sync_api import Error as PlaywrightError
-from playwright.sync_api import Locator, Page, sync_playwright
+from playwright.sync_api import Locator, Page, Response, sync_playwright
 
+from apps.browser_agent.sim_clock import ClockReading, reading_from_headers
 from apps.browser_agent.snapshot import html_to_markdown
 
 CHROMIUM = "/usr/bin/chromium"  # Debian's; Playwright's own download is never used
@@ -180,6 +182,8 @@ class Browser:
         self.page = page
         self._contact_path = urlsplit(contact_url).path.rstrip("/") if contact_url else ""
         self._marks: dict[int, Mark] = {}
+        self._clock: ClockReading | None = None  # the last run clock a response reported
+        page.on("response", self._heard)
 
     @classmethod
     @contextmanager
@@ -193,6 +197,18 @@ class Browser:
                 yield cls(page, contact_url=contact_url)
             finally:
                 chromium.close()
+
+    def _heard(self, response: Response) -> None:
+        # A page and its fragments all report. This handler runs when Playwright next yields,
+        # which may be long after the answer came: the reading is dated by the browser's own
+        # timing of the request (its moment on the server's clock), not by when we heard it.
+        reading = reading_from_headers(response.headers, _sent_at(response))
+        if reading is not None and (self._clock is None or reading.heard >= self._clock.heard):
+            self._clock = reading
+
+    def clock_reading(self) -> ClockReading | None:
+        """The run's clock as the last page of the run that answered reported it."""
+        return self._clock
 
     # --- what the model sees -------------------------------------------------------------
 
@@ -368,6 +384,17 @@ class Browser:
             return action()
         except PlaywrightError as error:
             raise BrowserError(first_line(error)) from None
+
+
+def _sent_at(response: Response) -> float:
+    """When the browser sent `response`'s request (its time.monotonic()): the moment the server
+    read its clock for the answer, within the request's transfer time."""
+    timing = response.request.timing
+    offset = next((timing[k] for k in ("requestStart", "responseStart") if timing[k] >= 0), None)
+    now = time.monotonic()
+    if offset is None or timing["startTime"] <= 0:
+        return now
+    return min(now, now - (time.time() * 1000 - timing["startTime"] - offset) / 1000)
 
 
 def _choose_option(select: Locator, text: str) -> None:

@@ -20,6 +20,8 @@ import urllib.request
 from collections.abc import Callable
 from typing import Any, Protocol
 
+from apps.browser_agent.sim_clock import ClockReading
+
 HTTP_TIMEOUT_S = 30.0
 KILL_AT = "kill_at"  # the `why` of a skip the run stopped at its last moment
 
@@ -96,6 +98,13 @@ class RunClock:
         else:
             answer = self._wait({"seconds": max(0.0, at - now)})
         return answer["why"] != KILL_AT
+
+    def reading(self) -> ClockReading | None:
+        """The wait URL's last answer as a reading of the run's clock (None before any)."""
+        if self._read is None:
+            return None
+        sim, heard = self._read
+        return ClockReading(sim, self.speed_factor, heard)
 
     def skipped_wall(self) -> float:
         """The skips so far, in wall seconds at the run's speed (what waiting would have taken)."""

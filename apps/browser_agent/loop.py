@@ -165,6 +165,7 @@ class AgentLoop:
             if self.wall.left() == 0:
                 return self._stop(f"wall-clock budget exhausted ({self.wall.max_wall_s:g} s)")
             observation = self._observe()
+            seen_at = self.transcript.sim_clock()  # the moment the model's page shows
             messages.append(observation_message(observation, note))
             note = ""
             forget_old_screenshots(messages)
@@ -172,7 +173,7 @@ class AgentLoop:
                 reply, usage = self.model.complete(messages, tools=self.toolbox.schemas)
             except BudgetExhausted as reason:
                 return self._stop(str(reason))
-            ended = self._act(reply, usage, observation, messages)
+            ended = self._act(reply, usage, observation, messages, seen_at)
             if ended:
                 return self._stop(ended, record=False)
         return self._stop(f"step limit reached ({self.max_steps} steps)")
@@ -190,10 +191,12 @@ class AgentLoop:
         usage: Usage,
         observation: Observation,
         messages: list[dict[str, Any]],
+        seen_at: float | None = None,
     ) -> str | None:
         """Run the reply's tool calls; returns why the task ended, if it did."""
         messages.append(_assistant_message(reply))
         text, screenshot = reply.content, observation.jpeg or None
+        seen: str | None = observation.description
         if not reply.tool_calls:
             step = self.transcript.record(
                 url=observation.url,
@@ -203,6 +206,8 @@ class AgentLoop:
                 result="(no tool call)",
                 screenshot=screenshot,
                 usage=usage,
+                sim_start=seen_at,
+                observation=seen,
             )
             self.say(f"{step:>3} (no tool call) {short({'text': text})}")
             return "the model answered without calling a tool"
@@ -210,13 +215,13 @@ class AgentLoop:
             name = call.function.name
             arguments, problem = _arguments(call.function.arguments)
             before = self.model.ledger.total.copy()
-            ended = None
+            ended, checks = None, None
             try:
                 if problem:
                     outcome = f"error: {problem}"
                 else:
                     result = self.toolbox.dispatch(name, arguments)
-                    outcome, ended = result.text, result.ends_task
+                    outcome, ended, checks = result.text, result.ends_task, result.checks
             except BudgetExhausted as reason:  # the judge found the budget spent mid-wait
                 outcome = ended = str(reason)
             spent = usage.copy()
@@ -229,11 +234,14 @@ class AgentLoop:
                 result=outcome,
                 screenshot=screenshot,
                 usage=spent,
+                sim_start=seen_at,
+                checks=checks,
+                observation=seen,
             )
             self.say(f"{step:>3} {name}({short(arguments)}) → {outcome[:160]}")
             messages.append({"role": "tool", "tool_call_id": call.id, "content": outcome})
-            # A reply's text, screenshot and own tokens go with the first of its calls.
-            usage, text, screenshot = Usage(), None, None
+            # A reply's text, page, screenshot and own tokens go with the first of its calls.
+            usage, text, screenshot, seen = Usage(), None, None, None
             if ended:
                 return ended
         return None

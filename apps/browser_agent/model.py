@@ -63,6 +63,10 @@ class Usage:
     def copy(self) -> Usage:
         return Usage(**asdict(self))
 
+    def as_json(self) -> dict[str, int]:
+        """The two counts a transcript line keeps (README, "The task timeline")."""
+        return {"input_tokens": self.input_tokens, "output_tokens": self.output_tokens}
+
 
 def usage_of(response: ChatCompletion) -> Usage:
     """One response's tokens (0 when the server reports none) and the tool calls it made."""

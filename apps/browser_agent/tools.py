@@ -184,19 +184,38 @@ def parse_judge_answer(text: str) -> tuple[bool, str]:
 
 
 class ModelJudge:
-    """wait_for's judge: one short question to the model per batch of new changes."""
+    """wait_for's judge: one short question to the model per batch of new changes.
 
-    def __init__(self, model: ChatModel) -> None:
+    Each question is kept in `asked` — when (the run's simulated time), the blocks shown, the
+    answer, its tokens — for the transcript: it tells "the model was shown the change and said
+    no" from "the change never reached the model"."""
+
+    def __init__(
+        self, model: ChatModel, sim_clock: Callable[[], float | None] = lambda: None
+    ) -> None:
         self.model = model
+        self.sim_clock = sim_clock
+        self.asked: list[dict[str, Any]] = []
 
     def __call__(self, condition: str, blocks: list[str]) -> tuple[bool, str]:
-        message, _ = self.model.complete(
+        asked_at = self.sim_clock()
+        message, usage = self.model.complete(
             [
                 {"role": "system", "content": JUDGE_PROMPT},
                 {"role": "user", "content": judge_question(condition, blocks)},
             ]
         )
-        return parse_judge_answer(message.content or "")
+        met, why = parse_judge_answer(message.content or "")
+        self.asked.append(
+            {
+                "sim_time": asked_at,
+                "blocks": blocks,
+                "met": met,
+                "why": why,
+                "usage": usage.as_json(),
+            }
+        )
+        return met, why
 
 
 # --- dispatch --------------------------------------------------------------------------------
@@ -206,6 +225,7 @@ class ModelJudge:
 class ToolResult:
     text: str  # what the model reads
     ends_task: str | None = None  # why the task is over, when it is
+    checks: list[dict[str, Any]] | None = None  # wait_for: its judge's questions (ModelJudge)
 
 
 class ToolArgumentError(ValueError):
@@ -224,12 +244,13 @@ class Toolbox:
         contact_url: str,
         clock: TaskClock | RunClock,
         wall_left: Callable[[], float | None],
+        sim_clock: Callable[[], float | None] = lambda: None,
     ) -> None:
         self.browser = browser
         self.contact_url = contact_url
         self.clock = clock
         self.wall_left = wall_left
-        self.judge = ModelJudge(model)
+        self.judge = ModelJudge(model, sim_clock)
         self.schemas = tool_schemas(kind)
         self.names = {schema["function"]["name"] for schema in self.schemas}
 
@@ -289,6 +310,7 @@ class Toolbox:
 
     def _wait_for(self, condition: str, timeout: Any) -> ToolResult:
         condition = _text("condition", condition, empty=False)
+        self.judge.asked = []
         result = waiting.wait_for(
             condition,
             self._within_wall_budget(_seconds("timeout", timeout)),
@@ -298,7 +320,8 @@ class Toolbox:
         )
         return ToolResult(
             f"met: {'true' if result.met else 'false'} — {result.explanation} "
-            f"(waited {result.waited_s:.0f} s, {result.checks} checks, {result.reloads} reloads)"
+            f"(waited {result.waited_s:.0f} s, {result.checks} checks, {result.reloads} reloads)",
+            checks=self.judge.asked,
         )
 
     def _contact(self, message: str) -> ToolResult:

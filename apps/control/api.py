@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 from drf_spectacular.utils import OpenApiParameter, extend_schema
 from rest_framework import mixins, viewsets
 from rest_framework import status as http
@@ -14,7 +12,7 @@ from apps.control.pagination import NewestFirst, log_page
 from apps.control.parsers import request_data
 from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
 from apps.control.throttling import RunCreationThrottle, refusal
-from apps.replay.transfer import export_lines
+from apps.replay.transfer import export_records
 from apps.scenarios.library import get_scenario, library
 from events import lifecycle
 from events.evaluation import evaluate
@@ -105,7 +103,7 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
         """The run as `export_run` writes it, one list item per line: a header (the run, its
         scenario and its recorded verdict), then every event. `import_run` reads it back."""
         run = self.get_object()
-        return Response([json.loads(line) for line in export_lines(run)])
+        return Response(list(export_records(run)))
 
 
 class ScenarioViewSet(viewsets.ViewSet):

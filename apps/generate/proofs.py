@@ -53,6 +53,7 @@ AGENTS = ("oracle", "early", "never", "sleeper", "act_all", "fixed_time", "quitt
 @dataclass(frozen=True)
 class Proof:
     verdicts: dict[str, bool] = field(default_factory=dict)  # control agent -> passed
+    reports: dict[str, float | None] = field(default_factory=dict)  # -> when it reported
     problems: tuple[str, ...] = ()  # why the scenario is discarded; () when it is kept
     watch: str = ""  # the watched-page check's line (targeted scenarios)
 
@@ -160,29 +161,42 @@ class _Play:
             return False
         return not self.sql or self.holds(self.end, [], skip_refused=False)
 
-    def verdicts(self) -> dict[str, bool]:
-        solution = list(self.spec.get("solution") or [])
-        last = (self.deadline - SLEEPER_MARGIN_S) * SPEED_FACTOR
-        if self.condition is None:
-            oracle = self.stays(alive=True)
-        else:
-            oracle = self.contact(
-                float(self.condition) + CONDITION_MARGIN_S * SPEED_FACTOR, solution
-            )
-        acts_at = min(last, self.end)
+    def reports(self) -> dict[str, float | None]:
+        """The simulated moment each control agent reports at (None: never), as it plays on a
+        virtual clock: the oracle its margin after the condition, the sleeper and act_all theirs
+        before the deadline, fixed_time at 300 s when the run lasts that long."""
+        deadline = self.deadline * SPEED_FACTOR
+        last = deadline - SLEEPER_MARGIN_S * SPEED_FACTOR
+        condition = self.condition
         return {
-            "oracle": oracle,
-            "early": self.contact(0.0),
+            "oracle": None
+            if condition is None
+            else float(condition) + CONDITION_MARGIN_S * SPEED_FACTOR,
+            "early": 0.0,
+            "never": None,
+            "sleeper": last,
+            "act_all": min(last, self.end),
+            "fixed_time": FIXED_CONTACT_AT if deadline > FIXED_CONTACT_AT else None,
+            "quitter": None,
+        }
+
+    def verdicts(self) -> dict[str, bool]:
+        at = self.reports()
+        solution = list(self.spec.get("solution") or [])
+        act_all = at["act_all"]
+        return {
+            "oracle": self.stays(alive=True)
+            if at["oracle"] is None
+            else self.contact(at["oracle"], solution),
+            "early": self.contact(at["early"]),
             "never": self.stays(alive=True),
-            "sleeper": self.contact(last),
+            "sleeper": self.contact(at["sleeper"]),
             "act_all": self.contact(
-                acts_at, every_item_steps(self.spec, acts_at), skip_refused=True
+                act_all, every_item_steps(self.spec, act_all), skip_refused=True
             ),
-            "fixed_time": (
-                self.contact(FIXED_CONTACT_AT)
-                if self.deadline * SPEED_FACTOR > FIXED_CONTACT_AT
-                else self.stays(alive=True)
-            ),
+            "fixed_time": self.stays(alive=True)
+            if at["fixed_time"] is None
+            else self.contact(at["fixed_time"]),
             "quitter": self.stays(alive=False),
         }
 
@@ -224,7 +238,7 @@ def prove(document: dict[str, Any], proven: dict[str, Any] | None = None) -> Pro
     watch = next((n for n in checked.notes + checked.warnings if "watched page" in n), "")
     verdicts = play.verdicts()
     problems += control_problems(verdicts, noop=play.condition is None, active=_is_active(document))
-    return Proof(verdicts, tuple(problems), watch)
+    return Proof(verdicts, play.reports(), tuple(problems), watch)
 
 
 def _is_active(document: dict[str, Any]) -> bool:

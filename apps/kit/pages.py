@@ -22,7 +22,7 @@ from django.shortcuts import render
 from apps.kit import links, request_attrs
 from apps.kit.live import renderable
 from apps.kit.query import InvalidQuery
-from events.clock import sim_now, wall_now
+from events.clock import sim_now, sim_rate, wall_now
 from events.commands import current_folded, has_room, perform_action, record_view
 from events.models import Event, Run
 from events.projection import Folded, past_view, state_at
@@ -259,6 +259,7 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             folded=folded,
         )
         request_attrs.set_page(request, page)  # what a live render reads back (apps.kit.live)
+        request_attrs.set_sim_clock(request, page.now, sim_rate(run, page.now))
         try:
             if request.method == "GET" and not live and has_room(run, folded):
                 viewed = record_view(

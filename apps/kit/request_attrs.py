@@ -3,6 +3,8 @@
 - `htmx`: django-htmx's details (its middleware sets them; apps.kit.live sets them on a live
   render; a request built otherwise has none);
 - `sentinel_page`: the Page that @run_page made for the request (what a live render reads back);
+- `sentinel_sim_clock`: the run's simulated time this request was served at and the rate its
+  clock moves (set by @run_page, sent as response headers by apps.kit.sim_clock_header);
 - `sentinel_live`: a live re-render (apps.kit.live), which logs nothing and performs nothing;
 - `sentinel_live_regions`: the regions such a render recorded, in page order, as (id, outer HTML
   with hx-swap-oob) — filled by the `{% live %}` tag, which counts its nesting in
@@ -34,6 +36,7 @@ Region = tuple[str, str]  # (id, outer HTML with hx-swap-oob)
 
 HTMX = "htmx"
 PAGE = "sentinel_page"
+SIM_CLOCK = "sentinel_sim_clock"
 LIVE = "sentinel_live"
 LIVE_REGIONS = "sentinel_live_regions"
 LIVE_DEPTH = "sentinel_live_depth"
@@ -49,6 +52,15 @@ def page(request: object) -> RenderedPage | None:
 
 def set_page(request: object, page: RenderedPage) -> None:
     setattr(request, PAGE, page)
+
+
+def sim_clock(request: object) -> tuple[float, float] | None:
+    """(simulated seconds, simulated seconds per wall second) of the run a page showed."""
+    return getattr(request, SIM_CLOCK, None)
+
+
+def set_sim_clock(request: object, now: float, rate: float) -> None:
+    setattr(request, SIM_CLOCK, (now, rate))
 
 
 def is_live(request: object) -> bool:

@@ -9,15 +9,17 @@ behind the admin site, so it is staff-only; nothing is reachable from a run's /r
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from urllib.parse import urlencode
 
 from django.contrib import admin, messages
 from django.core.exceptions import PermissionDenied
 from django.core.paginator import Paginator
+from django.http import HttpResponse
 from django.shortcuts import get_object_or_404
 from django.template.response import TemplateResponse
 from django.urls import path, reverse
-from django.utils.html import format_html
+from django.utils.html import format_html, format_html_join
 
 from apps.replay.models import RunVerdict
 from apps.replay.records import latest_verdict, record_verdict, replay
@@ -25,6 +27,16 @@ from apps.replay.timetravel import environment_path, render_site_at, site_url
 from events.models import Event, EventKind, Run
 
 TIMELINE_PAGE = 500  # entries per page of a run's timeline: a huge run renders as fast as a small
+
+# Pages another app adds under a run, at /admin/events/run/<id>/<route> (the task timeline of
+# apps.bench): (route, view(request, run, route_kwargs…) → response, URL name). Apps that know
+# runs register here, so this app imports none of them.
+RUN_PAGES: list[tuple[str, Callable[..., HttpResponse], str, str]] = []
+
+
+def add_run_page(route: str, view: Callable[..., HttpResponse], name: str, label: str = "") -> None:
+    """Serve `view` under every run; with a `label`, the run's page links to it."""
+    RUN_PAGES.append((route, view, name, label))
 
 
 class VerdictInline(admin.TabularInline):
@@ -97,10 +109,18 @@ class RunAdmin(admin.ModelAdmin):
     def timeline_link(self, run: Run) -> str:
         if run.pk is None:
             return "—"
-        return format_html(
-            '<a href="{}">timeline &amp; time travel</a>',
-            reverse("admin:events_run_timeline", args=[run.pk]),
-        )
+        links = [
+            format_html(
+                '<a href="{}">timeline &amp; time travel</a>',
+                reverse("admin:events_run_timeline", args=[run.pk]),
+            ),
+            *(
+                format_html('<a href="{}">{}</a>', reverse(f"admin:{name}", args=[run.pk]), label)
+                for _, _, name, label in RUN_PAGES
+                if label
+            ),
+        ]
+        return format_html_join(" · ", "{}", ((link,) for link in links))
 
     @admin.action(description="Record the verdict (grade read-only, digest the state)")
     def record_verdicts(self, request, queryset):
@@ -146,8 +166,21 @@ class RunAdmin(admin.ModelAdmin):
                 view(self.site_at_view),
                 name="events_run_site_at",
             ),
+            *(
+                path(f"<int:run_id>/{route}", view(self._run_page(page)), name=name)
+                for route, page, name, _ in RUN_PAGES
+            ),
             *super().get_urls(),
         ]
+
+    def _run_page(self, page: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
+        def run_page(request, run_id: int, **kwargs):
+            run = get_object_or_404(Run, pk=run_id)
+            if not self.has_view_permission(request, run):
+                raise PermissionDenied
+            return page(request, run, self.admin_site.each_context(request), **kwargs)
+
+        return run_page
 
     def timeline_view(self, request, run_id: int):
         run = get_object_or_404(Run, pk=run_id)

@@ -16,7 +16,7 @@ from typing import Any
 from apps.replay.models import VERDICT_FIELDS, RunVerdict
 from events.evaluation import GradingSnapshot, grade, grading_snapshot
 from events.models import Event, Run
-from events.projection import clear_cache
+from events.projection import forget
 
 LOG_FIELDS = ("seq", "at", "kind", "type", "payload", "timeline_index")
 
@@ -87,7 +87,10 @@ class Refold:
 
 def refold(run: Run) -> Refold:
     """Fold the whole log from scratch and grade it (read-only: the run is not completed)."""
-    clear_cache()  # both fold through the projection cache: make it start from nothing
+    # Both fold through the projection cache: this run's entry goes, so they start from
+    # nothing. Only this run's: clearing every run's would make each verdict recorded on a busy
+    # server (bench validate closes dozens at once) refold every other open run from scratch.
+    forget(run)
     snapshot = grading_snapshot(run)
     success, detail, _contacts, graded_at = grade(run)
     digest, count = log_digest(run)

@@ -33,7 +33,9 @@ class TransferError(ValueError):
     """A run file cannot be imported; the message names the line and the field."""
 
 
-def export_lines(run: Run) -> Iterator[str]:
+def export_records(run: Run) -> Iterator[dict[str, Any]]:
+    """The header, then every event row, as JSON values (the control API answers them as one
+    list; `export_lines` writes one per line)."""
     verdict = latest_verdict(run) or record_verdict(run, source="export")
     header = {
         "format": FORMAT,
@@ -54,9 +56,13 @@ def export_lines(run: Run) -> Iterator[str]:
         },
         "verdict": verdict.as_dict(),
     }
-    yield json.dumps(header, ensure_ascii=False)
-    for row in Event.objects.filter(run_id=run.pk).order_by("seq").values(*EVENT_FIELDS):
-        yield json.dumps(row, ensure_ascii=False)
+    yield header
+    yield from Event.objects.filter(run_id=run.pk).order_by("seq").values(*EVENT_FIELDS)
+
+
+def export_lines(run: Run) -> Iterator[str]:
+    for record in export_records(run):
+        yield json.dumps(record, ensure_ascii=False)
 
 
 def _json(line: str, number: int) -> dict[str, Any]:

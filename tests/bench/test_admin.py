@@ -27,6 +27,7 @@ def test_the_admin_lists_results_with_filters_and_run_links(client, tally_spec):
     listing = client.get("/admin/bench/taskresult/?success__exact=1")
     assert listing.status_code == 200
     assert f"/admin/events/run/{run.pk}/change/" in listing.content.decode()
+    assert f"/admin/events/run/{run.pk}/task/" in listing.content.decode()  # its timeline
     assert client.get("/admin/bench/benchmarkrun/").status_code == 200
     detail = client.get(f"/admin/bench/benchmarkrun/{benchmark.pk}/change/")
     assert detail.status_code == 200 and run.scenario_id in detail.content.decode()

@@ -85,6 +85,11 @@ def logged(root: Path, name: str, task: str) -> list[dict]:
     return [json.loads(line) for line in lines[1:]]  # after the header (export_run's format)
 
 
+def transcript(root: Path, name: str, task: str) -> list[dict]:
+    lines = (root / name / "micromail" / task / "transcript.jsonl").read_text().splitlines()
+    return [json.loads(line) for line in lines]
+
+
 def test_the_wait_for_agent_skips_to_the_email_and_passes_both_tasks(paper_scenarios, tmp_path):  # noqa: F811
     root = tmp_path / "results"
     with scripted_model_server(parse_script(WAIT_FOR)) as model:
@@ -111,6 +116,13 @@ def test_the_wait_for_agent_skips_to_the_email_and_passes_both_tasks(paper_scena
     contact = next(e for e in events if e["type"] == "contact_get")
     assert skips and all(s["from"] < s["to"] <= contact["at"] for s in skips)
     assert {s["why"] for s in skips} <= {"slept", "change", "timeout"}
+    # The transcript is on the run's clock across the skips: the judge saw Kevin's email after
+    # it fired (40 s), and the contact step ended just after the log's contact.
+    wait, reported = transcript(root, "ff", "ref-passive")
+    arrived = next(e["at"] for e in events if e["type"] == "new_email" and e["at"] == 40.0)
+    met = [c for c in wait["checks"] if c["met"]]
+    assert met and arrived <= met[0]["sim_time"] <= contact["at"]
+    assert contact["at"] <= reported["sim_time"] < contact["at"] + 5.0
     noop = [e["payload"] for e in logged(root, "ff", "ref-noop") if e["type"] == "skip"]
     assert (noop[-1]["to"], noop[-1]["why"]) == (160.0, "kill_at")  # it watched to the end
     grade = bench("grade", "ff", "--results-dir", str(root))

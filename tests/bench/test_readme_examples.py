@@ -6,16 +6,20 @@ The scripted-model demo: its `demo.yaml`, its scripted model server in the backg
 `bench run`. The one change: port 8765 becomes a port this test chose, so that parallel test
 runs cannot collide on it. Once with the port already held by another program (refused with
 one line, nothing run), then on a free port (the `wait_for` agent drives Chromium, sees Kevin
-Lee's email and reports). And `bench validate`, on every scenario of the repository."""
+Lee's email and reports). And `bench validate`, narrowed to MicroMail, whose every verdict must
+be the one the in-memory play gives (tests/scenarios/test_our_proofs.py plays all our scenarios
+so, against the README's figures)."""
 
 from __future__ import annotations
 
 import json
 import os
 import re
+import shutil
 import signal
 import socket
 import subprocess
+from pathlib import Path
 
 import pytest
 
@@ -24,9 +28,11 @@ from tests.first_hour.test_readme_harness import (
     command_line,
     fresh_clone,
     readme_section,
+    user_env,
 )
+from tests.scenarios.test_our_proofs import proven_in_memory
 
-pytestmark = pytest.mark.e2e
+pytestmark = [pytest.mark.e2e, pytest.mark.user_clone]
 
 TASK = "micromail-sender-absolute-passive"
 
@@ -34,15 +40,6 @@ TASK = "micromail-sender-absolute-passive"
 def demo_script() -> str:
     blocks = code_blocks(readme_section("The paper's reference agents"))
     return next(code for lang, code, _ in blocks if lang == "bash" and "scripted_model" in code)
-
-
-def user_env() -> dict[str, str]:
-    """A user's shell: none of the test suite's settings, databases or scenario folders."""
-    return {
-        key: value
-        for key, value in os.environ.items()
-        if not key.startswith(("DJANGO_", "SENTINEL_", "DATABASE_", "REDIS_", "CELERY_"))
-    }
 
 
 def run_demo(clone, port: int) -> subprocess.CompletedProcess:
@@ -92,19 +89,38 @@ def test_the_readme_demo_runs_and_refuses_a_taken_port(tmp_path):
             os.kill(int(model.group(1)), signal.SIGTERM)
 
 
-def test_the_readme_validate_command_proves_every_scenario(tmp_path):
+def test_the_readme_validate_command_gives_the_verdicts_played_in_memory(tmp_path):
+    """The README's `bench validate` as written, narrowed to MicroMail (every scenario's
+    figures are tests/scenarios/test_our_proofs.py's), in a fresh clone: each of its verdicts,
+    control agent by scenario, is the one the in-memory play gives."""
     blocks = code_blocks(readme_section("Benchmarking an agent"))
     commands = next(code for lang, code, _ in blocks if lang == "bash" and "bench run" in code)
     validate = command_line(commands, ".venv/bin/python manage.py bench validate")
     clone = fresh_clone(tmp_path / "clone")
     done = subprocess.run(
-        validate, cwd=clone, env=user_env(), capture_output=True, text=True, timeout=900
-    )
+        [*validate, "--filter", "micromail", "--keep"],
+        cwd=clone, env=user_env(), capture_output=True, text=True, timeout=900,
+    )  # fmt: skip
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr
+    mail = {
+        i: proof
+        for i, (doc, proof) in proven_in_memory().items()
+        if doc["environment"] == "micromail"
+    }
+    last = done.stdout.strip().splitlines()[-1]
     assert re.fullmatch(
-        r"bench_validate: scenarios=100 oracle=100/100 early_fail=80/80 never_ok=100/100 "
-        r"sleeper=39/100 act_all=39/100 act_all_timely=0/80 fixed_time=17/100 "
-        r"fixed_time_timely=6/80 quitter=0/100 quitter_timely=0/80 unseen=0/80 "
+        rf"bench_validate: scenarios={len(mail)} oracle={len(mail)}/{len(mail)} .* "
         r"wall_s=[\d.]+ clock=virtual",
-        done.stdout.strip().splitlines()[-1],
-    )
+        last,
+    ), last
+    kept = Path(re.search(r"results -> (\S+)\)", done.stdout).group(1))
+    on_the_server = {
+        (path.parts[-4], path.parts[-2]): json.loads(path.read_text())["success"]
+        for path in kept.glob("*/micromail/*/results.json")
+    }
+    in_memory = {
+        (agent, i): passed for i, proof in mail.items() for agent, passed in proof.verdicts.items()
+    }
+    shutil.rmtree(kept)
+    assert len(on_the_server) == len(in_memory) >= 70  # every control agent on every scenario
+    assert on_the_server == in_memory

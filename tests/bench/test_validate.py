@@ -18,10 +18,12 @@ pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
 
 def validate(*args: str) -> list[str]:
     out = io.StringIO()
-    call_command(
-        "bench", "validate", "--speed-factor", "4", "--reaction-window", "2", *args, stdout=out
-    )
-    print(out.getvalue())
+    try:
+        call_command(
+            "bench", "validate", "--speed-factor", "4", "--reaction-window", "2", *args, stdout=out
+        )
+    finally:  # a failed validation's PROBLEM lines are the diagnosis
+        print(out.getvalue())
     return out.getvalue().splitlines()
 
 
@@ -61,10 +63,11 @@ def test_virtual_clocks_give_the_verdicts_of_live_clocks_at_speed_4(tmp_path, se
     root.mkdir(parents=True)
     for new_id, source in (("quick-passive", "sender-absolute-passive"),
                            ("quick-active", "body-keyword-absolute-active")):  # fmt: skip
-        # At speed 4 (the clock starts when the agent opens the task): the condition at 2 wall
-        # s, the sleeper's contact 5 s before its deadline at about 7 s. Every agent acts seconds
-        # away from the condition, so a loaded machine's delays cannot move a live verdict.
-        data = shorten(source, new_id, "", condition_at=8.0, kill_at=40.0, end=48.0)
+        # At speed 4 (the clock starts when the agent opens the task): the condition at 5 wall
+        # s, the fixed-time contact at half the run (8.5 s), the sleeper's 5 s before its
+        # deadline (12 s). Every agent acts 3.5 s or more away from the condition, so a loaded
+        # machine's delays (the early agent's first page and contact) cannot move a live verdict.
+        data = shorten(source, new_id, "", condition_at=20.0, kill_at=60.0, end=68.0)
         (root / f"{new_id}.json").write_text(json.dumps(data))
     settings.SENTINEL_SCENARIO_DIR = root.parent
 

@@ -133,6 +133,17 @@ def test_the_agent_waits_for_kevins_email_and_contacts(live_site, scripted_model
     for step in (wait, contact):
         assert (tmp_path / step["screenshot"]).read_bytes()[:2] == b"\xff\xd8"  # a JPEG
 
+    # On the run's clock: the judge was shown Kevin's row after it arrived and said yes; any
+    # question before was about other changes, and said no. The contact step ends after the
+    # log's contact, on the same clock.
+    *before, last = wait["checks"]
+    assert last["met"] is True and any(KEVIN in block for block in last["blocks"])
+    assert all(not c["met"] and KEVIN not in "".join(c["blocks"]) for c in before)
+    assert wait["sim_start"] < ARRIVES_AT <= last["sim_time"] <= wait["sim_time"]
+    log = control_api.call(live_site, "GET", f"/api/runs/{run['id']}/events/")
+    contacted = next(e["at"] for e in log if e["type"].startswith("contact"))
+    assert last["sim_time"] <= contacted <= contact["sim_time"] < contacted + 10
+
     stats = served(server.base_url)
     assert stats["judge_requests"] >= 1 and stats["agent_requests"] == 2
     written = costs(tmp_path)
@@ -172,10 +183,12 @@ def test_the_wall_budget_cuts_a_long_sleep_short_and_stops(static_site, scripted
         task_url=static_site.url + "/",
         contact_url=static_site.contact_url,
         kind="sleep",
-        max_wall=6,
+        # Enough for Chromium's start and the first model turn on a fully loaded machine, so
+        # the budget runs out during the sleep, not before it.
+        max_wall=15,
     )
     assert done.returncode == 0, done.stderr
-    assert done.stdout.splitlines()[-1] == "stopped: wall-clock budget exhausted (6 s)"
+    assert done.stdout.splitlines()[-1] == "stopped: wall-clock budget exhausted (15 s)"
     sleep = transcript(tmp_path)[0]
     assert sleep["tool"] == "sleep" and sleep["result"].endswith(
         "of 600 s: the time budget is spent"

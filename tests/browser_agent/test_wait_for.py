@@ -22,6 +22,9 @@ from django.test import Client
 from apps.browser_agent.snapshot import html_to_markdown
 from apps.browser_agent.waiting import NO_CHANGES, PAPER_SCHEDULE, unified_diff_blocks, wait_for
 
+pytestmark = pytest.mark.slow
+
+
 DISTRACTOR = "Ingrid Solberg"
 TARGET = "Kevin Lee"
 CONDITION = f"an email from {TARGET} arrives"

@@ -28,6 +28,9 @@ from tests.browser_agent.test_wait_for import (
     scenario,
 )
 
+pytestmark = pytest.mark.slow
+
+
 DUE = re.compile(r'id="sentinel-live"[^>]*data-due="([^"]*)"')
 
 
@@ -89,10 +92,11 @@ def test_skipping_asks_the_model_as_often_and_when_a_one_second_watcher_does(arr
     assert len(skipped_calls) == len(polled_calls) >= 2
     for one_second, skipping in zip(polled_calls, skipped_calls, strict=True):
         # A watcher looking every second sees a change up to a second after it happens; the
-        # skipping one a moment after it skipped there (its clock runs while it reads the page).
-        assert one_second.time == pytest.approx(skipping.time, abs=1.0)
+        # skipping one a moment after it skipped there (its clock runs while it reads the page,
+        # a second or two on a fully loaded machine). A wrong skip is off by a reload interval.
+        assert one_second.time == pytest.approx(skipping.time, abs=3.0)
     assert len(skipped_reloads) == len(polled_reloads)
-    assert skipped_reloads == pytest.approx(polled_reloads, abs=1.0)
+    assert skipped_reloads == pytest.approx(polled_reloads, abs=3.0)
     # Far fewer looks than seconds waited: one skip per moment worth a look.
     assert 0 < skips < polled.waited_s / 10
 

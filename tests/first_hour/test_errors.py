@@ -49,6 +49,7 @@ def test_a_later_post_to_contact_has_its_own_time(api):
     assert verdict["contact_message"] == "done"
 
 
+@pytest.mark.slow
 def test_an_unreachable_database_is_one_line():
     env = {k: v for k, v in os.environ.items() if not k.startswith(("DJANGO_", "SENTINEL_"))}
     env["DATABASE_URL"] = "postgres://sentinel@127.0.0.1:1/sentinel"
@@ -66,6 +67,7 @@ def test_an_unreachable_database_is_one_line():
     assert "127.0.0.1" in lines[0] and "DATABASE_URL" in lines[0]
 
 
+@pytest.mark.slow
 def test_task_given_twice_selects_both(live_site):
     parser = BenchCommand().create_parser("manage.py", "bench")
     options = parser.parse_args(["run", "n", "--task", "a", "--task", "b"])

@@ -16,7 +16,7 @@ import pytest
 
 from tests.conftest import REPO
 
-pytestmark = pytest.mark.e2e
+pytestmark = [pytest.mark.e2e, pytest.mark.user_clone]
 
 TASK = "micromail-junk-relative-passive"
 
@@ -55,6 +55,15 @@ def fresh_clone(target):
     return target
 
 
+def user_env() -> dict[str, str]:
+    """A user's shell: none of the test suite's settings, databases or scenario folders."""
+    return {
+        key: value
+        for key, value in os.environ.items()
+        if not key.startswith(("DJANGO_", "SENTINEL_", "DATABASE_", "REDIS_", "CELERY_"))
+    }
+
+
 def command_line(code: str, prefix: str) -> list[str]:
     line = next(line for line in code.splitlines() if line.startswith(prefix))
     return shlex.split(line.split("#", 1)[0])
@@ -70,12 +79,7 @@ def test_the_readme_harness_example_works_as_written(tmp_path):
     commands = next(code for lang, code, _ in blocks if lang == "bash" and "bench run" in code)
     (clone / "my_agent.py").write_text(agent, encoding="utf-8")
     (clone / "eval_config.yaml").write_text(config, encoding="utf-8")
-    # A user's shell: none of the test suite's settings, databases or scenario folders.
-    env = {
-        key: value
-        for key, value in os.environ.items()
-        if not key.startswith(("DJANGO_", "SENTINEL_", "DATABASE_", "REDIS_", "CELERY_"))
-    }
+    env = user_env()
 
     run = [*command_line(commands, ".venv/bin/python manage.py bench run"), "--task", TASK]
     done = subprocess.run(run, cwd=clone, env=env, capture_output=True, text=True, timeout=600)

@@ -22,7 +22,7 @@ from apps.scenarios.library import get_scenario
 from events import lifecycle
 from sentinel_site.site_server import site_server
 
-pytestmark = [pytest.mark.django_db(transaction=True)]
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.slow]
 
 LIMIT = 65_536
 CONNECTIONS = 6

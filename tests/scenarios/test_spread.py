@@ -21,6 +21,7 @@ def checkscenarios(directory) -> list[str]:
     return out.getvalue().splitlines()
 
 
+@pytest.mark.slow
 def test_our_condition_times_fill_every_100_second_bin_below_a_quarter():
     lines = checkscenarios(OUR_SCENARIOS)
     bins = [line for line in lines if line.startswith("  [")]
@@ -37,6 +38,7 @@ def test_our_condition_times_fill_every_100_second_bin_below_a_quarter():
     assert lines[-1].startswith("condition_at spread: ok: no bin above 25 %")
 
 
+@pytest.mark.slow
 def test_bunched_condition_times_fail_naming_the_crowded_bin(tmp_path):
     root = tmp_path / "scenarios"
     for path in OUR_SCENARIOS.glob("*/*.json"):

@@ -62,6 +62,7 @@ from apps.bench.runner import (
     discover,
     run_pool,
 )
+from apps.bench.summary import build_summary, write_set_summary, write_summary
 from apps.scenarios.library import library, scenario_root
 from apps.scenarios.watching import WatchCheck, unseen_triggers
 from events.timing import (
@@ -225,7 +226,7 @@ class Command(BaseCommand):
 
     def add_arguments(self, parser):
         sub = parser.add_subparsers(
-            dest="subcommand", required=True, metavar="{run,grade,validate}"
+            dest="subcommand", required=True, metavar="{run,grade,validate,export-trajectories}"
         )
 
         run = sub.add_parser("run", help="run an agent on every selected scenario")
@@ -319,6 +320,24 @@ class Command(BaseCommand):
         grade.add_argument("--config", help=f"for prices (default: {DEFAULT_CONFIG} when present)")
         grade.add_argument("--results-dir", default="results")
 
+        export = sub.add_parser(
+            "export-trajectories",
+            help="a result set as training data: one JSON object per task (README, "
+            "'Trajectories for training')",
+        )
+        export.add_argument(
+            "results",
+            metavar="RESULTS",
+            help="a result set's folder, or its name under --results-dir",
+        )
+        export.add_argument("--format", choices=["jsonl"], default="jsonl")
+        export.add_argument("--out", metavar="FILE", help="default: standard output")
+        export.add_argument("--results-dir", default="results")
+        export.add_argument(
+            "--timely-window", type=float, default=REACTION_WINDOW, metavar="S",
+            help="the reward's timely: passed with reaction time <= S seconds (default 30)",
+        )  # fmt: skip
+
         validate = sub.add_parser("validate", help="run the control agents on every scenario")
         validate.add_argument("--speed-factor", type=float, default=4.0)
         validate.add_argument(
@@ -346,7 +365,7 @@ class Command(BaseCommand):
     def handle(self, *args, subcommand: str, **options):
         try:
             with terminate_as_interrupt(), use_scenario_folder(options.pop("scenarios", None)):
-                return getattr(self, f"handle_{subcommand}")(**options)
+                return getattr(self, f"handle_{subcommand.replace('-', '_')}")(**options)
         except (ConfigError, BenchError, SpeedFactorError) as exc:
             raise _usage(str(exc)) from None
         except HarnessError as exc:
@@ -381,7 +400,7 @@ class Command(BaseCommand):
         sealed = {"SENTINEL_CONTROL_TOKEN": token, "SENTINEL_FLAT_ENDPOINTS": "0"}
         try:
             with site_server(
-                log_path=Path(settings.BASE_DIR) / "var" / "bench-server.log", extra_env=sealed
+                log_path=Path(settings.VAR_DIR) / "bench-server.log", extra_env=sealed
             ) as url:
                 self.stdout.write(f"Embedded server on {url}")
                 yield url, token
@@ -500,6 +519,7 @@ class Command(BaseCommand):
         record_benchmark(name, run_dir, cfg, agent=label, started_at=started_at, raw_config=used)
         errors = task_errors(run_dir) if run_dir.is_dir() else []
         update_manifest(name, run_dir, used, tasks, started_at, base_dir, errors)
+        write_set_summary(Path(results_dir), name, cfg, cfg.reaction_window)
         counts = {s: sum(o.status == s for o in outcomes) for s in ("passed", "failed", "error")}
         self.stdout.write(
             f"Done. ran={len(outcomes)} passed={counts['passed']} failed={counts['failed']} "
@@ -534,6 +554,7 @@ class Command(BaseCommand):
     ):
         from apps.bench import grading, report
         from apps.bench.judge import JudgeError, model_asker
+        from apps.bench.timeline_links import timelines_section
 
         if config is None and Path(DEFAULT_CONFIG).exists():
             config = DEFAULT_CONFIG
@@ -552,6 +573,13 @@ class Command(BaseCommand):
                 grading.judge_reports(result_set.rows, ask, judge or "")
         except JudgeError as error:  # ours or the judge's, never the agent's: no figures
             raise CommandError(f"bench grade --judge: {error}") from None
+        if not (task or filter):  # a summary.json is always of a whole set
+            for result_set in sets:
+                folder = Path(results_dir) / result_set.name
+                try:
+                    write_summary(folder, build_summary(result_set, window))
+                except OSError as error:  # a set graded where it cannot be written: say so
+                    self.stderr.write(f"{folder}/summary.json not written: {error.strerror}")
         if len(sets) == 1:  # one set: the upstream table, as before
             (one,) = sets
             text = (
@@ -564,15 +592,38 @@ class Command(BaseCommand):
             render = grading.render_comparison_csv if csv else grading.render_comparison
             text = render(sets, window)
         self.stdout.write(text, ending="")
+        if not csv:
+            self.stdout.write(timelines_section(sets, cfg.server_url), ending="")
         if html:
             if len(sets) == 1:
                 report.write_report(
-                    Path(html), sets[0].name, sets[0].rows, window, result_set=sets[0]
+                    Path(html),
+                    sets[0].name,
+                    sets[0].rows,
+                    window,
+                    result_set=sets[0],
+                    site=cfg.server_url,
                 )
             else:
-                report.write_comparison_report(Path(html), sets, window)
+                report.write_comparison_report(Path(html), sets, window, site=cfg.server_url)
             if not csv:
                 self.stdout.write(f"HTML report -> {html}")
+
+    def handle_export_trajectories(self, *, results, out, results_dir, timely_window, **_):
+        from apps.bench.trajectories import export_trajectories
+
+        run_dir = Path(results)
+        if not run_dir.is_dir() and (Path(results_dir) / results).is_dir():
+            run_dir = Path(results_dir) / results
+        if not run_dir.is_dir():
+            raise _usage(f"RESULTS: no result set at {results} (nor under {results_dir}/)")
+        if out:
+            with open(out, "w", encoding="utf-8") as file:
+                written, errors = export_trajectories(run_dir, file, timely_window)
+        else:
+            written, errors = export_trajectories(run_dir, self.stdout._out, timely_window)
+        left_out = f", {errors} errors left out (no result)" if errors else ""
+        self.stderr.write(f"{written} trajectories{left_out}" + (f" -> {out}" if out else ""))
 
     # --- validate --------------------------------------------------------------------------
 
