@@ -22,6 +22,17 @@ REPO = Path(__file__).resolve().parents[1]
 # scenarios/ (tests/settings.py), so a scenario authored in the admin never changes the suite.
 OUR_SCENARIOS = Path(os.environ["SENTINEL_TEST_OUR_SCENARIOS"])
 # The original benchmark's data, for the conformance tests (README, "Conformance tests").
+
+
+def ours(environment: str | None = None) -> list:
+    """Our scenarios as the server loads them (the session's copy), or one environment's: the
+    counts a test expects, so that a new scenario changes no test."""
+    from apps.scenarios.library import library
+
+    found = library(OUR_SCENARIOS).by_id.values()
+    return [s for s in found if environment in (None, s.environment)]
+
+
 UPSTREAM = Path(os.environ.get("SENTINEL_UPSTREAM_DIR") or REPO.parent / "shared" / "upstream")
 UPSTREAM_ABSENT = (
     f"original SentinelBench data absent: no {UPSTREAM} (set SENTINEL_UPSTREAM_DIR; "

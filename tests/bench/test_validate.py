@@ -36,7 +36,8 @@ def test_validate_proves_the_short_scenarios_solvable_and_not_trivially_passable
     assert re.fullmatch(
         r"bench_validate: scenarios=6 oracle=6/6 early_fail=5/5 never_ok=6/6 sleeper=\d/6 "
         r"act_all=\d/6 act_all_timely=\d/5 fixed_time=\d/6 fixed_time_timely=\d/5 "
-        r"quitter=0/6 quitter_timely=0/5 unseen=\d/5 wall_s=[\d.]+ clock=virtual",
+        r"quitter=0/6 quitter_timely=0/5 late_ephemeral=0/0 unseen=\d/5 wall_s=[\d.]+ "
+        r"clock=virtual",
         lines[-1],
     )
     assert not [line for line in lines if line.startswith("PROBLEM")]

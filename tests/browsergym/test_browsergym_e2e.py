@@ -20,7 +20,7 @@ from typing import Any
 import pytest
 
 from sentinel_environments import Client
-from tests.conftest import REPO
+from tests.conftest import REPO, ours
 
 try:
     import gymnasium as gym
@@ -37,6 +37,7 @@ except ImportError as missing:  # the extra is part of ./dev's install
 pytestmark = [pytest.mark.e2e, pytest.mark.browser, pytest.mark.django_db(transaction=True)]
 
 Agent = Callable[[str], str]  # the page's accessibility tree → the next BrowserGym action
+STALE = "Could not find element with bid"
 
 
 def bid(tree: str, role: str, name_part: str) -> str:
@@ -59,7 +60,12 @@ def play(task: str, agent: Agent, max_steps: int = 60) -> tuple[float, dict[str,
             for _ in range(max_steps):
                 action = agent(flatten_axtree_to_str(obs["axtree_object"]))
                 obs, reward, done, _, info = env.step(action)
-                assert not obs["last_action_error"], (action, obs["last_action_error"])
+                missed = obs["last_action_error"]
+                # The one error a live page may cause: a push re-rendered the element between
+                # the look and the click, so its id is gone; the agent looks again and redoes it.
+                assert not missed or STALE in missed, (action, missed)
+                if missed:
+                    agent.missed()  # type: ignore[attr-defined]
                 if done:
                     return reward, info["task_info"], started["task_info"]
             raise AssertionError(f"{task}: not done after {max_steps} steps")
@@ -101,6 +107,9 @@ SUBJECT = "Notes from Tuesday's architecture sync"  # base-45, at 289.55 s
 def flags_the_scalability_mail() -> Agent:
     done: list[str] = []
 
+    def missed() -> None:  # its last click found no element: not done after all
+        done.pop()
+
     def agent(tree: str) -> str:
         if f"Subject: {SUBJECT}" not in tree:
             return "noop(30000)"
@@ -112,6 +121,7 @@ def flags_the_scalability_mail() -> Agent:
             return f"click('{bid(tree, 'button', f'Flag “{SUBJECT}”')}')"
         return 'send_msg_to_user("I flagged the notes on platform scalability.")'
 
+    agent.missed = missed  # type: ignore[attr-defined]
     return agent
 
 
@@ -139,10 +149,11 @@ def test_a_no_op_fails_when_the_agent_reports(tasks):
 
 def test_the_task_list_holds_every_scenario_with_its_category():
     metadata = sentinel_gym.task_metadata()
-    assert len(metadata) == 100
+    noops = sum(s.is_noop for s in ours())
+    assert len(metadata) == len(ours())
     categories = [row["category"] for row in metadata]
-    assert categories.count("noop") == 20
-    assert categories.count("passive") + categories.count("active") == 80
+    assert categories.count("noop") == noops
+    assert categories.count("passive") + categories.count("active") == len(ours()) - noops
     assert len({row["environment"] for row in metadata}) == 10
     registered = {name for name in gym.registry if name.startswith("browsergym/sentinel.")}
     assert registered == {f"browsergym/{row['task_name']}" for row in metadata}

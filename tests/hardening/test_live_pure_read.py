@@ -86,7 +86,10 @@ def test_polling_the_page_of_every_solution_step_changes_nothing(case):
     """Opening the page is the action for some steps (an implicit action: opening marks read)."""
     scenario = case.load()
     run = lifecycle.create_run(scenario.to_run_spec(), clock_mode=ClockMode.VIRTUAL)
-    lifecycle.advance(run, scenario.event_timeline_end)  # everything the steps refer to exists
+    # Everything the steps refer to exists: at the end, or while an ephemeral condition holds.
+    until = scenario.condition_until
+    held = scenario.event_timeline_end if until is None else (scenario.condition_at + until) / 2
+    lifecycle.advance(run, held)
     environment = get_environment(run.environment)
     state = current_state(run)
     before = footprint(run)

@@ -71,7 +71,11 @@ def test_timeline_entries_get_type_choices_and_catalog_checks():
     )
     assert not form.is_valid()
     assert "not in catalog table 'emails': nope" in form.errors["payload"][0]
-    assert [c for c, _ in form.fields["type"].choices] == ["new_email", "preload_emails"]
+    assert [c for c, _ in form.fields["type"].choices] == [
+        "new_email",
+        "preload_emails",
+        "recall_email",
+    ]
     good = form_class(
         data={"position": 1, "time": 10, "type": "new_email", "payload": '{"email_id": "base-04"}'}
     )
