@@ -147,7 +147,9 @@ def test_both_reference_agents_run_the_paper_experiment_and_compare(paper_scenar
     }
     passive, noop = outcome["ref-passive"], outcome["ref-noop"]
     assert passive["success"] is True and noop["success"] is True
-    assert passive["reaction_time"] < 20.0  # wall seconds after Kevin Lee's email arrived
+    # Wall seconds after Kevin Lee's email arrived: at most one of wait_for's doubled waits
+    # (20 s), plus a loaded machine's page loads and model turns.
+    assert passive["reaction_time"] < 30.0
     assert passive["contact_message"] == "The email you were waiting for has arrived."
     assert noop["contact_get_time"] is None  # it watched to the end, saw nothing, never reported
     transcript = (tasks(results, "wait_for")["ref-passive"] / "transcript.jsonl").read_text()
