@@ -42,6 +42,7 @@ from apps.bench.stats import (
     pass_hat_k,
     wilson,
 )
+from apps.scenarios.format import AXIS_DEFAULTS
 from apps.scenarios.generated_names import family_of
 from events.timing import REACTION_WINDOW
 
@@ -94,12 +95,12 @@ class Row:
     @property
     def persistence(self) -> str:
         """persistent | ephemeral (results from before the axis was recorded: persistent)."""
-        return str(self.result.get("persistence") or "persistent")
+        return str(self.result.get("persistence") or AXIS_DEFAULTS["event_persistence"])
 
     @property
     def criteria(self) -> str:
         """objective | subjective (results from before the axis was recorded: objective)."""
-        return str(self.result.get("criteria") or "objective")
+        return str(self.result.get("criteria") or AXIS_DEFAULTS["criteria"])
 
     def in_group(self, group: str) -> bool:
         if group == "overall":

@@ -42,6 +42,8 @@ TAXONOMY_CHOICES: dict[str, tuple[str, ...]] = {
     "event_persistence": ("persistent", "ephemeral"),
     "criteria": ("objective", "subjective"),
 }
+# What a scenario (or a result recorded before the axes were) that says nothing of them is.
+AXIS_DEFAULTS = {axis: TAXONOMY_CHOICES[axis][0] for axis in ("event_persistence", "criteria")}
 
 
 class ScenarioError(ValueError):
@@ -77,12 +79,12 @@ class Scenario:
     @property
     def persistence(self) -> str:
         """ "ephemeral" (the condition holds only until `condition_until`) or "persistent"."""
-        return str(self.taxonomy.get("event_persistence") or "persistent")
+        return str(self.taxonomy.get("event_persistence") or AXIS_DEFAULTS["event_persistence"])
 
     @property
     def criteria(self) -> str:
         """ "subjective" (the condition is a judgement, per the rubric) or "objective"."""
-        return str(self.taxonomy.get("criteria") or "objective")
+        return str(self.taxonomy.get("criteria") or AXIS_DEFAULTS["criteria"])
 
     @property
     def watched_page(self) -> str:
