@@ -18,7 +18,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from apps.browser_agent.tools import REPORT_MARKER, judge_verdict  # (the report follows it)
+from apps.browser_agent.judging import REPORT_MARKER, judge_verdict  # (the report follows it)
 
 JUDGEMENT = "judgement.json"
 # A question is idempotent: a rate limit or a dropped connection is asked again, a wrong URL

@@ -15,7 +15,7 @@ not there.
 Requests offering `tools` are the agent loop's: the turn is the number of assistant messages
 already in the conversation, so a retried request gets the same answer and the server keeps no
 state per conversation. Requests without `tools` are wait_for's judge questions
-(`tools.judge_question`): the blocks after each `=== change N ===` line are the new changes; or
+(`judging.judge_question`): the blocks after each `=== change N ===` line are the new changes; or
 `bench grade --judge`'s (apps/bench/judge.py), whose lines after `=== report ===` are judged
 (the same `judge.yes_when_any` rule: yes when a line holds one of its phrases).
 
@@ -44,7 +44,7 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 from typing import Any
 
-from apps.browser_agent.tools import JUDGE_CHANGE_PATTERN, REPORT_MARKER
+from apps.browser_agent.judging import JUDGE_CHANGE_PATTERN, REPORT_MARKER
 from sentinel_site.yaml_files import YamlFileError, read_yaml
 
 SCRIPT_KEYS = ("model", "agent", "judge", "failures")

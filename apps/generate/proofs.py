@@ -28,8 +28,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from apps.bench.agents import CONDITION_MARGIN_S, FIXED_CONTACT_AT, SLEEPER_MARGIN_S
+from apps.bench.cheating import cheating_problems
 from apps.bench.everything import every_item_steps
-from apps.bench.management.commands.bench import cheating_problems
 from apps.bench.runner import deadline_s
 from apps.generate.compose import waypoint_lists
 from apps.scenarios.dry_run import TOLERANCE_S, dry_run

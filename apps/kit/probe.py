@@ -11,7 +11,6 @@ from collections.abc import Iterable, Mapping
 from datetime import UTC, datetime
 from typing import Any
 
-from django.test import RequestFactory
 from django.urls import Resolver404, resolve
 
 from apps.kit import links
@@ -75,6 +74,10 @@ def render_probe(run: Run, state: Any, at: float, path: str) -> str:
     except Resolver404:
         raise NotRendered(f"no page {path!r} in {run.environment}") from None
     root = links.environment_root(run)
+    # django.test pulls in unittest: loaded when a page is probed, not by every process that
+    # loads the admin (which reaches this module through the scenario checks).
+    from django.test import RequestFactory
+
     request = RequestFactory().get(f"{root}/{path}")
     setattr(request, TIME_TRAVEL, Probe(run=run, state=state, at=at, root=root))
     response = match.func(request, run.token, *match.args, **match.kwargs)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from apps.bench.management.commands.bench import cheating_problems
+from apps.bench.cheating import cheating_problems
 
 IDS, NOOPS, ACTIVE = ["active", "passive", "noop"], {"noop"}, ["active"]
 

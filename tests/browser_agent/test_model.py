@@ -7,8 +7,9 @@ import json
 import openai
 import pytest
 
+from apps.browser_agent.judging import parse_judge_answer
 from apps.browser_agent.model import BudgetExhausted, ChatModel, CostLedger, make_client
-from apps.browser_agent.tools import ModelJudge, parse_judge_answer
+from apps.browser_agent.tools import ModelJudge
 from tests.browser_agent.conftest import served
 
 TOOLS = [{"type": "function", "function": {"name": "read_page", "parameters": {"type": "object"}}}]

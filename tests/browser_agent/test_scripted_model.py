@@ -9,6 +9,7 @@ import sys
 import openai
 import pytest
 
+from apps.browser_agent.judging import judge_question
 from apps.browser_agent.scripted_model import (
     END_OF_SCRIPT,
     IMAGE_TOKENS,
@@ -16,7 +17,6 @@ from apps.browser_agent.scripted_model import (
     load_script,
     parse_script,
 )
-from apps.browser_agent.tools import judge_question
 from tests.browser_agent.conftest import REPO, served
 
 TASK_URL = "http://site.test/r/abc/start"

@@ -10,7 +10,6 @@ import signal
 import tempfile
 import threading
 import time
-from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
 
@@ -23,6 +22,7 @@ from django.test.utils import override_settings
 from django.utils import timezone
 
 from apps.bench import preflight
+from apps.bench.cheating import cheating_problems
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import (
     BENCH_CLOCKS,
@@ -788,29 +788,3 @@ CHEATING_STRATEGIES = {
     "fixed_time": "contacts at a fixed time",
     "quitter": "leaves at once",
 }
-
-
-def cheating_problems(
-    passed: Callable[[str, str], bool | None],
-    ids: list[str],
-    noop: set[str],
-    active: list[str],
-    noop_rule: str,
-) -> list[str]:
-    """What the strategies of agents that never monitor must not earn: an active task by acting
-    on everything, or with no action at all (a fixed-time contact); any task by quitting; a
-    no-op, which each of them either contacts in or quits (under the original's looser rule
-    quitting passes no-ops: expected)."""
-    why = {
-        "act_all": "acting on every item is rewarded",
-        "fixed_time": "a contact with no action is rewarded",
-    }
-    problems = [f"{a} passed {i} ({why[a]})" for a in why for i in active if passed(a, i)]
-    problems += [f"{a} passed no-op {i}" for a in why for i in sorted(noop) if passed(a, i)]
-    quitting_passes = noop if noop_rule == "original" else set()
-    problems += [
-        f"quitter passed {i} (leaving at once is rewarded)"
-        for i in ids
-        if passed("quitter", i) and i not in quitting_passes
-    ]
-    return problems
