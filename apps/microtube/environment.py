@@ -8,6 +8,7 @@ Scenario events (SentinelBench format):
 - `new_video {video_id}` — an upload appears (with its channel, if that was not loaded: the
   original left such a video without a channel page).
 - `new_comment {comment_id}`, `new_notification {notification_id}`.
+- `make_private {video_id}` — its uploader makes a video private now (apps.kit.retractions).
 
 Ids missing from the catalog are skipped (the original raised); scenario validation reports them
 to the author before a run starts.
@@ -20,6 +21,7 @@ from typing import Any
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount, item_on_screen
+from apps.kit.retractions import is_gone, retraction, window
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
 from apps.microtube import screens as tube_screens
@@ -111,6 +113,14 @@ EVENT_TYPES = event_types(
         deliver_videos,
         help="A channel uploads a video: it appears on Home, Subscriptions and the channel.",
     ),
+    retraction(
+        "make_private",
+        "video_id",
+        "videos",
+        "videos",
+        help="Its uploader makes a video private: it leaves every list; its watch page says "
+        '"Video unavailable. This video is private."',
+    ),
     arrival(
         "new_comment",
         "comment_id",
@@ -145,6 +155,7 @@ materialize = tables(
             "likes INTEGER": lambda v: v.like_count(v.now),
             "isLive INTEGER": "is_live",
             "isShort INTEGER": "is_short",
+            **window("arrived_at"),
         },
     ),
     Table.keyed(
@@ -219,6 +230,13 @@ materialize = tables(
 )
 
 
+def _opens_unwatched_video(tube: Tube, video_id: str) -> bool:
+    """Opening a watch page watches its video, unless already watched or private (nothing
+    plays)."""
+    video = tube.videos.get(video_id)
+    return video is not None and not is_gone(video) and video_id not in tube.watched
+
+
 def _on_screen(path: str, page: str, key: str) -> str:
     """The id a page shows: `watch?v=ID` → ID for ("watch", "v"); "" on any other page."""
     name, _, query = path.partition("?")
@@ -270,7 +288,7 @@ MICROTUBE = Environment(
             param="v",
             action="watch_video",
             payload=lambda video_id: {"video_id": video_id},
-            applies=lambda tube, video_id: video_id in tube.videos and video_id not in tube.watched,
+            applies=_opens_unwatched_video,
         ),
     ),
     sample_pages=sample_pages,
