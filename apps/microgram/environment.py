@@ -21,7 +21,7 @@ from pydantic import Field
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.feeds import opening, posts_table
-from apps.kit.retractions import is_gone, retraction, window
+from apps.kit.retractions import retraction, still_there, window
 from apps.kit.social import Comment
 from apps.kit.state import with_changed, with_items
 from apps.kit.tables import KEY, VALUE, Keyed, Table, tables
@@ -247,12 +247,6 @@ materialize = tables(
 )
 
 
-def _opens_unwatched_story(gram: Gram, story_id: str) -> bool:
-    """Opening a story watches it, unless already watched or expired (nothing plays)."""
-    story = gram.stories.get(story_id)
-    return story is not None and not is_gone(story) and story_id not in gram.viewed_stories
-
-
 def _opens_unviewed_post(gram: Gram, post_id: str) -> bool:
     state = gram.post_states.get(post_id)
     return state is not None and not state.is_viewed
@@ -289,7 +283,9 @@ MICROGRAM = Environment(
             "story",
             "story_id",
             "view_story",
-            _opens_unwatched_story,
+            lambda gram, story_id: (
+                still_there(gram.stories, story_id) and story_id not in gram.viewed_stories
+            ),
         ),
         opening(
             "thread",

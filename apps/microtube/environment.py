@@ -21,7 +21,7 @@ from typing import Any
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount, item_on_screen
-from apps.kit.retractions import is_gone, retraction, window
+from apps.kit.retractions import retraction, still_there, window
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
 from apps.microtube import screens as tube_screens
@@ -230,13 +230,6 @@ materialize = tables(
 )
 
 
-def _opens_unwatched_video(tube: Tube, video_id: str) -> bool:
-    """Opening a watch page watches its video, unless already watched or private (nothing
-    plays)."""
-    video = tube.videos.get(video_id)
-    return video is not None and not is_gone(video) and video_id not in tube.watched
-
-
 def _on_screen(path: str, page: str, key: str) -> str:
     """The id a page shows: `watch?v=ID` → ID for ("watch", "v"); "" on any other page."""
     name, _, query = path.partition("?")
@@ -288,7 +281,9 @@ MICROTUBE = Environment(
             param="v",
             action="watch_video",
             payload=lambda video_id: {"video_id": video_id},
-            applies=_opens_unwatched_video,
+            applies=lambda tube, video_id: (
+                still_there(tube.videos, video_id) and video_id not in tube.watched
+            ),
         ),
     ),
     sample_pages=sample_pages,
