@@ -1,5 +1,6 @@
 """Items that go away at their time (apps.kit.retractions): a MicroChat message its sender
-deletes, a MicroMail message recalled. Pure reducers and the grading database, no server."""
+deletes, a MicroMail message recalled, a MicroGram story that expires, a MicroTube video made
+private, a MicroFy track made unavailable. Pure reducers and the grading database, no server."""
 
 from __future__ import annotations
 
@@ -10,12 +11,26 @@ import pytest
 from apps.microchat import screens as chat_screens
 from apps.microchat import state as chats
 from apps.microchat.environment import MICROCHAT
+from apps.microfy import screens as fy_screens
+from apps.microfy.environment import MICROFY
+from apps.microgram import screens as gram_screens
+from apps.microgram import state as gram_state
+from apps.microgram.environment import MICROGRAM
 from apps.micromail import state as mailbox
 from apps.micromail.environment import MICROMAIL
+from apps.microtube import screens as tube_screens
+from apps.microtube.environment import MICROTUBE
 from events.registry import ActionRejected
 from tests.microchat.workspace import CAST as CHAT
 from tests.microchat.workspace import PAYMENTS_DOWN
+from tests.microfy.cast import CAST as FY
+from tests.microfy.cast import SLOW_HARBOR
+from tests.microgram.cast import CAST as GRAM
 from tests.micromail.cast import CAST as MAIL
+from tests.microtube.cast import CAST as TUBE
+from tests.microtube.cast import DESK_SETUP
+
+NEW_STORY = "story-hquinn-new-feature"
 
 
 def window_of(environment, state, table: str, item_id: str) -> tuple:
@@ -58,3 +73,50 @@ def test_a_recalled_mail_leaves_every_folder_and_count_but_stays_in_the_grading_
     assert window_of(MICROMAIL, mail, "emails", "late-report") == (120.0, 200.0)
     with pytest.raises(ActionRejected, match="no email"):
         MAIL.act(mail, "mark_read", {"email_id": "late-report"})
+
+
+def test_an_expired_story_leaves_the_tray_and_the_count_and_can_no_longer_be_watched():
+    gram = GRAM.arrive(GRAM.preloaded(), "new_story", {"story_id": NEW_STORY}, at=120.0)
+    assert NEW_STORY in [b.story.id for b in gram_screens.story_bar(gram)]
+    counted = gram_state.story_count(gram)
+    gram = GRAM.arrive(gram, "expire_story", {"story_id": NEW_STORY}, at=210.0)
+    assert NEW_STORY not in [b.story.id for b in gram_screens.story_bar(gram)]
+    assert gram_state.story_count(gram) == counted - 1
+    assert gram_screens.story_neighbours(gram, NEW_STORY) == (None, None)
+    assert window_of(MICROGRAM, gram, "stories", NEW_STORY) == (120.0, 210.0)
+    with pytest.raises(ActionRejected, match="no story"):
+        GRAM.act(gram, "view_story", {"story_id": NEW_STORY})
+    # Opening its page watches nothing: an expired story plays nothing.
+    (opens_story,) = (i for i in MICROGRAM.implicit_actions if i.action == "view_story")
+    assert not opens_story.applies(gram, NEW_STORY)
+
+
+def test_a_video_made_private_leaves_every_list_and_is_refused_to_a_like():
+    tube = TUBE.arrive(TUBE.preloaded(), "new_video", {"video_id": DESK_SETUP}, at=120.0)
+    assert DESK_SETUP in [c.video.id for c in tube_screens.home(tube)]
+    tube = TUBE.act(tube, "save_video", {"video_id": DESK_SETUP}, at=130.0)
+    tube = TUBE.arrive(tube, "make_private", {"video_id": DESK_SETUP}, at=300.0)
+    for cards in (
+        tube_screens.home(tube),
+        tube_screens.subscriptions(tube),
+        tube_screens.channel_videos(tube, "ch-pixel-forge"),
+        tube_screens.marked(tube, "saved"),
+    ):
+        assert DESK_SETUP not in [c.video.id for c in cards]
+    assert window_of(MICROTUBE, tube, "videos", DESK_SETUP) == (120.0, 300.0)
+    with pytest.raises(ActionRejected, match="no video"):
+        TUBE.act(tube, "like_video", {"video_id": DESK_SETUP}, at=310.0)
+
+
+def test_an_unavailable_track_leaves_the_shelves_stays_greyed_in_lists_and_cannot_be_added():
+    music = FY.arrive(FY.preloaded(), "new_track", {"track_id": SLOW_HARBOR}, at=120.0)
+    music = FY.act(music, "like_track", {"track_id": SLOW_HARBOR}, at=130.0)
+    music = FY.arrive(music, "make_track_unavailable", {"track_id": SLOW_HARBOR}, at=250.0)
+    assert SLOW_HARBOR not in [t.id for t in fy_screens.trending(music)]
+    assert SLOW_HARBOR not in [t.id for t in fy_screens.search(music, "slow harbor").tracks]
+    liked = fy_screens.liked_tracks(music)  # kept in its place, shown greyed out
+    assert [t.gone_at for t in liked if t.id == SLOW_HARBOR] == [250.0]
+    assert window_of(MICROFY, music, "tracks", SLOW_HARBOR) == (120.0, 250.0)
+    for action in ("play_track", "like_track", "unlike_track"):
+        with pytest.raises(ActionRejected, match="no track"):
+            FY.act(music, action, {"track_id": SLOW_HARBOR}, at=260.0)

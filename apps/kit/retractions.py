@@ -65,6 +65,13 @@ def is_gone(item: Any) -> bool:
     return getattr(item, "gone_at", None) is not None
 
 
+def still_there(items: Mapping[str, Any], item_id: str) -> bool:
+    """`items` holds `item_id` and it has not gone: what opening its page can act on (a story
+    that expired or a video made private plays nothing, so opening it watches nothing)."""
+    item = items.get(item_id)
+    return item is not None and not is_gone(item)
+
+
 def window(appeared: Getter) -> Mapping[str, Getter]:
     """An evaluation table's columns for when each item was there: `appeared_at` (read by
     `appeared`, an attribute name or a function of the row) and `gone_at` (NULL while it

@@ -6,6 +6,7 @@ Scenario events (SentinelBench format; every list may be `["*"]`):
   measured right after it applies.
 - `new_track {track_id}` — a track drops into the trending feed, not liked and never played.
 - `new_playlist {playlist_id}` — a catalog playlist appears (unknown ids change nothing).
+- `make_track_unavailable {track_id}` — a track becomes unavailable now (apps.kit.retractions).
 
 A track id delivered twice is the same track: the original appended a duplicate row and reset
 its state; here it is left as it is (no duplicate, nothing the user did is lost).
@@ -21,6 +22,7 @@ from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
+from apps.kit.retractions import retraction, window
 from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
@@ -91,6 +93,14 @@ EVENT_TYPES = event_types(
         deliver_tracks,
         help="A track drops into the trending feed.",
     ),
+    retraction(
+        "make_track_unavailable",
+        "track_id",
+        "tracks",
+        "tracks",
+        help="A track becomes unavailable (its rights pulled): greyed out where it is listed, "
+        "gone from the shelves and search, it can no longer be played, saved or added.",
+    ),
     arrival(
         "new_playlist",
         "playlist_id",
@@ -133,6 +143,7 @@ materialize = tables(
             "lyrics TEXT": "lyrics",
             # Everyone's plays at `now` (as the track page shows them), the user's included.
             "playCount INTEGER": lambda t: screens.plays_at(t.state, t.item, t.now),
+            **window("arrived_at"),
         },
     ),
     Table.keyed(

@@ -11,6 +11,7 @@ import math
 from dataclasses import dataclass
 
 from apps.kit.derived import per_state
+from apps.kit.retractions import present
 from apps.kit.streaming import shown_count
 from apps.kit.waypoints import Waypoints
 from apps.microfy.catalog import artists, tracks_by_artist
@@ -38,9 +39,12 @@ def follower_count(music: Music, artist: Artist, now: float) -> int:
 
 @per_state()
 def trending(music: Music) -> tuple[Track, ...]:
-    """Every track, newest arrival first (the original prepends each new track to the row)."""
-    arrived = [t for t in music.tracks.values() if not t.preloaded]
-    preloaded = [t for t in music.tracks.values() if t.preloaded]
+    """Every track still available, newest arrival first (the original prepends each new track
+    to the row). An unavailable one leaves the shelves and search, as on Spotify; the lists a
+    person made (a playlist, Liked Songs) and an artist's keep it, greyed out."""
+    available = present(music.tracks.values())
+    arrived = [t for t in available if not t.preloaded]
+    preloaded = [t for t in available if t.preloaded]
     arrived.sort(key=lambda t: t.arrived_at, reverse=True)
     return (*arrived, *preloaded)
 

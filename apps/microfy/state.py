@@ -39,6 +39,7 @@ class Track:
     plays: Waypoints  # all-time plays by everyone (drifts upward over the session)
     arrived_at: float = 0.0
     preloaded: bool = True
+    gone_at: float | None = None  # made unavailable then (apps.kit.retractions)
 
     @property
     def duration(self) -> str:

@@ -7,6 +7,7 @@ Scenario events (SentinelBench format):
   `viewed_story_ids`. Baselines are measured right after it.
 - `new_post {post_id}`, `new_story {story_id}`, `new_message {message_id}` (a whole DM thread),
   `new_activity {activity_id}` — one item arriving now.
+- `expire_story {story_id}` — a story expires now (apps.kit.retractions): it leaves the tray.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from pydantic import Field
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.feeds import opening, posts_table
+from apps.kit.retractions import retraction, still_there, window
 from apps.kit.social import Comment
 from apps.kit.state import with_changed, with_items
 from apps.kit.tables import KEY, VALUE, Keyed, Table, tables
@@ -120,6 +122,13 @@ EVENT_TYPES = event_types(
         deliver_stories,
         help="A story appears in the story bar.",
     ),
+    retraction(
+        "expire_story",
+        "story_id",
+        "stories",
+        "stories",
+        help="A story expires: it leaves the story tray (open, it says it is unavailable).",
+    ),
     arrival(
         "new_message",
         "message_id",
@@ -186,7 +195,12 @@ materialize = tables(
     Table(
         "stories",
         lambda gram, now: gram.stories.values(),
-        {"id TEXT PRIMARY KEY": "id", "authorId TEXT": "author.id", "mediaType TEXT": "media_type"},
+        {
+            "id TEXT PRIMARY KEY": "id",
+            "authorId TEXT": "author.id",
+            "mediaType TEXT": "media_type",
+            **window("posted_at"),
+        },
     ),
     Table(
         "story_states", story_states, {"story_id TEXT PRIMARY KEY": KEY, "isViewed INTEGER": VALUE}
@@ -269,7 +283,9 @@ MICROGRAM = Environment(
             "story",
             "story_id",
             "view_story",
-            lambda gram, story_id: story_id in gram.stories and story_id not in gram.viewed_stories,
+            lambda gram, story_id: (
+                still_there(gram.stories, story_id) and story_id not in gram.viewed_stories
+            ),
         ),
         opening(
             "thread",

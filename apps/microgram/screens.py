@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 from apps.kit.derived import per_state
 from apps.kit.feeds import likes_now
+from apps.kit.retractions import present
 from apps.microgram.catalog import MEMBERS, person
 from apps.microgram.state import (
     Activity,
@@ -114,8 +115,9 @@ def feed(gram: Gram) -> tuple[PostCard, ...]:
 
 @per_state()
 def story_bar(gram: Gram) -> tuple[StoryBubble, ...]:
-    """One bubble per story: not yet watched first, newest first within each."""
-    ordered = newest_first(gram.stories.values())
+    """One bubble per story still up: not yet watched first, newest first within each (an
+    expired story just leaves the tray, as on Instagram)."""
+    ordered = newest_first(present(gram.stories.values()))
     viewed = gram.viewed_stories
     return tuple(
         StoryBubble(s, s.id in viewed)
@@ -126,7 +128,9 @@ def story_bar(gram: Gram) -> tuple[StoryBubble, ...]:
 def story_neighbours(gram: Gram, story_id: str) -> tuple[str | None, str | None]:
     """The viewer's previous and next story, newest first: next is the first later story not
     yet watched (the bar's point), else simply the next one."""
-    ids = [s.id for s in newest_first(gram.stories.values())]
+    ids = [s.id for s in newest_first(present(gram.stories.values()))]
+    if story_id not in ids:  # expired: nothing to step from
+        return (None, None)
     n = ids.index(story_id)
     later = ids[n + 1 :]
     unwatched = [i for i in later if i not in gram.viewed_stories]

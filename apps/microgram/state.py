@@ -14,6 +14,7 @@ from typing import Any
 
 from apps.kit.derived import per_state
 from apps.kit.feeds import counting
+from apps.kit.retractions import present
 from apps.kit.social import Comment, Picture
 from apps.kit.state import EMPTY, CatalogState
 
@@ -64,6 +65,7 @@ class Story:
     media_type: str
     posted_at: float
     order: int
+    gone_at: float | None = None  # expired then: out of the tray (apps.kit.retractions)
 
 
 @dataclass(frozen=True)
@@ -168,7 +170,13 @@ def is_following(gram: Gram, user_id: str) -> bool:
 # --- counts (baselines and badges: the original's definitions) --------------------------------
 
 post_count = counting("posts")
-story_count = counting("stories")
+
+
+def story_count(gram: Gram) -> int:
+    """The stories in the tray: an expired one is no longer counted."""
+    return len(present(gram.stories.values()))
+
+
 activity_count = counting("activity")
 liked_count = counting("post_states", is_liked=True)
 saved_count = counting("post_states", is_saved=True)

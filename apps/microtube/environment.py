@@ -8,6 +8,7 @@ Scenario events (SentinelBench format):
 - `new_video {video_id}` — an upload appears (with its channel, if that was not loaded: the
   original left such a video without a channel page).
 - `new_comment {comment_id}`, `new_notification {notification_id}`.
+- `make_private {video_id}` — its uploader makes a video private now (apps.kit.retractions).
 
 Ids missing from the catalog are skipped (the original raised); scenario validation reports them
 to the author before a run starts.
@@ -20,6 +21,7 @@ from typing import Any
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount, item_on_screen
+from apps.kit.retractions import retraction, still_there, window
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
 from apps.microtube import screens as tube_screens
@@ -111,6 +113,14 @@ EVENT_TYPES = event_types(
         deliver_videos,
         help="A channel uploads a video: it appears on Home, Subscriptions and the channel.",
     ),
+    retraction(
+        "make_private",
+        "video_id",
+        "videos",
+        "videos",
+        help="Its uploader makes a video private: it leaves every list; its watch page says "
+        '"Video unavailable. This video is private."',
+    ),
     arrival(
         "new_comment",
         "comment_id",
@@ -145,6 +155,7 @@ materialize = tables(
             "likes INTEGER": lambda v: v.like_count(v.now),
             "isLive INTEGER": "is_live",
             "isShort INTEGER": "is_short",
+            **window("arrived_at"),
         },
     ),
     Table.keyed(
@@ -270,7 +281,9 @@ MICROTUBE = Environment(
             param="v",
             action="watch_video",
             payload=lambda video_id: {"video_id": video_id},
-            applies=lambda tube, video_id: video_id in tube.videos and video_id not in tube.watched,
+            applies=lambda tube, video_id: (
+                still_there(tube.videos, video_id) and video_id not in tube.watched
+            ),
         ),
     ),
     sample_pages=sample_pages,

@@ -10,6 +10,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from apps.kit.derived import per_state
+from apps.kit.retractions import present
 from apps.microtube.state import (
     LIKED_VIDEOS,
     WATCH_LATER,
@@ -45,7 +46,9 @@ def _card(tube: Tube, video: Video) -> Card:
 
 
 def _cards(tube: Tube, videos: Sequence[Video]) -> tuple[Card, ...]:
-    return tuple(_card(tube, v) for v in videos)
+    """The cards of `videos` still public: a video its uploader made private leaves every list
+    it was in (Home, Subscriptions, the channel, search, history, playlists)."""
+    return tuple(_card(tube, v) for v in present(videos))
 
 
 @per_state()

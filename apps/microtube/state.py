@@ -59,6 +59,7 @@ class Video:
     arrived_at: float = 0.0
     uploaded: bool = False  # arrived during the run (new_video), not preloaded
     thumbnail_text: str = ""  # the words on its thumbnail ("" → the key words of the title)
+    gone_at: float | None = None  # made private by its uploader then (apps.kit.retractions)
 
     def view_count(self, now: float) -> int:
         return shown_count(self.views.value_at(now))

@@ -17,6 +17,7 @@ from apps.bench.judge import JUDGEMENT, JudgeError, by_keywords, judge_prompt, r
 from apps.browser_agent.scripted_model import parse_script, scripted_model_server
 from apps.scenarios.format import ScenarioError, parse_scenario
 from apps.scenarios.library import get_scenario
+from tests.conftest import ours
 
 RUBRIC = {
     "rubric": "Names the sender, Kevin Lee, and what he asked for (the expense report).",
@@ -140,3 +141,19 @@ def test_a_bad_rubric_is_refused_naming_the_field(rubric, problem):
     }
     with pytest.raises(ScenarioError, match=problem):
         parse_scenario(data)
+
+
+@pytest.mark.parametrize(
+    ("scenario_id", "specific"),
+    [
+        ("microgram-first-story-whose-ephemeral-active", "It was Femi's story (fadeyemi)."),
+        (
+            "microfy-run-song-subjective-absolute-active",
+            "Added Thunder Run by Odd Meridian to Gym Rotation.",
+        ),
+    ],
+)
+def test_our_judged_scenarios_tell_a_vague_report_from_a_specific_one(scenario_id, specific):
+    (scenario,) = [s for s in ours() if s.id == scenario_id]
+    assert not by_keywords(scenario.contact_rubric, VAGUE).correct
+    assert by_keywords(scenario.contact_rubric, specific).correct

@@ -2,7 +2,9 @@
 item appears in the open page by a push, then goes away at `condition_until` by another, the
 page never reloading — MicroChat's message deleted by its sender (Teams' notice in its place),
 MicroMail's recalled mail (out of the list; the open reading pane says so), MicroHood's dip
-(the price below the level, then recovered)."""
+(the price below the level, then recovered), MicroGram's expired story (out of the tray; the open
+viewer says it is unavailable), MicroTube's video made private (its open watch page turns
+"Video unavailable"), MicroFy's track made unavailable (its open page says so)."""
 
 from __future__ import annotations
 
@@ -75,3 +77,66 @@ def test_a_dip_shows_below_the_level_then_recovered(live_site, browser):
     main = story.page.locator("main")
     held_then_gone(story, main, 390.0, "$177.20", 520.0, "$184.50")
     expect(main).to_contain_text("Today's low$177.2")  # the dip, in the day's range
+
+
+def test_an_expired_story_just_leaves_the_tray(live_site, browser):
+    story = opened(live_site, browser, "microgram-hquinn-story-ephemeral-active", "microgram/")
+    bubble = story.page.locator('#stories a[href$="stories/story-hquinn-new-feature/"]')
+    expect(bubble).to_have_count(0)
+    story.advance(143.7)
+    expect(bubble).to_have_attribute("aria-label", "Story by hquinn, not seen yet")
+    story.advance(233.7)
+    expect(bubble).to_have_count(0)
+    # Her older story stays: only the one that expired went.
+    expect(
+        story.page.locator('#stories a[href$="stories/story-hquinn-launch-graph/"]')
+    ).to_have_count(1)
+    story.assert_not_reloaded()
+
+
+def test_an_open_story_that_expires_says_it_is_unavailable(live_site, browser):
+    story = opened(live_site, browser, "microgram-first-story-whose-ephemeral-active", "microgram/")
+    story.advance(61.2)
+    story.page.goto(
+        f"{live_site}/r/{story.run['token']}/microgram/stories/story-fadeyemi-record-haul/"
+    )
+    story.watch_for_reload()
+    frame = story.page.locator("#story-frame")
+    held_then_gone(story, frame, 61.2, "fadeyemi", 151.2, "This story is unavailable.")
+    expect(frame.get_by_role("img")).to_have_count(0)
+
+
+def test_a_video_made_private_turns_its_open_watch_page_unavailable(live_site, browser):
+    story = opened(live_site, browser, "microtube-pulled-upload-ephemeral-active", "microtube/")
+    card = story.page.locator('#home-grid a[href*="v=vid-film-02"]').first
+    story.advance(382.5)
+    expect(card).to_be_visible()
+    story.assert_not_reloaded()
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microtube/watch?v=vid-film-02")
+    story.watch_for_reload()
+    held_then_gone(
+        story,
+        story.page.locator("#watch-primary"),
+        382.5,
+        "Developing Colour Film at Home",
+        472.5,
+        "This video is private.",
+    )
+    expect(story.page.get_by_role("button", name="Save to Watch later")).to_have_count(0)
+
+
+def test_a_track_made_unavailable_says_so_on_its_open_page(live_site, browser):
+    story = opened(live_site, browser, "microfy-pulled-single-ephemeral-active", "microfy/")
+    story.advance(327.8)
+    expect(story.page.locator("#trending")).to_contain_text("Secret Stations")
+    story.assert_not_reloaded()
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microfy/track/track-090")
+    story.watch_for_reload()
+    held_then_gone(
+        story,
+        story.page.locator("#track-actions"),
+        327.8,
+        "Add to playlist",
+        417.8,
+        "This song is unavailable.",
+    )

@@ -7,6 +7,7 @@ from django import template
 from django.utils.safestring import SafeString, mark_safe
 
 from apps.kit.fragments import render_fragment
+from apps.kit.retractions import present
 from apps.media.links import audio_url
 from apps.microfy.state import Track, clock_text
 
@@ -33,11 +34,13 @@ def _shared(context: template.Context) -> dict:
 def track_cards(
     context: template.Context, tracks: tuple[Track, ...], new: bool = False
 ) -> SafeString:
-    """A shelf's square cards (microfy/_card.html), each rendered once per distinct input."""
+    """A shelf's square cards (microfy/_card.html), each rendered once per distinct input; an
+    unavailable track has no card (a shelf offers only what plays)."""
     shared = _shared(context)
-    return mark_safe(
-        "".join(render_fragment("microfy/_card.html", track=t, new=new, **shared) for t in tracks)
+    cards = (
+        render_fragment("microfy/_card.html", track=t, new=new, **shared) for t in present(tracks)
     )
+    return mark_safe("".join(cards))
 
 
 @register.simple_tag(takes_context=True)
