@@ -1,5 +1,5 @@
 """Items that go away at their time (apps.kit.retractions): a MicroChat message its sender
-deletes, a MicroMail message recalled. Pure reducers and the grading database, no server."""
+deletes, a MicroMail message recalled, a MicroScholar preprint withdrawn by its authors. Pure reducers and the grading database, no server."""
 
 from __future__ import annotations
 
@@ -12,10 +12,16 @@ from apps.microchat import state as chats
 from apps.microchat.environment import MICROCHAT
 from apps.micromail import state as mailbox
 from apps.micromail.environment import MICROMAIL
+from apps.microscholar import screens as scholar_screens
+from apps.microscholar import state as papers
+from apps.microscholar.environment import MICROSCHOLAR
 from events.registry import ActionRejected
 from tests.microchat.workspace import CAST as CHAT
 from tests.microchat.workspace import PAYMENTS_DOWN
 from tests.micromail.cast import CAST as MAIL
+from tests.microscholar import cast as scholar_cast
+from tests.microscholar.cast import BATCHING, TARGET
+from tests.microscholar.cast import CAST as SCHOLAR
 
 
 def window_of(environment, state, table: str, item_id: str) -> tuple:
@@ -58,3 +64,22 @@ def test_a_recalled_mail_leaves_every_folder_and_count_but_stays_in_the_grading_
     assert window_of(MICROMAIL, mail, "emails", "late-report") == (120.0, 200.0)
     with pytest.raises(ActionRejected, match="no email"):
         MAIL.act(mail, "mark_read", {"email_id": "late-report"})
+
+
+def test_a_withdrawn_preprint_leaves_results_profiles_and_library_and_says_so_on_its_page():
+    scholar = scholar_cast.preloaded(["paper-021", BATCHING], saved=[BATCHING])
+    scholar = SCHOLAR.arrive(scholar, "new_paper", {"paper_id": TARGET}, at=120.0)
+    scholar = SCHOLAR.act(scholar, "save", {"paper_id": TARGET}, at=150.0)
+    assert papers.saved_paper_count(scholar) == 2 and papers.paper_count(scholar) == 3
+    assert TARGET in scholar_screens.matching(scholar, "delegation", None, None, "relevance")
+    scholar = SCHOLAR.arrive(scholar, "withdraw_paper", {"paper_id": TARGET}, at=200.0)
+    assert TARGET not in scholar_screens.recommended(scholar)
+    assert TARGET not in scholar_screens.matching(scholar, "delegation", None, None, "relevance")
+    assert scholar_screens.library(scholar) == (BATCHING,)
+    assert papers.saved_paper_count(scholar) == 1 and papers.paper_count(scholar) == 2
+    # Graded as it was: saved while it was there, with its window.
+    assert window_of(MICROSCHOLAR, scholar, "papers", TARGET) == (120.0, 200.0)
+    with pytest.raises(ActionRejected, match="no paper"):
+        SCHOLAR.act(scholar, "cite", {"paper_id": TARGET}, at=210.0)
+    with pytest.raises(ActionRejected, match="no paper"):
+        SCHOLAR.act(scholar, "unsave", {"paper_id": TARGET}, at=210.0)
