@@ -2,7 +2,8 @@
 item appears in the open page by a push, then goes away at `condition_until` by another, the
 page never reloading — MicroChat's message deleted by its sender (Teams' notice in its place),
 MicroMail's recalled mail (out of the list; the open reading pane says so), MicroHood's dip
-(the price below the level, then recovered)."""
+(the price below the level, then recovered), MicroScholar's preprint withdrawn by its authors
+(out of the recommendations; its open page says so)."""
 
 from __future__ import annotations
 
@@ -75,3 +76,32 @@ def test_a_dip_shows_below_the_level_then_recovered(live_site, browser):
     main = story.page.locator("main")
     held_then_gone(story, main, 390.0, "$177.20", 520.0, "$184.50")
     expect(main).to_contain_text("Today's low$177.2")  # the dip, in the day's range
+
+
+def test_a_withdrawn_preprint_leaves_the_recommendations_and_its_open_page_says_so(
+    live_site, browser
+):
+    story = opened(
+        live_site, browser, "microscholar-withdrawn-preprint-ephemeral-active", "microscholar/"
+    )
+    entry = story.page.locator("#recommended li.result", has=story.page.locator("#t-paper-046"))
+    expect(entry).to_have_count(0)
+    story.advance(327.4)
+    expect(entry).to_have_count(1)
+    story.assert_not_reloaded()
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microscholar/papers/paper-046")
+    story.watch_for_reload()
+    paper = story.page.locator("#paper")
+    held_then_gone(
+        story,
+        paper,
+        327.4,
+        "Save to My library",
+        421.9,
+        "This paper has been withdrawn by its authors.",
+    )
+    expect(paper).to_contain_text("Long-Horizon Evaluation of Monitoring Agents")  # title kept
+    expect(paper.get_by_role("group", name="Actions for this paper")).to_have_count(0)
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microscholar/")
+    expect(story.page.locator("#recommended")).to_contain_text("Asking Before Acting")
+    expect(entry).to_have_count(0)
