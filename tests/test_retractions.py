@@ -1,6 +1,7 @@
 """Items that go away at their time (apps.kit.retractions): a MicroChat message its sender
 deletes, a MicroMail message recalled, a MicroGram story that expires, a MicroTube video made
-private, a MicroFy track made unavailable. Pure reducers and the grading database, no server."""
+private, a MicroFy track made unavailable, a MicroScholar preprint withdrawn by its authors.
+Pure reducers and the grading database, no server."""
 
 from __future__ import annotations
 
@@ -18,6 +19,9 @@ from apps.microgram import state as gram_state
 from apps.microgram.environment import MICROGRAM
 from apps.micromail import state as mailbox
 from apps.micromail.environment import MICROMAIL
+from apps.microscholar import screens as scholar_screens
+from apps.microscholar import state as papers
+from apps.microscholar.environment import MICROSCHOLAR
 from apps.microtube import screens as tube_screens
 from apps.microtube.environment import MICROTUBE
 from events.registry import ActionRejected
@@ -27,6 +31,9 @@ from tests.microfy.cast import CAST as FY
 from tests.microfy.cast import SLOW_HARBOR
 from tests.microgram.cast import CAST as GRAM
 from tests.micromail.cast import CAST as MAIL
+from tests.microscholar import cast as scholar_cast
+from tests.microscholar.cast import BATCHING, TARGET
+from tests.microscholar.cast import CAST as SCHOLAR
 from tests.microtube.cast import CAST as TUBE
 from tests.microtube.cast import DESK_SETUP
 
@@ -120,3 +127,22 @@ def test_an_unavailable_track_leaves_the_shelves_stays_greyed_in_lists_and_canno
     for action in ("play_track", "like_track", "unlike_track"):
         with pytest.raises(ActionRejected, match="no track"):
             FY.act(music, action, {"track_id": SLOW_HARBOR}, at=260.0)
+
+
+def test_a_withdrawn_preprint_leaves_results_profiles_and_library_and_says_so_on_its_page():
+    scholar = scholar_cast.preloaded(["paper-021", BATCHING], saved=[BATCHING])
+    scholar = SCHOLAR.arrive(scholar, "new_paper", {"paper_id": TARGET}, at=120.0)
+    scholar = SCHOLAR.act(scholar, "save", {"paper_id": TARGET}, at=150.0)
+    assert papers.saved_paper_count(scholar) == 2 and papers.paper_count(scholar) == 3
+    assert TARGET in scholar_screens.matching(scholar, "delegation", None, None, "relevance")
+    scholar = SCHOLAR.arrive(scholar, "withdraw_paper", {"paper_id": TARGET}, at=200.0)
+    assert TARGET not in scholar_screens.recommended(scholar)
+    assert TARGET not in scholar_screens.matching(scholar, "delegation", None, None, "relevance")
+    assert scholar_screens.library(scholar) == (BATCHING,)
+    assert papers.saved_paper_count(scholar) == 1 and papers.paper_count(scholar) == 2
+    # Graded as it was: saved while it was there, with its window.
+    assert window_of(MICROSCHOLAR, scholar, "papers", TARGET) == (120.0, 200.0)
+    with pytest.raises(ActionRejected, match="no paper"):
+        SCHOLAR.act(scholar, "cite", {"paper_id": TARGET}, at=210.0)
+    with pytest.raises(ActionRejected, match="no paper"):
+        SCHOLAR.act(scholar, "unsave", {"paper_id": TARGET}, at=210.0)

@@ -42,7 +42,7 @@ from apps.bench.stats import (
     pass_hat_k,
     wilson,
 )
-from apps.scenarios.format import AXIS_DEFAULTS
+from apps.scenarios.format import AXIS_DEFAULTS, TAXONOMY_CHOICES
 from apps.scenarios.generated_names import family_of
 from events.timing import REACTION_WINDOW
 
@@ -631,6 +631,27 @@ def success_table(summaries: Summaries) -> TableCells:
     ]
 
 
+# The paper's future-work axes as (Row attribute, its values): one column per value.
+AXIS_COLUMNS = tuple(
+    (attribute, value)
+    for attribute, key in (("persistence", "event_persistence"), ("criteria", "criteria"))
+    for value in TAXONOMY_CHOICES[key]
+)
+
+
+def axis_table(sets: list[ResultSet], window: float, *, timely: bool = False) -> TableCells:
+    """One row per result set: success (or timely success, of the targeted tasks) among the
+    persistent and the ephemeral tasks, the objective and the subjective ones."""
+
+    def rate(rows: list[Row], attribute: str, value: str) -> Rate:
+        members = [r for r in rows if getattr(r, attribute) == value and not (timely and r.is_noop)]
+        return Rate(sum(r.timely(window) if timely else r.success for r in members), len(members))
+
+    return ["result set", *(value for _, value in AXIS_COLUMNS)], [
+        [rs.name, *(str(rate(rs.rows, a, v)) for a, v in AXIS_COLUMNS)] for rs in sets
+    ]
+
+
 def timely_table(summaries: Summaries) -> TableCells:
     header = ["result set", "timely", *_category_headers(TIMELY_GROUPS)]
     return header, [
@@ -664,6 +685,12 @@ def render_comparison(sets: list[ResultSet], window: float) -> str:
     out += aligned(*success_table(summaries))
     out += ["", f"Timely success by category (targeted tasks, reaction time <= {window:g} s)"]
     out += aligned(*timely_table(summaries))
+    out += ["", "Success by persistence and criteria"]
+    out += aligned(*axis_table(sets, window))
+    out += ["", f"Timely success by persistence and criteria (targeted tasks, <= {window:g} s)"]
+    out += aligned(*axis_table(sets, window, timely=True))
+    judged = [f"{rs.name}: {line}" for rs in sets for line in report_lines(rs.rows)]
+    out += ["", *judged] if judged else []
     out += ["", "Cost per task (USD; costs.json tokens x config prices)"]
     out += aligned(*cost_table(summaries))
     out += ["", "Tokens per task (input + output, costs.json)"]

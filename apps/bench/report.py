@@ -25,6 +25,7 @@ from apps.bench.grading import (
     GROUPS,
     ResultSet,
     Row,
+    axis_table,
     clocks,
     cost_table,
     mean,
@@ -528,6 +529,8 @@ def render_comparison_report(
     names = " vs ".join(rs.name for rs in sets)
     success = _html_table("success", *success_table(summaries))
     timely = _html_table("timely", *timely_table(summaries))
+    axes = _html_table("axes", *axis_table(sets, window))
+    timely_axes = _html_table("timely-axes", *axis_table(sets, window, timely=True))
     cost = _html_table("cost", *cost_table(summaries))
     tools = _html_table("tool-calls", *tool_calls_table(summaries))
     reaction = _html_table(
@@ -553,6 +556,8 @@ def render_comparison_report(
         f"{differences_section(sets, window)}"
         f"<h2>Success by category</h2>{success}"
         f"<h2>Timely success by category</h2>{timely}"
+        f"<h2>Success by persistence and criteria</h2>{axes}"
+        f"<h2>Timely success by persistence and criteria</h2>{timely_axes}"
         f'<div class="plots">{"".join(plots)}</div>'
         f"<h2>Cost per task (USD)</h2>{cost}{_unpriced_note(sets)}"
         f"<h2>Tool calls per task</h2>{tools}"
@@ -590,7 +595,7 @@ def task_facts(set_name: str, row: Row, window: float) -> list[tuple[str, str]]:
         row.label,
         row.environment,
         set_name,
-        row.category,
+        f"{row.category}, {row.persistence}, {row.criteria}",  # the paper's and its future axes
         "yes" if row.success else "no",
         "n/a" if row.is_noop else "yes" if row.timely(window) else "no",
         _opt(row.reaction_time),

@@ -182,7 +182,12 @@ write_tables = tables(
         lambda hood, now: hood.watchlist.values(),
         {"symbol TEXT": "symbol", "inWatchlist INTEGER": "on"},
     ),
-    Table("news", lambda hood, now: hood.news.values(), named("id TEXT", "data TEXT")),
+    Table(
+        "news",
+        lambda hood, now: hood.news.values(),
+        # Ours: when it was published, so eval_sql can ask for an order placed after a story.
+        {**named("id TEXT", "data TEXT"), "publishedAt REAL": "published_at"},
+    ),
     # Fills only: the original had no other orders.
     Table(
         "orders",

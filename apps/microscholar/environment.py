@@ -6,6 +6,9 @@ Scenario events (SentinelBench format):
   Alerts keep their catalogued read state. Baselines are measured right after it.
 - `new_paper {paper_id}` (and its original twin `inject_target_paper`) — a paper is indexed.
 - `new_alert {alert_id}` — an alert arrives, unread.
+- `withdraw_paper {paper_id}` — its authors withdraw a preprint (apps.kit.retractions): it leaves
+  results, recommendations, profiles and the library; its page says it was withdrawn, as arXiv's
+  does, and it can no longer be saved or cited.
 
 Unlike the original (a KeyError that aborted the event), an id missing from the catalog is
 skipped, as in every other environment; scenario validation names it to the author. A paper
@@ -20,6 +23,7 @@ from collections.abc import Iterable
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
+from apps.kit.retractions import retraction, window
 from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, named, tables
@@ -86,6 +90,14 @@ EVENT_TYPES = event_types(
     NEW_PAPER,
     ("inject_target_paper", NEW_PAPER[1]),  # the original's duplicate of new_paper
     arrival("new_alert", "alert_id", "alerts", deliver_alerts, help="An alert arrives, unread."),
+    retraction(
+        "withdraw_paper",
+        "paper_id",
+        "papers",
+        "papers",
+        help="Its authors withdraw a preprint: it leaves results, profiles and the library; its "
+        "page says it was withdrawn.",
+    ),
 )
 
 
@@ -102,6 +114,7 @@ materialize = tables(
             "taskType TEXT": "task_type",
             **named("snippet TEXT", "source TEXT"),
             "citedBy INTEGER": lambda paper: paper.cited_by(paper.now),  # as of `now`
+            **window("indexed_at"),
         },
     ),
     Table.keyed(
@@ -135,7 +148,7 @@ materialize = tables(
 
 
 def not_cited_yet(scholar: Scholar, paper_id: str) -> bool:
-    return paper_id in scholar.papers and not scholar.is_cited(paper_id)
+    return index.is_listed(scholar, paper_id) and not scholar.is_cited(paper_id)
 
 
 # The numbers shown in more than one place (apps.kit.counts): the top bar's library and alert

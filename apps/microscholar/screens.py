@@ -129,7 +129,7 @@ def matching(scholar: Scholar, q: str, since: int | None, until: int | None, sor
     def in_range(paper: Paper) -> bool:
         return (since is None or paper.year >= since) and (until is None or paper.year <= until)
 
-    ids = search.ranked(filter(in_range, scholar.papers.values()), q)
+    ids = search.ranked(filter(in_range, index.listed(scholar)), q)
     if sort == "date":
         order = {paper_id: n for n, paper_id in enumerate(index.newest_first(scholar, ids))}
         ids = sorted(ids, key=lambda i: (-scholar.papers[i].year, order[i]))
@@ -139,7 +139,7 @@ def matching(scholar: Scholar, q: str, since: int | None, until: int | None, sor
 @per_state()
 def recommended(scholar: Scholar) -> tuple[str, ...]:
     """Home page recommendations: every indexed paper, the most recently indexed first."""
-    return tuple(index.newest_first(scholar, scholar.papers))
+    return tuple(index.newest_first(scholar, (p.id for p in index.listed(scholar))))
 
 
 @dataclass(frozen=True)
@@ -209,7 +209,7 @@ def search_screen(scholar: Scholar, query: SearchQuery, this_year: int, root: st
 def related(scholar: Scholar, paper_id: str) -> tuple[str, ...]:
     """Other indexed papers closest to this one's title (any of its meaningful words)."""
     paper = scholar.papers[paper_id]
-    others = [p for p in scholar.papers.values() if p.id != paper_id]
+    others = [p for p in index.listed(scholar) if p.id != paper_id]
     return tuple(search.similar(others, paper.title)[:RELATED_SHOWN])
 
 
@@ -254,7 +254,7 @@ class ProfileScreen:
 
 @per_state()
 def authored(scholar: Scholar, user_id: str) -> tuple[str, ...]:
-    return tuple(i for i, p in scholar.papers.items() if user_id in p.author_ids)
+    return tuple(p.id for p in index.listed(scholar) if user_id in p.author_ids)
 
 
 def h_index(counts: Iterable[int]) -> int:
@@ -369,7 +369,7 @@ def alerts_screen(scholar: Scholar, query: AlertsQuery, root: str) -> AlertsScre
             scholar.alert_read[alert.id],
             ALERT_ICONS.get(alert.type, "bell"),
             paper_url(root, alert.related_paper_id)
-            if alert.related_paper_id in scholar.papers
+            if index.is_listed(scholar, alert.related_paper_id)
             else None,
         )
         for _, alert in newest

@@ -11,8 +11,9 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
+from apps.kit.retractions import is_gone, present
 from apps.kit.state import CatalogState
-from apps.kit.streaming import counting, no_items, shown_count
+from apps.kit.streaming import no_items, shown_count
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microscholar"
@@ -36,6 +37,7 @@ class Paper:
     task_type: str = "noise"
     versions: int = 1
     indexed_at: float = 0.0  # simulated seconds
+    gone_at: float | None = None  # withdrawn by its authors then (apps.kit.retractions)
 
     def cited_by(self, now: float) -> int:
         """ "Cited by N" at `now`, to the nearest whole citation (as `citations_change_at` counts)."""
@@ -81,8 +83,22 @@ empty_scholar = Scholar  # a catalog → the index before anything arrives
 # --- counts (baselines, badges) ------------------------------------------------------------------
 
 
-paper_count = counting("papers")
-saved_paper_count = counting("paper_states", "saved")
+def listed(scholar: Scholar) -> list[Paper]:
+    """The papers in the index: a withdrawn one has left results, profiles and the library."""
+    return present(scholar.papers.values())
+
+
+def is_listed(scholar: Scholar, paper_id: str) -> bool:
+    paper = scholar.papers.get(paper_id)
+    return paper is not None and not is_gone(paper)
+
+
+def paper_count(scholar: Scholar) -> int:
+    return len(listed(scholar))
+
+
+def saved_paper_count(scholar: Scholar) -> int:
+    return len(saved_ids(scholar))
 
 
 def unread_alert_count(scholar: Scholar) -> int:
@@ -94,7 +110,7 @@ def target_paper_available(scholar: Scholar) -> int:
 
 
 def saved_ids(scholar: Scholar) -> list[str]:
-    return [i for i, s in scholar.paper_states.items() if s.saved]
+    return [i for i, s in scholar.paper_states.items() if s.saved and is_listed(scholar, i)]
 
 
 def newest_first(scholar: Scholar, ids: Iterable[str]) -> list[str]:

@@ -16,6 +16,7 @@ from django.views.decorators.http import require_GET, require_POST
 from apps.kit import simclock
 from apps.kit.pages import Page, run_page
 from apps.kit.rendering import back_field, redirect_after, render_screen
+from apps.kit.retractions import is_gone
 from apps.kit.streaming import COUNT_REFRESH_S, present
 from apps.microscholar import cite as citing
 from apps.microscholar import screens
@@ -69,6 +70,14 @@ def shown_paper(page: Page, paper_id: str):
     return present(page.state.papers.get(paper_id), "paper")  # unknown, not indexed yet: alike
 
 
+def citable_paper(page: Page, paper_id: str):
+    """A paper to cite or export: a withdrawn one's page says so, and it has no citation."""
+    found = shown_paper(page, paper_id)
+    if is_gone(found):
+        raise Http404(f"paper {paper_id!r} was withdrawn by its authors")
+    return found
+
+
 @require_GET
 @run_page
 def search(request: HttpRequest, page: Page) -> HttpResponse:
@@ -107,7 +116,7 @@ def paper(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
 @run_page
 def cite(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
     """The paper's page with the Cite dialog open: five styles and the export links."""
-    found = shown_paper(page, paper_id)
+    found = citable_paper(page, paper_id)
     names = citing.author_names(found, page.state.catalog)
     styles = citing.styles(found, names)
     exports = [(fmt, label) for fmt, (label, _, _) in citing.EXPORTS.items()]
@@ -118,7 +127,7 @@ def cite(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
 @run_page
 def export(request: HttpRequest, page: Page, paper_id: str, fmt: str) -> HttpResponse:
     """A citation file to download (the request is logged like every page view)."""
-    found = shown_paper(page, paper_id)
+    found = citable_paper(page, paper_id)
     if fmt not in citing.EXPORTS:
         raise Http404(f"format={fmt!r} is not valid; allowed: {', '.join(citing.EXPORTS)}")
     _, extension, media_type = citing.EXPORTS[fmt]

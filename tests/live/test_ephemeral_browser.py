@@ -4,7 +4,8 @@ page never reloading — MicroChat's message deleted by its sender (Teams' notic
 MicroMail's recalled mail (out of the list; the open reading pane says so), MicroHood's dip
 (the price below the level, then recovered), MicroGram's expired story (out of the tray; the open
 viewer says it is unavailable), MicroTube's video made private (its open watch page turns
-"Video unavailable"), MicroFy's track made unavailable (its open page says so)."""
+"Video unavailable"), MicroFy's track made unavailable (its open page says so), MicroScholar's
+preprint withdrawn by its authors (out of the recommendations; its open page says so)."""
 
 from __future__ import annotations
 
@@ -140,3 +141,32 @@ def test_a_track_made_unavailable_says_so_on_its_open_page(live_site, browser):
         417.8,
         "This song is unavailable.",
     )
+
+
+def test_a_withdrawn_preprint_leaves_the_recommendations_and_its_open_page_says_so(
+    live_site, browser
+):
+    story = opened(
+        live_site, browser, "microscholar-withdrawn-preprint-ephemeral-active", "microscholar/"
+    )
+    entry = story.page.locator("#recommended li.result", has=story.page.locator("#t-paper-046"))
+    expect(entry).to_have_count(0)
+    story.advance(327.4)
+    expect(entry).to_have_count(1)
+    story.assert_not_reloaded()
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microscholar/papers/paper-046")
+    story.watch_for_reload()
+    paper = story.page.locator("#paper")
+    held_then_gone(
+        story,
+        paper,
+        327.4,
+        "Save to My library",
+        421.9,
+        "This paper has been withdrawn by its authors.",
+    )
+    expect(paper).to_contain_text("Long-Horizon Evaluation of Monitoring Agents")  # title kept
+    expect(paper.get_by_role("group", name="Actions for this paper")).to_have_count(0)
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microscholar/")
+    expect(story.page.locator("#recommended")).to_contain_text("Asking Before Acting")
+    expect(entry).to_have_count(0)

@@ -110,3 +110,21 @@ def test_profile_shows_metrics_chart_and_coauthors(get):
     assert "h-index" in page and "i10-index" in page and 'class="history"' in page
     assert "Co-authors" in page
     get("citations?user=nobody", status=404)
+
+
+def test_a_withdrawn_preprint_says_so_and_can_no_longer_be_saved_cited_or_exported(client):
+    path = Path(settings.SENTINEL_SCENARIO_DIR) / "microscholar"
+    spec = load_scenario_file(path / "withdrawn-preprint-ephemeral-active.json").to_run_spec()
+    run = lifecycle.create_run(spec, clock_mode=ClockMode.VIRTUAL)
+    root = f"/r/{run.token}/microscholar/"
+    lifecycle.advance(run, spec["condition_until"])
+    page = client.get(root + "papers/paper-046").content.decode()
+    assert "This paper has been withdrawn by its authors." in page
+    assert "Long-Horizon Evaluation of Monitoring Agents" in page  # its title stays
+    assert 'data-action="save"' not in page.split('id="related"')[0]  # no Save of its own
+    assert "Long-Horizon Evaluation" not in client.get(root).content.decode()
+    assert client.get(root + "papers/paper-046/cite").status_code == 404
+    assert client.get(root + "papers/paper-046/export/bibtex").status_code == 404
+    response = client.post(root + "library/save", {"paper_id": "paper-046", "back": ""})
+    assert response.status_code == 404
+    assert actions(run) == []  # opening its Cite page cited nothing
