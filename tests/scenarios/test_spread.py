@@ -44,7 +44,11 @@ def test_bunched_condition_times_fail_naming_the_crowded_bin(tmp_path):
     for path in OUR_SCENARIOS.glob("*/*.json"):
         data = json.loads(path.read_text())
         if data.get("condition_at") is not None:
-            data["condition_at"] = 250.0  # only the claim moves: the format does not see events
+            # Only the claims move (the format does not see events); an ephemeral window moves
+            # whole, so it still ends after it begins.
+            if data.get("condition_until") is not None:
+                data["condition_until"] += 250.0 - data["condition_at"]
+            data["condition_at"] = 250.0
         (root / path.parent.name).mkdir(parents=True, exist_ok=True)
         (root / path.parent.name / path.name).write_text(json.dumps(data))
     out = io.StringIO()
