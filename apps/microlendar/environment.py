@@ -8,7 +8,7 @@ Scenario events (SentinelBench format; events and tasks share the catalog table 
 - `new_task {event_id}` — one task appears in the task list (upstream keys it `event_id`).
 - `cancel_event {event_id}` — its organiser cancels an event: it leaves the calendar, its counts
   and the new invitations, as Google Calendar removes a cancelled event from its guests'
-  calendars; its details, if open, say "This event has been cancelled" (apps.kit.retractions).
+  calendars; its details, if open, say "This event has been canceled" (apps.kit.retractions).
 
 An id already delivered is left as it is (upstream appended a duplicate and reset its state,
 which could un-delete it); ids missing from the catalog, tasks given as events and events given

@@ -132,6 +132,6 @@ def test_a_cancelled_invitation_leaves_the_calendar_and_its_open_details_say_so(
         137.4,
         "Astrid",
         242.9,
-        "This event has been cancelled",
+        "This event has been canceled",
     )
     expect(invitations).not_to_contain_text("DevSummit West speaker photos")
