@@ -1,7 +1,8 @@
 """Items that go away at their time (apps.kit.retractions): a MicroChat message its sender
 deletes, a MicroMail message recalled, a MicroGram story that expires, a MicroTube video made
-private, a MicroFy track made unavailable, a MicroScholar preprint withdrawn by its authors.
-Pure reducers and the grading database, no server."""
+private, a MicroFy track made unavailable, a MicroScholar preprint withdrawn by its authors,
+a MicroLendar event its organiser cancels, a MicroDin job closed to applications, a MicroHub
+pull request someone else closes. Pure reducers and the grading database, no server."""
 
 from __future__ import annotations
 
@@ -12,11 +13,15 @@ import pytest
 from apps.microchat import screens as chat_screens
 from apps.microchat import state as chats
 from apps.microchat.environment import MICROCHAT
+from apps.microdin.environment import MICRODIN
 from apps.microfy import screens as fy_screens
 from apps.microfy.environment import MICROFY
 from apps.microgram import screens as gram_screens
 from apps.microgram import state as gram_state
 from apps.microgram.environment import MICROGRAM
+from apps.microhub.environment import MICROHUB
+from apps.microlendar import state as agenda_state
+from apps.microlendar.environment import MICROLENDAR
 from apps.micromail import state as mailbox
 from apps.micromail.environment import MICROMAIL
 from apps.microscholar import screens as scholar_screens
@@ -27,9 +32,12 @@ from apps.microtube.environment import MICROTUBE
 from events.registry import ActionRejected
 from tests.microchat.workspace import CAST as CHAT
 from tests.microchat.workspace import PAYMENTS_DOWN
+from tests.microdin.cast import CAST as DIN
 from tests.microfy.cast import CAST as FY
 from tests.microfy.cast import SLOW_HARBOR
 from tests.microgram.cast import CAST as GRAM
+from tests.microhub.cast import CAST as HUB
+from tests.microlendar.cast import CAST as LENDAR
 from tests.micromail.cast import CAST as MAIL
 from tests.microscholar import cast as scholar_cast
 from tests.microscholar.cast import BATCHING, TARGET
@@ -146,3 +154,44 @@ def test_a_withdrawn_preprint_leaves_results_profiles_and_library_and_says_so_on
         SCHOLAR.act(scholar, "cite", {"paper_id": TARGET}, at=210.0)
     with pytest.raises(ActionRejected, match="no paper"):
         SCHOLAR.act(scholar, "unsave", {"paper_id": TARGET}, at=210.0)
+
+
+def test_a_cancelled_invitation_leaves_the_calendar_and_its_counts_and_cannot_be_touched():
+    agenda = LENDAR.arrive(LENDAR.preloaded(), "new_event", {"event_id": "td-05"}, at=60.0)
+    assert agenda_state.new_invitations(agenda)[0].id == "td-05"
+    before = agenda_state.event_count(agenda)
+    agenda = LENDAR.arrive(agenda, "cancel_event", {"event_id": "td-05"}, at=150.0)
+    assert agenda.cancelled("td-05") and not agenda.has_event("td-05")
+    assert agenda_state.event_count(agenda) == before - 1
+    assert "td-05" not in [e.id for e in agenda_state.new_invitations(agenda)]
+    assert window_of(MICROLENDAR, agenda, "events", "td-05") == (60.0, 150.0)
+    assert window_of(MICROLENDAR, agenda, "events", "td-01") == (0.0, None)
+    with pytest.raises(ActionRejected, match="no event"):
+        LENDAR.act(agenda, "delete_event", {"event_id": "td-05"})
+
+
+def test_a_closed_job_stays_listed_but_an_application_is_refused_saying_it_closed():
+    network = DIN.arrive(DIN.preloaded(), "new_job", {"job_id": "job-21"}, at=120.0)
+    network = DIN.arrive(network, "close_job", {"job_id": "job-21"}, at=300.0)
+    assert "job-21" in network.jobs  # LinkedIn keeps a closed posting up, marked closed
+    assert window_of(MICRODIN, network, "jobs", "job-21") == (120.0, 300.0)
+    with pytest.raises(ActionRejected, match="no longer accepting applications") as refused:
+        DIN.act(network, "apply_job", {"job_id": "job-21"})
+    assert refused.value.status == 409
+
+
+def test_a_pull_request_someone_else_closed_shows_closed_and_takes_no_comment_or_merge():
+    hub = HUB.arrive(HUB.preloaded(), "new_pull_request", {"pr_id": "pr5"}, at=150.0)
+    hub = HUB.arrive(hub, "close_pull_request", {"pr_id": "pr5"}, at=260.0)
+    assert hub.pr_state("pr5") == "closed"
+    assert window_of(MICROHUB, hub, "prs", "pr5") == (150.0, 260.0)
+    for action, payload in (("comment_pr", {"body": "Reviewing today."}), ("merge_pr", {})):
+        with pytest.raises(ActionRejected, match="no pull request"):
+            HUB.act(hub, action, {"pr_id": "pr5", **payload})
+
+
+def test_the_users_own_merge_stands_when_someone_closes_the_pull_request_afterwards():
+    hub = HUB.arrive(HUB.preloaded(), "new_pull_request", {"pr_id": "pr5"}, at=150.0)
+    hub = HUB.act(hub, "merge_pr", {"pr_id": "pr5"}, at=200.0)
+    hub = HUB.arrive(hub, "close_pull_request", {"pr_id": "pr5"}, at=260.0)
+    assert hub.pr_state("pr5") == "merged"

@@ -1,4 +1,5 @@
-"""Items that go away at their time: a message its sender deletes, a mail recalled.
+"""Items that go away at their time: a message its sender deletes, a mail recalled, an event its
+organiser cancels, a job closed to applications, a pull request someone else closed.
 
 A retraction is the mirror of an arrival (`apps.kit.arrivals`): the event `name {field: id}`
 marks one item of the state's mapping `items` gone *now*. The item is not taken out: pages

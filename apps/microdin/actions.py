@@ -22,6 +22,7 @@ from apps.kit import feeds
 from apps.kit.deciding import found, new_id
 from apps.kit.feeds import ConversationId
 from apps.kit.fields import ItemId, Line, Text
+from apps.kit.retractions import is_gone
 from apps.kit.social import Comment, post_actions
 from apps.kit.state import setting, with_changed, with_items
 from apps.microdin import catalog as records
@@ -141,6 +142,11 @@ def new_thread(network: Network, event: LoggedEvent) -> Conversation:
 
 
 def decide_apply(network: Network, payload: dict) -> dict:
+    closed = network.jobs.get(payload["job_id"])
+    if is_gone(closed):  # still shown, so said as the posting says it, not as an unknown id
+        raise ActionRejected(
+            f"{closed.title} at {closed.company.name} is no longer accepting applications", 409
+        )
     job = found(network.jobs, payload["job_id"], "job", WHERE)
     if network.job_states[job.id].is_applied:
         raise ActionRejected(f"you already applied to {job.title} at {job.company.name}", 409)

@@ -8,6 +8,9 @@ Scenario events (SentinelBench format):
 - `new_post {post_id}`, `new_connection {connection_id}`, `new_message {message_id}`,
   `new_notification {notification_id}`, `new_job {job_id}` — one item arriving now (a message
   or notification unread, a job not applied to).
+- `close_job {job_id}` — the employer stops taking applications: the posting stays in the
+  list, marked as LinkedIn marks it, "No longer accepting applications", and loses its Apply
+  button (apps.kit.retractions).
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ from pydantic import Field
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.feeds import opening, posts_table
+from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, Table, tables
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
@@ -192,6 +196,13 @@ EVENT_TYPES = event_types(
         help="A notification arrives, unread.",
     ),
     arrival("new_job", "job_id", "jobs", deliver_jobs, help="A job is posted."),
+    retraction(
+        "close_job",
+        "job_id",
+        "jobs",
+        "jobs",
+        help='Its employer closes a posting: "No longer accepting applications" replaces Apply.',
+    ),
 )
 
 
@@ -259,6 +270,7 @@ materialize = tables(
             "title TEXT": "title",
             "companyId TEXT": "company.id",
             "location TEXT": "location",
+            **window("posted_at"),
         },
     ),
     Table.keyed(

@@ -138,6 +138,8 @@ class Job:
     # Posted while the run plays (minutes ago): it cannot have its catalogued applicants yet,
     # so it reads as LinkedIn's fresh postings do, "Be among the first 25 applicants".
     posted_during_run: bool = False
+    # Closed to applications then (apps.kit.retractions): the posting stays, without Apply.
+    gone_at: float | None = None
 
     @property
     def applicants_shown(self) -> int | None:

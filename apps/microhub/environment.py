@@ -3,7 +3,9 @@
 Scenario events: the original's `preload_repo` (every id list defaults to ["*"]), `new_issue`
 (numbered after every issue so far) and `stars_waypoint` (a point on the star curve at the
 event's own time: a step there, then the ramp toward any later preloaded waypoint); and three of
-our own that the paper's MicroHub injects: `new_pull_request`, `new_commit`, `new_workflow_run`.
+our own that the paper's MicroHub injects: `new_pull_request`, `new_commit`, `new_workflow_run`;
+and `close_pull_request {pr_id}`: someone else closes a pull request before it is reviewed (it
+shows Closed as GitHub does and refuses comments and merges: apps.kit.retractions).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from pydantic import Field, model_validator
 
 from apps.kit.arrivals import Deliver, Delivery, Stamp, arrival, event_types
 from apps.kit.counts import ShownCount
+from apps.kit.retractions import retraction, window
 from apps.kit.state import EMPTY
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
@@ -263,6 +266,14 @@ EVENT_TYPES = event_types(
         help="A workflow run starts.",
         description="catalog workflow run id",
     ),
+    retraction(
+        "close_pull_request",
+        "pr_id",
+        "prs",
+        "prs",
+        help="Someone else closes a pull request before it is reviewed: it shows Closed and "
+        "takes no more comments or merges.",
+    ),
 )
 
 
@@ -344,7 +355,10 @@ materialize = tables(
     Table(
         "prs",
         lambda hub, now: hub.prs.values(),
-        named("id TEXT", "number INTEGER", "title TEXT", "state TEXT", "author TEXT"),
+        {
+            **named("id TEXT", "number INTEGER", "title TEXT", "state TEXT", "author TEXT"),
+            **window("opened_at"),
+        },
     ),
     Table.keyed(
         "pr_states",

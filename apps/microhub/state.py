@@ -101,6 +101,7 @@ class PullRequest(Post):
     additions: int = from_catalog(integer("additions"), default=0)
     deletions: int = from_catalog(integer("deletions"), default=0)
     files_changed: int = from_catalog(integer("filesChanged"), default=0)
+    gone_at: float | None = None  # closed by someone else then (apps.kit.retractions)
 
 
 @dataclass(frozen=True)
@@ -227,7 +228,10 @@ class Hub(CatalogState):
         return self.issue_states.get(issue_id, IssueState()).state
 
     def pr_state(self, pr_id: str) -> str:
-        return self.pr_states.get(pr_id, "open")
+        """The user's merge stands; else a pull request someone else closed shows closed."""
+        state = self.pr_states.get(pr_id, "open")
+        pr = self.prs.get(pr_id)
+        return "closed" if state == "open" and pr is not None and pr.gone_at is not None else state
 
     @property
     def owner(self) -> str:

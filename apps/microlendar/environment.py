@@ -6,6 +6,9 @@ Scenario events (SentinelBench format; events and tasks share the catalog table 
   after it.
 - `new_event {event_id}` — one event appears on the calendar.
 - `new_task {event_id}` — one task appears in the task list (upstream keys it `event_id`).
+- `cancel_event {event_id}` — its organiser cancels an event: it leaves the calendar, its counts
+  and the new invitations, as Google Calendar removes a cancelled event from its guests'
+  calendars; its details, if open, say "This event has been canceled" (apps.kit.retractions).
 
 An id already delivered is left as it is (upstream appended a duplicate and reset its state,
 which could un-delete it); ids missing from the catalog, tasks given as events and events given
@@ -24,6 +27,7 @@ from pydantic import Field
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
+from apps.kit.retractions import retraction, window
 from apps.kit.tables import Rows, Table, named, tables
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times
@@ -54,7 +58,7 @@ def delivered_event(agenda: Agenda, event_id: str, stamp) -> tuple[Any, EventSta
     event = catalog_event(agenda.catalog, event_id)
     if event is None:
         return None
-    return event, EventState(arrived_during_run=not stamp.preloaded)
+    return replace(event, arrived_at=stamp.at), EventState(arrived_during_run=not stamp.preloaded)
 
 
 deliver_events = Delivery("events", delivered_event, states="event_states")
@@ -103,6 +107,14 @@ EVENT_TYPES = event_types(
         deliver_tasks,
         help="One task appears in the task list.",
         description="catalog task id (upstream's key name)",
+    ),
+    retraction(
+        "cancel_event",
+        "event_id",
+        "events",
+        "events",
+        help="Its organiser cancels an event: it leaves the calendar (open, its details say it "
+        "was cancelled).",
     ),
 )
 
@@ -157,6 +169,7 @@ materialize = tables(
             "category TEXT": "calendar",
             "is_task INTEGER": lambda event: False,
             **named("description TEXT"),
+            **window("arrived_at"),
         },
     ),
     Table(

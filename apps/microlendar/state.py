@@ -56,6 +56,8 @@ class CalendarEvent:
     attendees: tuple[Attendee, ...] = ()
     user_created: bool = False
     order: int = 0  # the catalog's display order, for events starting at the same minute
+    arrived_at: float = 0.0  # simulated second it reached the calendar (0: the starting world)
+    gone_at: float | None = None  # cancelled by its organiser then (apps.kit.retractions)
 
     @property
     def color(self) -> str:
@@ -111,9 +113,15 @@ class Agenda(SelfUserState):
     task_states: Mapping[str, TaskState] = no_items()
 
     def has_event(self, event_id: str) -> bool:
-        """Delivered and not deleted: what the calendar shows."""
+        """Delivered, not deleted and not cancelled: what the calendar shows."""
         state = self.event_states.get(event_id)
-        return state is not None and not state.deleted
+        return state is not None and not state.deleted and self.events[event_id].gone_at is None
+
+    def cancelled(self, event_id: str) -> bool:
+        """Delivered, then cancelled by its organiser: gone from the calendar, and its details,
+        if open, say so."""
+        event = self.events.get(event_id)
+        return event is not None and event.gone_at is not None
 
     def has_task(self, task_id: str) -> bool:
         state = self.task_states.get(task_id)
@@ -144,8 +152,8 @@ def with_created(agenda: Agenda, kind: str, item: CalendarEvent | Task, state: A
 
 
 def live_events(agenda: Agenda) -> list[CalendarEvent]:
-    """Every event not deleted, in delivery order."""
-    return [e for e in agenda.events.values() if not agenda.event_states[e.id].deleted]
+    """Every event not deleted nor cancelled, in delivery order."""
+    return [e for e in agenda.events.values() if agenda.has_event(e.id)]
 
 
 def live_tasks(agenda: Agenda) -> list[tuple[Task, TaskState]]:

@@ -74,15 +74,20 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
     """The calendar in the chosen view, with event `event=<id>` open (which marks it viewed)."""
     query = CalendarQuery.from_params(request.GET)
     agenda: Agenda = page.state
-    if query.event is not None and not agenda.has_event(query.event):
-        raise Http404("no such event")  # unknown, deleted, or not on the calendar yet: alike
+    # Unknown, deleted, or not on the calendar yet: alike. A cancelled one stays open, saying so.
+    if query.event is not None and not (
+        agenda.has_event(query.event) or agenda.cancelled(query.event)
+    ):
+        raise Http404("no such event")
     context = base_context(page, query)
     screen = screens.calendar_screen(agenda, query, context["today"])
     context.update(
         screen=screen,
         now_top=screens.now_line_top(context["moment"]),
         details=agenda.events[query.event] if query.event else None,
-        conflicts=conflicts_with(agenda, agenda.events[query.event]) if query.event else (),
+        conflicts=conflicts_with(agenda, agenda.events[query.event])
+        if query.event and agenda.has_event(query.event)
+        else (),
         close_url=query.but(event=None).querystring() or "?",
         clear_search_url=query.but(q="", event=None).querystring() or "?",
         title_for_tab=screen.title,

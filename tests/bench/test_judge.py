@@ -17,7 +17,7 @@ from apps.bench.judge import JUDGEMENT, JudgeError, by_keywords, judge_prompt, r
 from apps.browser_agent.scripted_model import parse_script, scripted_model_server
 from apps.scenarios.format import ScenarioError, parse_scenario
 from apps.scenarios.library import get_scenario
-from tests.conftest import ours
+from tests.conftest import OUR_SCENARIOS, ours
 
 RUBRIC = {
     "rubric": "Names the sender, Kevin Lee, and what he asked for (the expense report).",
@@ -157,3 +157,30 @@ def test_our_judged_scenarios_tell_a_vague_report_from_a_specific_one(scenario_i
     (scenario,) = [s for s in ours() if s.id == scenario_id]
     assert not by_keywords(scenario.contact_rubric, VAGUE).correct
     assert by_keywords(scenario.contact_rubric, specific).correct
+
+
+# Our scenarios' rubrics: the report a careful agent writes is correct; "done", and a report
+# naming the closest distractor instead, are not.
+OUR_REPORTS = {
+    "microlendar/family-clash-ephemeral-subjective-absolute-passive.json": (
+        "The Larkspur Logistics partner dinner (Fri Sep 26, 6:30pm) clashes with Lily's school play.",
+        "The late release check on Wednesday clashes with your haircut.",
+    ),
+    "microdin/fits-priya-subjective-absolute-passive.json": (
+        "For Priya: Quillfeather Software posted a remote Frontend Engineer role (React, TypeScript).",
+        "For Priya: Harborview Health posted a Web Platform Engineer role (React, WCAG).",
+    ),
+    "microhub/sign-in-review-ephemeral-subjective-absolute-active.json": (
+        "Held 'feat: TOTP enrolment and verification' by tmansour for security review.",
+        "Held 'docs: webhook retries and replays' by hquinn for security review.",
+    ),
+}
+
+
+@pytest.mark.parametrize("path", sorted(OUR_REPORTS))
+def test_our_rubrics_pass_the_specific_report_and_fail_a_vague_or_mistaken_one(path):
+    rubric = json.loads((OUR_SCENARIOS / path).read_text())["contact_rubric"]
+    specific, mistaken = OUR_REPORTS[path]
+    assert by_keywords(rubric, specific).correct
+    assert not by_keywords(rubric, VAGUE).correct
+    assert not by_keywords(rubric, mistaken).correct

@@ -5,7 +5,10 @@ MicroMail's recalled mail (out of the list; the open reading pane says so), Micr
 (the price below the level, then recovered), MicroGram's expired story (out of the tray; the open
 viewer says it is unavailable), MicroTube's video made private (its open watch page turns
 "Video unavailable"), MicroFy's track made unavailable (its open page says so), MicroScholar's
-preprint withdrawn by its authors (out of the recommendations; its open page says so)."""
+preprint withdrawn by its authors (out of the recommendations; its open page says so),
+MicroDin's job closed to applications (LinkedIn's "No longer accepting applications" in
+place of Apply), MicroHub's pull request someone else closed (Closed, no comment box),
+MicroLendar's invitation its organiser cancelled (off the calendar; its open details say so)."""
 
 from __future__ import annotations
 
@@ -170,3 +173,60 @@ def test_a_withdrawn_preprint_leaves_the_recommendations_and_its_open_page_says_
     story.page.goto(f"{live_site}/r/{story.run['token']}/microscholar/")
     expect(story.page.locator("#recommended")).to_contain_text("Asking Before Acting")
     expect(entry).to_have_count(0)
+
+
+def test_a_closed_job_shows_linkedins_notice_in_place_of_apply(live_site, browser):
+    story = opened(
+        live_site, browser, "microdin-pm-integrations-ephemeral-active", "microdin/jobs/"
+    )
+    card = story.page.locator("#job-list li.job-card", has_text="Product Manager, Integrations")
+    story.advance(61.8)
+    expect(card).to_have_count(1)
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microdin/jobs/?job=job-01")
+    story.watch_for_reload()
+    detail = story.page.locator("#job-detail")
+    expect(detail.get_by_role("button", name="Apply")).to_have_count(1)
+    held_then_gone(
+        story,
+        detail,
+        61.8,
+        "Product Manager, Integrations",
+        173.2,
+        "No longer accepting applications",
+    )
+    expect(detail.get_by_role("button", name="Apply")).to_have_count(0)
+    expect(card).to_contain_text("No longer accepting applications")
+
+
+def test_a_pull_request_someone_else_closed_turns_closed_without_a_comment_box(live_site, browser):
+    story = opened(live_site, browser, "microhub-board-review-ephemeral-active", "microhub/pulls/")
+    story.advance(226.5)
+    expect(story.page.locator("#pr-list")).to_contain_text("perf: virtualise board columns")
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microhub/pulls/pr5")
+    story.watch_for_reload()
+    held_then_gone(story, story.page.locator("#pr-state"), 226.5, "Open", 331.0, "Closed")
+    expect(story.page.locator("#pr-merge")).to_contain_text("Closed with unmerged commits")
+    expect(story.page.get_by_role("form", name="Add a comment")).to_have_count(0)
+
+
+def test_a_cancelled_invitation_leaves_the_calendar_and_its_open_details_say_so(live_site, browser):
+    story = opened(
+        live_site,
+        browser,
+        "microlendar-photo-slot-ephemeral-passive",
+        "microlendar/",
+    )
+    invitations = story.page.locator("#new-invitations")
+    story.advance(137.4)
+    expect(invitations).to_contain_text("DevSummit West speaker photos")
+    story.page.goto(f"{live_site}/r/{story.run['token']}/microlendar/?event=slot-01")
+    story.watch_for_reload()
+    held_then_gone(
+        story,
+        story.page.locator("#event-details"),
+        137.4,
+        "Astrid",
+        242.9,
+        "This event has been canceled",
+    )
+    expect(invitations).not_to_contain_text("DevSummit West speaker photos")
