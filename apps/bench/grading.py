@@ -639,16 +639,19 @@ AXIS_COLUMNS = tuple(
 )
 
 
+def axis_rate(rows: list[Row], attribute: str, value: str, window: float, timely: bool) -> Rate:
+    """Success (or timely success, of the targeted tasks) among the tasks whose `attribute`
+    (persistence or criteria) is `value`."""
+    members = [r for r in rows if getattr(r, attribute) == value and not (timely and r.is_noop)]
+    return Rate(sum(r.timely(window) if timely else r.success for r in members), len(members))
+
+
 def axis_table(sets: list[ResultSet], window: float, *, timely: bool = False) -> TableCells:
     """One row per result set: success (or timely success, of the targeted tasks) among the
     persistent and the ephemeral tasks, the objective and the subjective ones."""
-
-    def rate(rows: list[Row], attribute: str, value: str) -> Rate:
-        members = [r for r in rows if getattr(r, attribute) == value and not (timely and r.is_noop)]
-        return Rate(sum(r.timely(window) if timely else r.success for r in members), len(members))
-
     return ["result set", *(value for _, value in AXIS_COLUMNS)], [
-        [rs.name, *(str(rate(rs.rows, a, v)) for a, v in AXIS_COLUMNS)] for rs in sets
+        [rs.name, *(str(axis_rate(rs.rows, a, v, window, timely)) for a, v in AXIS_COLUMNS)]
+        for rs in sets
     ]
 
 
@@ -745,6 +748,7 @@ def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
 
     header = ["result_set", "tasks", "success_rate", "timely_success_rate"]
     header += [f"success_{g}" for g in GROUPS[1:]] + [f"timely_{g}" for g in TIMELY_GROUPS[1:]]
+    header += [f"{kind}_{value}" for kind in ("success", "timely") for _, value in AXIS_COLUMNS]
     for prefix in ("cost_usd", "tool_calls", "tokens"):
         header += [f"{prefix}_{h}" for h in STAT_HEADERS]
     header += ["unpriced_tasks", "reaction_n", "reaction_mean_s", "reaction_median_s"]
@@ -758,6 +762,11 @@ def render_comparison_csv(sets: list[ResultSet], window: float) -> str:
             [rs.name, s.total, fraction(s.rates["overall"]), fraction(s.timely["overall"])]
             + [fraction(s.rates[g]) for g in GROUPS[1:]]
             + [fraction(s.timely[g]) for g in TIMELY_GROUPS[1:]]
+            + [
+                fraction(axis_rate(rs.rows, attribute, value, window, timely))
+                for timely in (False, True)
+                for attribute, value in AXIS_COLUMNS
+            ]
             + stats(s.costs)
             + stats(s.tool_calls)
             + stats(s.total_tokens)

@@ -188,6 +188,10 @@ def test_the_comparison_csv_has_one_row_per_result_set(two_agents):
     assert sleeper["timely_passive"] == "0.0000" and sleeper["success_passive"] == "1.0000"
     assert rows[0]["cost_usd_median"] == "0.2900" and rows[0]["tool_calls_mean"] == "6.0000"
     assert rows[0]["reaction_median_s"] == "8.0" and sleeper["unpriced_tasks"] == "1"
+    # The paper's future-work axes: these tasks say none, so all are persistent and objective.
+    assert sleeper["success_persistent"] == sleeper["success_objective"] == "0.4000"
+    assert sleeper["timely_persistent"] == "0.0000"
+    assert sleeper["success_ephemeral"] == sleeper["timely_subjective"] == ""  # no such task
 
 
 def test_one_name_keeps_the_single_set_table(two_agents):
