@@ -142,7 +142,7 @@ def complete(run: Run, *, wall: float | None = None) -> Run:
         ):
             run.status, run.sim_time = RunStatus.COMPLETED, now  # what was just written
         else:  # another caller completed it first: its frozen time is the one
-            run.refresh_from_db(fields=["status", "sim_time"])
+            run.reread("status", "sim_time")
     return run
 
 
@@ -164,7 +164,7 @@ def close(run: Run) -> None:
     """Close the run, and forget what this process kept for it (its fold, its scenario): a
     server that has served a thousand runs holds what one that served ten holds."""
     Run.objects.filter(pk=run.pk, closed_at__isnull=True).update(closed_at=timezone.now())
-    run.refresh_from_db(fields=["status", "sim_time", "closed_at"])
+    run.reread("status", "sim_time", "closed_at")
     _log(run, "close", run.sim_time)
     projection.forget(run)
     scheduler.forget(run)
@@ -172,10 +172,12 @@ def close(run: Run) -> None:
     notifications.run_closed(run.pk)
 
 
-def status_snapshot(run: Run) -> dict[str, Any]:
-    """Current status, firing what is due first (zero staleness)."""
+def status_snapshot(run: Run, *, reload: bool = True) -> dict[str, Any]:
+    """Current status, firing what is due first (zero staleness). `reload=False` for a caller
+    that has just read or written the run (the flat endpoints): reading it again would only
+    cost a query."""
     wall = wall_now()
-    fire_due(run, wall=wall)
+    fire_due(run, wall=wall, reload=reload)
     now = sim_now(run, wall)
     return {"status": run.status, "sim_time": now, "next_event_time": _next_event_time(run, now)}
 

@@ -33,7 +33,8 @@ from events.timing import to_wall
 def _status_body(run) -> dict:
     if run is None:
         return {"success": True, "status": "preinit", "simulation_time": 0, "next_event_time": None}
-    snapshot = lifecycle.status_snapshot(run)
+    # Every caller has just read the slot's run or written it (init, advance, play).
+    snapshot = lifecycle.status_snapshot(run, reload=False)
     sf = run.speed_factor
     return {
         "success": True,
