@@ -133,16 +133,8 @@ def complete(run: Run, *, wall: float | None = None) -> Run:
     fired and where the clock stops are the same moment). Idempotent."""
     wall = wall_now() if wall is None else wall
     fire_due(run, wall=wall)
-    if run.status != RunStatus.COMPLETED:
-        now = sim_now(run, wall)
-        if (
-            Run.objects.filter(pk=run.pk)
-            .exclude(status=RunStatus.COMPLETED)
-            .update(status=RunStatus.COMPLETED, sim_time=now)
-        ):
-            run.status, run.sim_time = RunStatus.COMPLETED, now  # what was just written
-        else:  # another caller completed it first: its frozen time is the one
-            run.reread("status", "sim_time")
+    if run.status != RunStatus.COMPLETED and not run.complete_at(sim_now(run, wall)):
+        run.reread("status", "sim_time")  # another caller completed it first: its time holds
     return run
 
 
@@ -163,8 +155,7 @@ def contact(
 def close(run: Run) -> None:
     """Close the run, and forget what this process kept for it (its fold, its scenario): a
     server that has served a thousand runs holds what one that served ten holds."""
-    Run.objects.filter(pk=run.pk, closed_at__isnull=True).update(closed_at=timezone.now())
-    run.reread("status", "sim_time", "closed_at")
+    run.close_once(timezone.now())
     _log(run, "close", run.sim_time)
     projection.forget(run)
     scheduler.forget(run)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import datetime
 import functools
 import secrets
 from collections.abc import Callable
@@ -103,6 +104,27 @@ def _reread_plan(alias: str, names: tuple[str, ...]) -> tuple[str, list[Callable
     return sql, [converter(field) for field in fields]
 
 
+@functools.cache
+def _complete_sql(alias: str) -> str:
+    quote = connections[alias].ops.quote_name
+    status = quote("status")
+    return (
+        f"UPDATE {quote(Run._meta.db_table)} SET {status} = %s, {quote('sim_time')} = %s "
+        f"WHERE {quote('id')} = %s AND {status} <> %s"
+    )
+
+
+@functools.cache
+def _close_sql(alias: str) -> str:
+    quote = connections[alias].ops.quote_name
+    closed_at = quote("closed_at")
+    return (
+        f"UPDATE {quote(Run._meta.db_table)} "
+        f"SET {closed_at} = COALESCE({closed_at}, %s) WHERE {quote('id')} = %s "
+        f"RETURNING {quote('status')}, {quote('sim_time')}, {closed_at}"
+    )
+
+
 class Run(models.Model):
     """One playback of one scenario for one agent.
 
@@ -176,6 +198,37 @@ class Run(models.Model):
             row = cursor.fetchone()
         if row is None:
             raise Run.DoesNotExist(f"run {self.pk} no longer exists")
+        for name, convert, value in zip(names, converters, row, strict=True):
+            setattr(self, name, convert(value))
+
+    def complete_at(self, sim_time: float) -> bool:
+        """Complete the run with its clock frozen at `sim_time`, unless it is completed already
+        (a conditional write: one caller wins); True when this call completed it. Every
+        /evaluate does it: SQL written once, as `reread`."""
+        alias = self._state.db or DEFAULT_DB_ALIAS
+        with connections[alias].cursor() as cursor:
+            completed = RunStatus.COMPLETED.value
+            cursor.execute(_complete_sql(alias), [completed, sim_time, self.pk, completed])
+            if cursor.rowcount != 1:
+                return False
+        self.status, self.sim_time = RunStatus.COMPLETED, sim_time
+        return True
+
+    def close_once(self, when: datetime.datetime) -> None:
+        """Set `closed_at` to `when` unless the run is closed already, and read back its status,
+        clock and `closed_at` as they then stand — one statement, on every /close."""
+        alias = self._state.db or DEFAULT_DB_ALIAS
+        connection = connections[alias]
+        closed_at = column_field(Run, "closed_at")
+        with connection.cursor() as cursor:
+            cursor.execute(
+                _close_sql(alias), [closed_at.get_db_prep_save(when, connection), self.pk]
+            )
+            row = cursor.fetchone()
+        if row is None:
+            raise Run.DoesNotExist(f"run {self.pk} no longer exists")
+        names = ("status", "sim_time", "closed_at")
+        _, converters = _reread_plan(alias, names)
         for name, convert, value in zip(names, converters, row, strict=True):
             setattr(self, name, convert(value))
 
