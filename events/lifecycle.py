@@ -176,7 +176,5 @@ def status_snapshot(run: Run, *, reload: bool = True) -> dict[str, Any]:
 def _next_event_time(run: Run, now: float) -> float | None:
     if run.status == RunStatus.COMPLETED:
         return None
-    upcoming = [
-        e["time"] for e in run.timeline if e["time"] > now and e["time"] <= run.event_timeline_end
-    ]
-    return upcoming[0] if upcoming else None
+    end = run.event_timeline_end  # read once: every read goes through the run's spec
+    return next((e["time"] for e in run.timeline if now < e["time"] <= end), None)

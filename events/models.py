@@ -55,40 +55,55 @@ class RunQuerySet(models.QuerySet):
         database. The scenario column stays deferred (read it through `Run.spec`, cached per
         process): it holds the whole timeline, and decoding it on every request was wasted.
         """
-        found = list(self.raw(_open_run_sql(self.db, "{token} = %s"), [token]))
-        return found[0] if found else None
+        return self._open_run("{token} = %s", [token])
 
     def open_default(self) -> Run | None:
         """The open run of the default slot (the flat endpoints' one session), or None: read
         by every /status, /init, /evaluate and /close, so written once, like `open_by_token`.
         The condition is the partial unique index's own, so SQLite reads the index instead of
         scanning every run ever created (`is_default_slot = 1` does not imply it)."""
-        found = list(self.raw(_open_run_sql(self.db, "{is_default_slot}")))
-        return found[0] if found else None
+        return self._open_run("{is_default_slot}", [])
+
+    def _open_run(self, condition: str, params: list[Any]) -> Run | None:
+        # The row made into a model as a raw queryset would, without its per-call work of
+        # matching columns to fields (three quarters of the read).
+        sql, names, converters = _open_run_plan(self.db, condition)
+        with connections[self.db].cursor() as cursor:
+            cursor.execute(sql, params)
+            row = cursor.fetchone()
+        if row is None:
+            return None
+        values = [convert(value) for convert, value in zip(converters, row, strict=True)]
+        return Run.from_db(self.db, names, values)
 
 
 @functools.cache
-def _open_run_sql(alias: str, condition: str) -> str:
+def _open_run_plan(alias: str, condition: str) -> tuple[str, list[str], list[Callable[[Any], Any]]]:
     quote = connections[alias].ops.quote_name
-    columns = ", ".join(
-        quote(field.column) for field in Run._meta.concrete_fields if field.name != "scenario"
-    )
+    fields = [field for field in Run._meta.concrete_fields if field.name != "scenario"]
+    columns = ", ".join(quote(field.column) for field in fields)
     where = condition.format(token=quote("token"), is_default_slot=quote("is_default_slot"))
-    return (
+    sql = (
         f"SELECT {columns} FROM {quote(Run._meta.db_table)} "
         f"WHERE {where} AND {quote('closed_at')} IS NULL"
     )
+    return sql, [field.attname for field in fields], _converters(alias, fields)
 
 
 @functools.cache
 def _reread_plan(alias: str, names: tuple[str, ...]) -> tuple[str, list[Callable[[Any], Any]]]:
-    """`Run.reread`'s SQL for `names`, and per field the conversion the ORM applies to what the
-    database returns (a datetime made aware, for one)."""
-    connection = connections[alias]
-    quote = connection.ops.quote_name
+    """`Run.reread`'s SQL for `names`."""
+    quote = connections[alias].ops.quote_name
     fields = [column_field(Run, name) for name in names]
     columns = ", ".join(quote(field.column) for field in fields)
     sql = f"SELECT {columns} FROM {quote(Run._meta.db_table)} WHERE {quote('id')} = %s"
+    return sql, _converters(alias, fields)
+
+
+def _converters(alias: str, fields: list[models.Field[Any, Any]]) -> list[Callable[[Any], Any]]:
+    """Per field, the conversion the ORM applies to what the database returns for it (a
+    datetime made aware, for one)."""
+    connection = connections[alias]
 
     def converter(field: models.Field[Any, Any]) -> Callable[[Any], Any]:
         column = field.cached_col
@@ -101,7 +116,7 @@ def _reread_plan(alias: str, names: tuple[str, ...]) -> tuple[str, list[Callable
 
         return convert
 
-    return sql, [converter(field) for field in fields]
+    return [converter(field) for field in fields]
 
 
 @functools.cache
