@@ -45,11 +45,12 @@ class LRU(Generic[K, V]):
             if current is not None and unless is not None and unless(current):
                 return
             if current is not None:
-                self._release(current)
+                self._release(self._entries.pop(key))
+            weight = self._weigh(value) if self._weigh is not None else 0
+            if self.budget is not None and weight > self.budget:
+                return  # alone over the budget: keeping it would push out everything else
             self._entries[key] = value
-            self._entries.move_to_end(key)
-            if self._weigh is not None:
-                self._held += self._weigh(value)
+            self._held += weight
             while len(self._entries) > self.size or (
                 self.budget is not None and self._held > self.budget
             ):
