@@ -70,8 +70,8 @@ def _contact_rows(run: Run) -> list[tuple]:
             [run.pk, EventKind.LIFECYCLE.value, CONTACT_GET, CONTACT_POST],
         )
         rows = cursor.fetchall()
-    payload = column_field(Event, "payload")
-    column = payload.cached_col
+    payload = Event._meta.get_field("payload")
+    column = payload.cached_col  # the expression Django itself passes for a column read
     return [
         (seq, at, type_, payload.from_db_value(raw, column, connection), recorded_at)
         for seq, at, type_, raw, recorded_at in rows

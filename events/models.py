@@ -107,7 +107,9 @@ def _converters(alias: str, fields: list[models.Field[Any, Any]]) -> list[Callab
 
     def converter(field: models.Field[Any, Any]) -> Callable[[Any], Any]:
         column = field.cached_col
-        steps = connection.ops.get_db_converters(column) + field.get_db_converters(connection)
+        # Field.get_db_converters is public Django, missing from the stubs.
+        own = cast(Any, field).get_db_converters(connection)
+        steps = connection.ops.get_db_converters(column) + own
 
         def convert(value: Any) -> Any:
             for step in steps:
