@@ -94,9 +94,11 @@ def _fold(environment: Environment, start: Folded, events: list[LoggedEvent]) ->
     return Folded(state, events[-1].seq, live_seq, baselines, start.agent_bytes + logged)
 
 
-def _fold_from_scratch(run: Run, seq: int | None) -> Folded:
+def _fold_from_scratch(run: Run, seq: int | None, *, shared_opening: bool = True) -> Folded:
     environment = get_environment(run.environment)
     events = logged_events(run.pk, 0, seq)
+    if not shared_opening:
+        return _fold(environment, Folded(initial_state(run), 0, 0), events)
     opened, rest = _opening(run, environment, events)
     return _fold(environment, opened, rest)
 
@@ -147,8 +149,9 @@ def _opening(
 
 
 def fold_from_scratch(run: Run, seq: int | None = None) -> Folded:
-    """The state as of `seq`, folded from the catalog without the cache (replay, checks)."""
-    return _fold_from_scratch(run, seq)
+    """The state as of `seq`, folded from the catalog without the caches, the shared opening's
+    included (replay, checks)."""
+    return _fold_from_scratch(run, seq, shared_opening=False)
 
 
 _cache: LRU[tuple[int, str], Folded] = LRU(CACHE_SIZE)

@@ -73,3 +73,16 @@ def test_the_shared_opening_grades_as_a_fold_from_scratch(tally_spec):
     assert (
         evaluate(virtual_run(tally_spec, eval_sql=AT_LEAST_TWO, condition_at=None)).success is False
     )
+
+
+@pytest.mark.parametrize("environment", ["microdin", "microfy", "micromail", "microhood"])
+def test_a_shared_full_preload_equals_its_fold_from_scratch(environment):
+    from apps.bench.management.commands.bench_protocol import full_preload_scenario
+
+    spec = full_preload_scenario(environment)
+    projection.folded_state(lifecycle.create_run(spec, clock_mode=ClockMode.VIRTUAL))  # kept
+    run = lifecycle.create_run(spec, clock_mode=ClockMode.VIRTUAL)
+    shared, scratch = projection.folded_state(run), projection.fold_from_scratch(run)
+    assert shared.state == scratch.state
+    assert dict(shared.baselines) == dict(scratch.baselines)
+    assert (shared.seq, shared.live_seq) == (scratch.seq, scratch.live_seq)
