@@ -7,6 +7,7 @@ run records the directory and a content hash so a result can always be traced to
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import threading
@@ -147,13 +148,20 @@ _cache: dict[Path, Catalog] = {}
 _lock = threading.Lock()
 
 
+@functools.lru_cache(maxsize=64)
+def _resolved(directory: str) -> Path:
+    # Every run's creation and first fold ask for their catalog: resolving the path each time
+    # made a system call per path component.
+    return Path(directory).resolve()
+
+
 def load_catalog(directory: Path | str | None = None) -> Catalog:
     """The catalog of `directory` (default SENTINEL_CATALOG_DIR), read once per process."""
     if directory is None:
         from django.conf import settings
 
         directory = settings.SENTINEL_CATALOG_DIR
-    key = Path(directory).resolve()
+    key = _resolved(str(directory))
     catalog = _cache.get(key)
     if catalog is None:
         with _lock:

@@ -7,19 +7,22 @@ count. Contact times are kept as floats: no truncation to whole seconds.
 
 from __future__ import annotations
 
+import functools
 import sqlite3
+import weakref
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from typing import Any
 
-from django.db.models import Count, Q
+from django.db import connection, connections
 
 from events.clock import TICKING
 from events.lifecycle import CONTACT_GET, CONTACT_POST, complete
-from events.models import Event, EventKind, Run
+from events.lru import LRU
+from events.models import Event, EventKind, Run, column_field
 from events.projection import folded_state
 from events.registry import Environment, get_environment
-from events.sandbox import is_truthy, run_eval_sql, shown, write_session_meta
+from events.sandbox import is_truthy, run_eval_sql_on, serialise, shown, write_session_meta
 from events.timing import to_wall
 
 NOOP_DETAIL = "no-op task: success requires no /contact visit"
@@ -34,14 +37,60 @@ class Contacts:
     message: str | None
 
 
-def contacts_of(run: Run) -> Contacts:
-    rows = list(
-        Event.objects.filter(
-            run_id=run.pk, kind=EventKind.LIFECYCLE, type__in=(CONTACT_GET, CONTACT_POST)
-        )
-        .order_by("seq")
-        .values_list("seq", "at", "type", "payload", "recorded_at")
+# Every /evaluate reads a run's contacts and counts its views and actions: SQL written once per
+# database (the ORM built each query for longer than the database took to answer it).
+@functools.cache
+def _contacts_sql(alias: str) -> str:
+    quote = connections[alias].ops.quote_name
+    columns = ", ".join(
+        quote(column_field(Event, name).column)
+        for name in ("seq", "at", "type", "payload", "recorded_at")
     )
+    return (
+        f"SELECT {columns} FROM {quote(Event._meta.db_table)} "
+        f"WHERE {quote('run_id')} = %s AND {quote('kind')} = %s AND {quote('type')} IN (%s, %s) "
+        f"ORDER BY {quote('seq')}"
+    )
+
+
+@functools.cache
+def _agent_counts_sql(alias: str) -> str:
+    quote = connections[alias].ops.quote_name
+    kind = quote("kind")
+    return (
+        f"SELECT COUNT(CASE WHEN {kind} = %s THEN 1 END), COUNT(CASE WHEN {kind} = %s THEN 1 END) "
+        f"FROM {quote(Event._meta.db_table)} WHERE {quote('run_id')} = %s"
+    )
+
+
+def _contact_rows(run: Run) -> list[tuple]:
+    with connection.cursor() as cursor:
+        cursor.execute(
+            _contacts_sql(connection.alias),
+            [run.pk, EventKind.LIFECYCLE.value, CONTACT_GET, CONTACT_POST],
+        )
+        rows = cursor.fetchall()
+    payload = Event._meta.get_field("payload")
+    column = payload.cached_col  # the expression Django itself passes for a column read
+    return [
+        (seq, at, type_, payload.from_db_value(raw, column, connection), recorded_at)
+        for seq, at, type_, raw, recorded_at in rows
+    ]
+
+
+def agent_counts(run: Run) -> tuple[int, int]:
+    """How many views and actions the run's log holds (all of it, after contact too)."""
+    with connection.cursor() as cursor:
+        cursor.execute(
+            _agent_counts_sql(connection.alias),
+            [EventKind.VIEW.value, EventKind.ACTION.value, run.pk],
+        )
+        views, actions = cursor.fetchone()
+    return views, actions
+
+
+def contacts_of(run: Run) -> Contacts:
+    rows = _contact_rows(run)
     first = rows[0] if rows else None
     first_get = next((r for r in rows if r[2] == CONTACT_GET), None)
     first_post = next((r for r in rows if r[2] == CONTACT_POST), None)
@@ -113,6 +162,32 @@ class GradingSnapshot:
         write_session_meta(conn, self.session_meta())
         self.environment.materialize(self.state, self.now, conn)
 
+    def serialised(self) -> bytes:
+        """The grading database `write` builds, serialised for the sandbox — built once per
+        state, moment and meta: runs of one scenario evaluated at the same point of their
+        timeline share the state of their log's opening (events.projection), and so the
+        tables. A state that cannot be held weakly is not kept."""
+        meta = tuple((name, str(value)) for name, value in self.session_meta().items())
+        key = (id(self.state), self.environment.name, repr(self.now), meta)
+        kept = _databases.get(key)
+        if kept is not None and kept[0]() is self.state:
+            return kept[1]
+        database = serialise(self.write)
+        try:
+            held = weakref.ref(self.state, lambda _: _databases.pop(key))
+        except TypeError:
+            return database
+        _databases.put(key, (held, database))
+        return database
+
+
+# Serialised grading databases by the state (held weakly: a key's id is never another state's)
+# and moment they were built for; bounded in bytes (a full-preload database is 36–120 KiB).
+DATABASES_KEPT, DATABASE_BYTES_KEPT = 64, 8 * 1024 * 1024
+_databases: LRU[tuple, tuple[weakref.ref, bytes]] = LRU(
+    DATABASES_KEPT, budget=DATABASE_BYTES_KEPT, weigh=lambda kept: len(kept[1])
+)
+
 
 def grading_snapshot(
     run: Run, seq: int | None = None, *, now: float | None = None
@@ -144,7 +219,7 @@ def grade(run: Run) -> tuple[bool, str, Contacts, int | None]:
 
     # Graded as of the first contact, on the values of that moment (prices, counts that move).
     snapshot = grading_snapshot(run, graded_at, now=contacts.first_at)
-    outcome = run_eval_sql(sql, snapshot.write)
+    outcome = run_eval_sql_on(sql, snapshot.serialised)
     if not outcome.ok:
         return False, outcome.error, contacts, graded_at
     sql_pass = is_truthy(outcome.value)
@@ -175,10 +250,7 @@ def evaluate(run: Run) -> Verdict:
     reaction = None
     if success and run.condition_at is not None and contacts.first_at is not None:
         reaction = to_wall(contacts.first_at - run.condition_at, sf)
-    counts = Event.objects.filter(run_id=run.pk).aggregate(
-        views=Count("pk", filter=Q(kind=EventKind.VIEW)),
-        actions=Count("pk", filter=Q(kind=EventKind.ACTION)),
-    )  # one read of the log for both
+    views, actions = agent_counts(run)  # one read of the log for both
     return Verdict(
         success=success,
         detail=detail,
@@ -189,7 +261,7 @@ def evaluate(run: Run) -> Verdict:
         contact_message=contacts.message,
         run=run.pk,
         reaction_time=reaction,
-        views=counts["views"],
-        actions=counts["actions"],
+        views=views,
+        actions=actions,
         graded_at_seq=graded_at,
     )

@@ -129,7 +129,7 @@ def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
             # starting from our older one would begin this skip before that one ended (the
             # clock read backwards by the difference). It starts now instead.
             wall = max(wall, wall_now())
-        run.refresh_from_db(fields=[*CLOCK_FIELDS, "closed_at"])
+        run.reread(*CLOCK_FIELDS, "closed_at")
         refused = refusal(run)
         if refused is not None:
             raise refused
@@ -148,7 +148,7 @@ def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
             ).update(skipped=_landing(run, wall, to))
             if not moved:
                 continue  # another wait (or a contact) moved the run first: read it again
-            run.refresh_from_db(fields=CLOCK_FIELDS)
+            run.reread(*CLOCK_FIELDS)
             append_event(
                 run, EventKind.LIFECYCLE, SKIP, {"from": now, "to": to, "why": why}, at=now
             )

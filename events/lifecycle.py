@@ -133,16 +133,8 @@ def complete(run: Run, *, wall: float | None = None) -> Run:
     fired and where the clock stops are the same moment). Idempotent."""
     wall = wall_now() if wall is None else wall
     fire_due(run, wall=wall)
-    if run.status != RunStatus.COMPLETED:
-        now = sim_now(run, wall)
-        if (
-            Run.objects.filter(pk=run.pk)
-            .exclude(status=RunStatus.COMPLETED)
-            .update(status=RunStatus.COMPLETED, sim_time=now)
-        ):
-            run.status, run.sim_time = RunStatus.COMPLETED, now  # what was just written
-        else:  # another caller completed it first: its frozen time is the one
-            run.refresh_from_db(fields=["status", "sim_time"])
+    if run.status != RunStatus.COMPLETED and not run.complete_at(sim_now(run, wall)):
+        run.reread("status", "sim_time")  # another caller completed it first: its time holds
     return run
 
 
@@ -163,8 +155,7 @@ def contact(
 def close(run: Run) -> None:
     """Close the run, and forget what this process kept for it (its fold, its scenario): a
     server that has served a thousand runs holds what one that served ten holds."""
-    Run.objects.filter(pk=run.pk, closed_at__isnull=True).update(closed_at=timezone.now())
-    run.refresh_from_db(fields=["status", "sim_time", "closed_at"])
+    run.close_once(timezone.now())
     _log(run, "close", run.sim_time)
     projection.forget(run)
     scheduler.forget(run)
@@ -172,10 +163,12 @@ def close(run: Run) -> None:
     notifications.run_closed(run.pk)
 
 
-def status_snapshot(run: Run) -> dict[str, Any]:
-    """Current status, firing what is due first (zero staleness)."""
+def status_snapshot(run: Run, *, reload: bool = True) -> dict[str, Any]:
+    """Current status, firing what is due first (zero staleness). `reload=False` for a caller
+    that has just read or written the run (the flat endpoints): reading it again would only
+    cost a query."""
     wall = wall_now()
-    fire_due(run, wall=wall)
+    fire_due(run, wall=wall, reload=reload)
     now = sim_now(run, wall)
     return {"status": run.status, "sim_time": now, "next_event_time": _next_event_time(run, now)}
 
@@ -183,7 +176,5 @@ def status_snapshot(run: Run) -> dict[str, Any]:
 def _next_event_time(run: Run, now: float) -> float | None:
     if run.status == RunStatus.COMPLETED:
         return None
-    upcoming = [
-        e["time"] for e in run.timeline if e["time"] > now and e["time"] <= run.event_timeline_end
-    ]
-    return upcoming[0] if upcoming else None
+    end = run.event_timeline_end  # read once: every read goes through the run's spec
+    return next((e["time"] for e in run.timeline if now < e["time"] <= end), None)

@@ -94,14 +94,64 @@ def _fold(environment: Environment, start: Folded, events: list[LoggedEvent]) ->
     return Folded(state, events[-1].seq, live_seq, baselines, start.agent_bytes + logged)
 
 
-def _fold_from_scratch(run: Run, seq: int | None) -> Folded:
+def _fold_from_scratch(run: Run, seq: int | None, *, shared_opening: bool = True) -> Folded:
     environment = get_environment(run.environment)
-    return _fold(environment, Folded(initial_state(run), 0, 0), logged_events(run.pk, 0, seq))
+    events = logged_events(run.pk, 0, seq)
+    if not shared_opening:
+        return _fold(environment, Folded(initial_state(run), 0, 0), events)
+    opened, rest = _opening(run, environment, events)
+    return _fold(environment, opened, rest)
+
+
+# The fold of a log's opening — `init` and the t ≤ 0 preloads, the same for every run of a
+# scenario on a catalog — shared by those runs: each reset of the flat slot made a new run whose
+# first fold (its first page, its evaluation) redid the catalog's preload. A fold is a pure
+# function of the catalog and the events' contents (no reducer reads `seq`, and lifecycle
+# payloads never enter it), and states are immutable, so one Folded can serve every such run.
+# A full-preload state holds 10–100 KiB of its own beside the catalog it shares.
+OPENINGS_KEPT = 64
+_openings: LRU[tuple, Folded] = LRU(OPENINGS_KEPT)
+
+
+def _opening_key(run: Run, opening: list[LoggedEvent]) -> tuple:
+    return (
+        run.environment,
+        run.catalog_dir,
+        run.catalog_hash,
+        tuple(
+            (e.seq, e.at, e.kind, e.type)
+            + ((json.dumps(e.payload, sort_keys=True),) if e.kind != EventKind.LIFECYCLE else ())
+            for e in opening
+        ),
+    )
+
+
+def _opening(
+    run: Run, environment: Environment, events: list[LoggedEvent]
+) -> tuple[Folded, list[LoggedEvent]]:
+    """The fold of `events`' opening (lifecycle and scenario events at t ≤ 0, shared across
+    runs), and the events after it."""
+    count = 0
+    while (
+        count < len(events)
+        and events[count].at <= 0
+        and events[count].kind in (EventKind.LIFECYCLE, EventKind.SCENARIO)
+    ):
+        count += 1
+    if not count:
+        return Folded(initial_state(run), 0, 0), events
+    key = _opening_key(run, events[:count])
+    opened = _openings.get(key)
+    if opened is None:
+        opened = _fold(environment, Folded(initial_state(run), 0, 0), events[:count])
+        _openings.put(key, opened)
+    return opened, events[count:]
 
 
 def fold_from_scratch(run: Run, seq: int | None = None) -> Folded:
-    """The state as of `seq`, folded from the catalog without the cache (replay, checks)."""
-    return _fold_from_scratch(run, seq)
+    """The state as of `seq`, folded from the catalog without the caches, the shared opening's
+    included (replay, checks)."""
+    return _fold_from_scratch(run, seq, shared_opening=False)
 
 
 _cache: LRU[tuple[int, str], Folded] = LRU(CACHE_SIZE)
@@ -109,6 +159,7 @@ _cache: LRU[tuple[int, str], Folded] = LRU(CACHE_SIZE)
 
 def clear_cache() -> None:
     _cache.clear()
+    _openings.clear()
 
 
 def forget(run: Run) -> None:

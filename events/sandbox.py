@@ -82,6 +82,19 @@ def write_session_meta(conn: sqlite3.Connection, meta: Mapping[str, Any]) -> Non
     )
 
 
+def serialise(build: Callable[[sqlite3.Connection], None]) -> bytes:
+    """The database `build(conn)` makes, serialised as the worker takes it."""
+    conn = sqlite3.connect(":memory:", check_same_thread=False)
+    try:
+        build(conn)
+        conn.commit()
+        # An empty database has no page to serialise: the worker starts from an empty one.
+        has_tables = conn.execute("SELECT 1 FROM sqlite_master LIMIT 1").fetchone()
+        return conn.serialize() if has_tables else b""
+    finally:
+        conn.close()
+
+
 def run_eval_sql(
     sql: str,
     build: Callable[[sqlite3.Connection], None],
@@ -89,19 +102,23 @@ def run_eval_sql(
     time_limit_s: float = TIME_LIMIT_S,
 ) -> SqlOutcome:
     """Build the snapshot with `build(conn)`, then run `sql` read-only in a worker; never raises."""
-    conn = sqlite3.connect(":memory:", check_same_thread=False)
+    return run_eval_sql_on(sql, lambda: serialise(build), time_limit_s=time_limit_s)
+
+
+def run_eval_sql_on(
+    sql: str,
+    database: Callable[[], bytes],
+    *,
+    time_limit_s: float = TIME_LIMIT_S,
+) -> SqlOutcome:
+    """Run `sql` read-only in a worker on the serialised database `database()` (one that may
+    have been built before); never raises."""
     try:
-        build(conn)
-        conn.commit()
-        # An empty database has no page to serialise: the worker starts from an empty one.
-        has_tables = conn.execute("SELECT 1 FROM sqlite_master LIMIT 1").fetchone()
-        database = conn.serialize() if has_tables else b""
+        serialised = database()
     except Exception as exc:  # a materialisation bug is a graded failure, not a 500
         return SqlOutcome(False, error=f"could not build the evaluation tables: {exc}")
-    finally:
-        conn.close()
     try:
-        ok, answer = _POOL.run(marshal.dumps((database, sql, time_limit_s)), time_limit_s)
+        ok, answer = _POOL.run(marshal.dumps((serialised, sql, time_limit_s)), time_limit_s)
     except SandboxUnavailable as exc:
         return SqlOutcome(False, error=f"eval_sql not run: {exc}")
     return SqlOutcome(True, value=answer) if ok else SqlOutcome(False, error=answer)

@@ -103,7 +103,7 @@ def fire_due(
     `FireResult.next_index`.
     """
     if reload:
-        run.refresh_from_db(fields=[*CLOCK_FIELDS, "closed_at"])
+        run.reread(*CLOCK_FIELDS, "closed_at")
     if run.closed_at is not None:
         return FireResult()
     wall = wall_now() if wall is None else wall
@@ -115,7 +115,7 @@ def fire_due(
         Run.objects.filter(pk=run.pk, status=RunStatus.RUNNING_AUTO).update(
             status=RunStatus.COMPLETED, sim_time=run.event_timeline_end
         )
-        run.refresh_from_db(fields=["status", "sim_time"])
+        run.reread("status", "sim_time")
     return result
 
 

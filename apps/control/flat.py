@@ -17,7 +17,7 @@ from rest_framework.permissions import AllowAny
 from rest_framework.request import Request
 from rest_framework.response import Response
 
-from apps.control import slot
+from apps.control import accepted_inits, slot
 from apps.control.auth import is_control_authenticated
 from apps.control.parsers import request_data
 from apps.control.serializers import InitPayloadSerializer
@@ -33,7 +33,8 @@ from events.timing import to_wall
 def _status_body(run) -> dict:
     if run is None:
         return {"success": True, "status": "preinit", "simulation_time": 0, "next_event_time": None}
-    snapshot = lifecycle.status_snapshot(run)
+    # Every caller has just read the slot's run or written it (init, advance, play).
+    snapshot = lifecycle.status_snapshot(run, reload=False)
     sf = run.speed_factor
     return {
         "success": True,
@@ -55,13 +56,19 @@ def init(request: Request) -> Response:
         raise lifecycle.LifecycleError(
             f"Wrong state: /init must be called in state 'preinit'. Current: '{current.status}'."
         )
-    payload = InitPayloadSerializer(data=request_data(request))
-    if not payload.is_valid():
-        return Response(_one_line(payload.errors), status=http.HTTP_422_UNPROCESSABLE_ENTITY)
+    init = accepted_inits.accepted(request)
+    if init is None:
+        payload = InitPayloadSerializer(data=request_data(request))
+        if not payload.is_valid():
+            return Response(_one_line(payload.errors), status=http.HTTP_422_UNPROCESSABLE_ENTITY)
+        init = accepted_inits.accept(
+            request,
+            payload.to_spec(),
+            speed_factor=payload.validated_data["speed_factor"],
+            clock_mode=payload.validated_data["clock_mode"],
+        )
     run = slot.create_default_run(
-        payload.to_spec(),
-        speed_factor=payload.validated_data["speed_factor"],
-        clock_mode=payload.validated_data["clock_mode"],
+        init.spec, speed_factor=init.speed_factor, clock_mode=init.clock_mode
     )
     return Response(_status_body(run))
 
