@@ -7,7 +7,8 @@ What varies (`ASPECTS`, all by default; the admin's "Generate variants…" may p
   piecewise-linear warp of the timeline that sends the old condition time to the new one (what
   came before the trigger still comes before it, in the same proportions; waypoints inside a
   preload's payload too); background events are re-timed by the process (bursts, morning
-  peaks, jumps), as many before the trigger as there were;
+  peaks, jumps), as many before the trigger as there were; an ephemeral condition's end
+  (`condition_until`) moves by the same warp as what ends it;
 - distractors — some background items are replaced by other catalog items of the same kind and
   one to three more arrive, preferring near misses: the items that share the most catalog fields
   with the trigger (the right sender with the wrong subject, the same channel, the same
@@ -15,7 +16,8 @@ What varies (`ASPECTS`, all by default; the admin's "Generate variants…" may p
 - phrasing — the prompt reworded (apps.generate.phrasing);
 - trigger — another catalog item of the trigger's kind arrives as the trigger, drawn from its
   closest kin (the same sender, channel, author…); wherever the scenario names the trigger by id
-  (its eval_sql, its solution) the new id takes its place. One that does not meet the condition
+  (its eval_sql, its solution, the event that takes an ephemeral trigger away again) the new id
+  takes its place. One that does not meet the condition
   (the keyword is not in its body) fails the proofs and is discarded.
 
 A withheld family's candidate drops the trigger: it is written as a no-op (no `condition_at`, no
@@ -217,6 +219,11 @@ def compose(
     else:
         if condition is not None:
             document["condition_at"] = target
+        if document.get("condition_until") is not None:
+            # An ephemeral condition ends where its retraction went, moved with the story.
+            document["condition_until"] = _warp(
+                float(document["condition_until"]), anchor, target, end
+            )
         proven = document
     if swapped:
         notes.append(f"The trigger is {swapped[1]} (the template's: {swapped[0]}).")
@@ -248,8 +255,10 @@ def _swap_trigger(template, document, timed, rng, catalog, pool) -> tuple[str, s
     kin = _kin(catalog, template.environment, table[item[0]], item[1], pool[event["type"]])
     new = rng.choice(kin[: 2 * NEAR_MISS_POOL])
     for i, (time, order, entry) in enumerate(timed):
-        if order == template.trigger:
-            timed[i] = (time, order, {**entry, "payload": {item[0]: new}})
+        # The trigger, and what later happens to it (an ephemeral one's retraction), follow it.
+        named = item_of(entry)
+        if order == template.trigger or (named is not None and named[1] == item[1]):
+            timed[i] = (time, order, {**entry, "payload": {named[0] if named else item[0]: new}})
     for key in ("eval_sql", "solution", "contact_rubric"):
         if document.get(key):
             text = json.dumps(document[key])

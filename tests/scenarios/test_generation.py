@@ -155,3 +155,22 @@ def test_bench_refuses_a_scenario_folder_that_is_not_there(tmp_path):
     for subcommand in (["run", "nightly", "--agent", "oracle"], ["validate"]):
         with pytest.raises(CommandError, match=r"--scenarios .*missing: no such folder"):
             call_command("bench", *subcommand, "--scenarios", str(tmp_path / "missing"))
+
+
+def test_an_ephemeral_family_keeps_its_window_around_the_trigger_it_delivers(tmp_path):
+    """The trigger moved (and swapped for a kin item): what takes it away again moves and
+    follows it, and `condition_until` says when that now is."""
+    templates = tmp_path / "templates"
+    for source in ("microchat/unsent-build-ephemeral-active.json",
+                   "microdin/backend-fit-ephemeral-subjective-absolute-active.json"):  # fmt: skip
+        (templates / source).parent.mkdir(parents=True, exist_ok=True)
+        (templates / source).write_text((OUR_SCENARIOS / source).read_text())
+    generate(tmp_path / "out", "--seed", "5", "--count", "6", templates=templates)
+    written = [json.loads(p.read_text()) for p in sorted((tmp_path / "out").glob("*/*.json"))]
+    assert written
+    for scenario in written:
+        events = scenario["events"]
+        (trigger,) = [e for e in events if e["time"] == scenario["condition_at"]]
+        item = next(iter(trigger["payload"].values()))
+        taken = [e for e in events if e["time"] > trigger["time"] and item in e["payload"].values()]
+        assert [e["time"] for e in taken] == [scenario["condition_until"]], scenario["id"]
