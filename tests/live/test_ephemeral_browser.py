@@ -22,9 +22,14 @@ pytestmark = pytest.mark.browser
 
 def opened(live_site, browser, scenario: str, path: str) -> BrowserStory:
     story = BrowserStory.start(live_site, browser, scenario, open_task=False)
+    go_to(story, live_site, path)
+    return story
+
+
+def go_to(story: BrowserStory, live_site: str, path: str) -> None:
+    """The run's page `path` (below its root), watched from then on for a reload."""
     story.page.goto(f"{live_site}/r/{story.run['token']}/{path}")
     story.watch_for_reload()
-    return story
 
 
 def held_then_gone(story: BrowserStory, region, at: float, shown: str, until: float, gone: str):
@@ -61,8 +66,7 @@ def test_a_recalled_mail_leaves_the_list_and_its_open_reading_pane_says_so(live_
     story.advance(288.4)
     expect(row).to_have_count(1)
     story.assert_not_reloaded()
-    story.page.goto(f"{live_site}/r/{story.run['token']}/micromail/?folder=inbox&email=base-38")
-    story.watch_for_reload()
+    go_to(story, live_site, "micromail/?folder=inbox&email=base-38")
     held_then_gone(
         story,
         story.page.locator("#reading-pane"),
@@ -101,10 +105,7 @@ def test_an_expired_story_just_leaves_the_tray(live_site, browser):
 def test_an_open_story_that_expires_says_it_is_unavailable(live_site, browser):
     story = opened(live_site, browser, "microgram-first-story-whose-ephemeral-active", "microgram/")
     story.advance(61.2)
-    story.page.goto(
-        f"{live_site}/r/{story.run['token']}/microgram/stories/story-fadeyemi-record-haul/"
-    )
-    story.watch_for_reload()
+    go_to(story, live_site, "microgram/stories/story-fadeyemi-record-haul/")
     frame = story.page.locator("#story-frame")
     held_then_gone(story, frame, 61.2, "fadeyemi", 151.2, "This story is unavailable.")
     expect(frame.get_by_role("img")).to_have_count(0)
@@ -116,8 +117,7 @@ def test_a_video_made_private_turns_its_open_watch_page_unavailable(live_site, b
     story.advance(382.5)
     expect(card).to_be_visible()
     story.assert_not_reloaded()
-    story.page.goto(f"{live_site}/r/{story.run['token']}/microtube/watch?v=vid-film-02")
-    story.watch_for_reload()
+    go_to(story, live_site, "microtube/watch?v=vid-film-02")
     held_then_gone(
         story,
         story.page.locator("#watch-primary"),
@@ -134,8 +134,7 @@ def test_a_track_made_unavailable_says_so_on_its_open_page(live_site, browser):
     story.advance(327.8)
     expect(story.page.locator("#trending")).to_contain_text("Secret Stations")
     story.assert_not_reloaded()
-    story.page.goto(f"{live_site}/r/{story.run['token']}/microfy/track/track-090")
-    story.watch_for_reload()
+    go_to(story, live_site, "microfy/track/track-090")
     held_then_gone(
         story,
         story.page.locator("#track-actions"),
@@ -157,8 +156,7 @@ def test_a_withdrawn_preprint_leaves_the_recommendations_and_its_open_page_says_
     story.advance(327.4)
     expect(entry).to_have_count(1)
     story.assert_not_reloaded()
-    story.page.goto(f"{live_site}/r/{story.run['token']}/microscholar/papers/paper-046")
-    story.watch_for_reload()
+    go_to(story, live_site, "microscholar/papers/paper-046")
     paper = story.page.locator("#paper")
     held_then_gone(
         story,
@@ -182,8 +180,7 @@ def test_a_closed_job_shows_linkedins_notice_in_place_of_apply(live_site, browse
     card = story.page.locator("#job-list li.job-card", has_text="Product Manager, Integrations")
     story.advance(61.8)
     expect(card).to_have_count(1)
-    story.page.goto(f"{live_site}/r/{story.run['token']}/microdin/jobs/?job=job-01")
-    story.watch_for_reload()
+    go_to(story, live_site, "microdin/jobs/?job=job-01")
     detail = story.page.locator("#job-detail")
     expect(detail.get_by_role("button", name="Apply")).to_have_count(1)
     held_then_gone(
@@ -202,8 +199,7 @@ def test_a_pull_request_someone_else_closed_turns_closed_without_a_comment_box(l
     story = opened(live_site, browser, "microhub-board-review-ephemeral-active", "microhub/pulls/")
     story.advance(226.5)
     expect(story.page.locator("#pr-list")).to_contain_text("perf: virtualise board columns")
-    story.page.goto(f"{live_site}/r/{story.run['token']}/microhub/pulls/pr5")
-    story.watch_for_reload()
+    go_to(story, live_site, "microhub/pulls/pr5")
     held_then_gone(story, story.page.locator("#pr-state"), 226.5, "Open", 331.0, "Closed")
     expect(story.page.locator("#pr-merge")).to_contain_text("Closed with unmerged commits")
     expect(story.page.get_by_role("form", name="Add a comment")).to_have_count(0)
@@ -219,8 +215,7 @@ def test_a_cancelled_invitation_leaves_the_calendar_and_its_open_details_say_so(
     invitations = story.page.locator("#new-invitations")
     story.advance(137.4)
     expect(invitations).to_contain_text("DevSummit West speaker photos")
-    story.page.goto(f"{live_site}/r/{story.run['token']}/microlendar/?event=slot-01")
-    story.watch_for_reload()
+    go_to(story, live_site, "microlendar/?event=slot-01")
     held_then_gone(
         story,
         story.page.locator("#event-details"),
