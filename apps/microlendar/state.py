@@ -17,6 +17,7 @@ from datetime import date, timedelta
 from types import MappingProxyType
 from typing import Any, ClassVar
 
+from apps.kit.retractions import is_gone, still_there
 from apps.kit.state import SelfUserState, with_items
 from apps.kit.streaming import no_items
 from apps.microlendar import times
@@ -115,13 +116,13 @@ class Agenda(SelfUserState):
     def has_event(self, event_id: str) -> bool:
         """Delivered, not deleted and not cancelled: what the calendar shows."""
         state = self.event_states.get(event_id)
-        return state is not None and not state.deleted and self.events[event_id].gone_at is None
+        return state is not None and not state.deleted and still_there(self.events, event_id)
 
     def cancelled(self, event_id: str) -> bool:
         """Delivered, then cancelled by its organiser: gone from the calendar, and its details,
         if open, say so."""
         event = self.events.get(event_id)
-        return event is not None and event.gone_at is not None
+        return event is not None and is_gone(event)
 
     def has_task(self, task_id: str) -> bool:
         state = self.task_states.get(task_id)
