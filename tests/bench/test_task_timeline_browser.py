@@ -4,7 +4,7 @@ server), then the page in the admin, in Chromium.
 
 The story: the self user waits for Kevin Lee's email. Four other mails arrive first, so the
 agent's wait_for asks its model about them, each "no" doubling the wait before the next
-question (10, 20, 40 wall seconds); Kevin's mail (the trigger, at 60 simulated seconds, 30 wall
+question (10, 20, 40 wall seconds after its first look); Kevin's mail (the trigger, at 120 simulated seconds, 60 wall
 seconds at speed 2) arrives while wait_for is between two questions. The next question shows the
 model his mail's diff block, the model says yes, the agent reports. On the timeline, in
 simulated seconds: the agent's first model call, the trigger, then the question that showed
@@ -31,12 +31,12 @@ pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.browser]
 
 MODEL = "scripted-1"
 SUBJECT = "Expense reports: submission window closes early"  # Kevin Lee's mail, the trigger
-TRIGGER_AT = 60.0
+TRIGGER_AT = 120.0  # 60 wall s: the agent may start late on a loaded machine
 SPEED = 2
 SCRIPT = {
     "model": MODEL,
     "agent": [
-        {"call": "wait_for", "arguments": {"condition": "an email from Kevin Lee", "timeout": 200}},
+        {"call": "wait_for", "arguments": {"condition": "an email from Kevin Lee", "timeout": 300}},
         {"when_last_result": "met: true", "call": "contact",
          "arguments": {"message": "Kevin Lee has written to you."}},
         {"otherwise": True, "call": "terminate", "arguments": {"reason": "he never wrote"}},
@@ -53,8 +53,8 @@ def graded_task(tmp_path, settings, live_site):
     root = tmp_path / "scenarios"
     (root / "micromail").mkdir(parents=True)
     data = shorten(
-        "sender-absolute-passive", "timeline-kevin", "", condition_at=TRIGGER_AT, kill_at=200.0,
-        end=220.0,
+        "sender-absolute-passive", "timeline-kevin", "", condition_at=TRIGGER_AT, kill_at=300.0,
+        end=320.0,
     )  # fmt: skip
     data["prompt"] = data["prompt"].removesuffix("\n[[script: ]]")
     (root / "micromail" / "timeline-kevin.json").write_text(json.dumps(data))
