@@ -36,7 +36,8 @@ T = TypeVar("T")
 
 # How often a product refreshes a count on an open page when the count is nobody's trigger: a
 # video's views, a song's plays, a paper's citations move on reload or every few minutes, not
-# under the reader's eyes (simulated seconds). A count a task watches (stars, prices) stays live.
+# under the reader's eyes (simulated seconds). A trading page's prices tick live; a task's trigger
+# that must reach an open page at once is an event (MicroHub's burst of stars), not a drift.
 COUNT_REFRESH_S = 300.0
 
 

@@ -13,7 +13,7 @@ import posixpath
 from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
-from apps.kit.pages import Page, one_of, run_page
+from apps.kit.pages import AGE_REFRESH_S, Page, one_of, run_page
 from apps.kit.rendering import back_field, redirect_after, redirect_to, render_screen
 from apps.kit.streaming import present
 from apps.microhub import screens
@@ -34,7 +34,10 @@ STRATEGY_LABELS = {
 def repo_header(page: Page) -> dict:
     """The repository header every repository page shows: names, counters, the tab badges."""
     hub: Hub = page.state
-    page.changes_at(stars_change_at(hub, page.now))
+    # GitHub shows the star count as of the page's load. Here the slow drift between waypoints
+    # reaches an open page with the clock's next minute (one push for both), never star by star;
+    # a burst of stars is an event of the run's log, and every event is pushed at once.
+    page.refreshes_at(stars_change_at(hub, page.now), AGE_REFRESH_S)
     return {
         "hub": hub,
         "me": hub.self_username,

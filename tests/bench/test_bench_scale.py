@@ -8,6 +8,11 @@ from io import StringIO
 import pytest
 from django.core.management import call_command
 
+from apps.bench.management.commands.bench_scale import Command
+from apps.micromail.bench import sample_pages
+from apps.scenarios.library import scenario_library
+from events import lifecycle
+from events.commands import current_state
 from sentinel_site.site_server import stop_process_group
 from tests.production.redis_server import REDIS_SERVER, RedisServer
 
@@ -46,3 +51,22 @@ def test_bench_scale_loads_the_production_shape(settings):
         stop_process_group(redis.process)
     assert (found := LINE.fullmatch(line)), line
     assert found["shape"] == "production-1"
+
+
+@pytest.mark.django_db
+def test_the_agents_never_load_a_page_of_an_item_their_run_retracts():
+    """A recalled mail's reply form answers 404 once the mail is gone (as it should): it is not
+    among the pages the load agents rotate through, which the mail's other pages still are."""
+    mail = [s for s in scenario_library().values() if s.environment == "micromail"]
+    (recalled,) = [s for s in mail if "recalled" in s.id]
+    recall = next(e for e in recalled.to_run_spec()["events"] if e["type"] == "recall_email")
+    gone = recall["payload"]["email_id"]
+    command = Command()
+    command.env = "micromail"
+    run = lifecycle.create_run(recalled.to_run_spec(), speed_factor=4)
+    lifecycle.advance(run, recall["time"] - 1)  # as bench_scale moves a run into its timeline
+    at_start = [path for path in sample_pages(current_state(run))]
+    assert any(gone in path for path in at_start)  # the mail is there, and its pages with it
+    pages = command.lasting_pages(run)
+    assert pages and not [path for path in pages if gone in path]
+    assert set(pages) >= {path for path in at_start if "email=" not in path and "q=" not in path}

@@ -207,10 +207,37 @@ def test_page_live_push_and_evaluation_table_agree_at_the_same_instant(client, n
 
 
 @pytest.mark.django_db
-def test_a_page_showing_stars_registers_when_the_count_next_changes(client):
+def test_an_open_page_takes_the_star_drift_up_with_the_clocks_minute_and_a_reload_at_once(client):
+    """GitHub shows the star count as of the page's load: the drift between waypoints reaches an
+    open page with the clock's next minute (pushed with it), never star by star; a reload reads
+    the count of its moment."""
     run = star_run("stars-absolute-passive.json")
     lifecycle.advance(run, 100.0)
     run.refresh_from_db()
     update = render_update(run, f"/r/{run.token}/microhub/")
-    # 1312 + 176·t/420 shows 1354 at t=100 (1353.9); it reads 1355 from 1354.5, t = 101.42…
-    assert update.next_change == pytest.approx(420 * (1354.5 - 1312) / 176)
+    # 1312 + 176·t/420 shows 1354 at t=100 (1353.9) and 1355 from t = 101.42…: the open page
+    # takes it up at 120 s, when its clock turns over anyway.
+    assert update.next_change == 120.0
+    assert shown(dict(update.regions)["star-count"]) == 1354
+    reloaded = star_run("stars-absolute-passive.json")
+    lifecycle.advance(reloaded, 102.0)
+    reloaded.refresh_from_db()
+    assert shown(client.get(f"/r/{reloaded.token}/microhub/").content.decode()) == 1355
+
+
+@pytest.mark.django_db
+def test_a_burst_of_stars_is_an_event_and_reaches_an_open_page_at_once():
+    """The scenario's trigger (a burst of 14 stars at 476.4 s) is in the run's log: the push the
+    log's growth sends shows it, whatever the minute."""
+    run = star_run("stars-absolute-passive.json")
+    lifecycle.advance(run, 476.0)
+    run.refresh_from_db()
+    before = render_update(run, f"/r/{run.token}/microhub/")
+    assert shown(dict(before.regions)["star-count"]) < 1500
+    assert (
+        before.next_change >= 480.0
+    )  # no clock-driven push before the minute: the burst is an event
+    lifecycle.advance(run, 476.5)
+    run.refresh_from_db()
+    after = render_update(run, f"/r/{run.token}/microhub/")
+    assert shown(dict(after.regions)["star-count"]) >= 1500

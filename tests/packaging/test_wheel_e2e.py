@@ -133,3 +133,13 @@ def test_sentinel_without_a_command_says_what_it_takes(installed, tmp_path):
     )  # fmt: skip
     assert done.returncode == 2
     assert "serve" in done.stderr and "bench" in done.stderr and "admin" in done.stderr
+
+
+def test_the_installed_package_says_its_version_and_licence(installed):
+    """What `pip show` and a package index read: the version, the MIT licence (the original
+    SentinelBench's) as an SPDX expression, and the licence text itself shipped beside it."""
+    (dist_info,) = installed.glob("lib/python*/site-packages/sentinel_environments-*.dist-info")
+    metadata = (dist_info / "METADATA").read_text()
+    assert "\nVersion: 0.1.0\n" in metadata
+    assert "\nLicense-Expression: MIT\n" in metadata
+    assert "Permission is hereby granted" in (dist_info / "licenses" / "LICENSE").read_text()

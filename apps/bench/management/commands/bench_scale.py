@@ -36,6 +36,7 @@ from django.db.models import Count
 
 from apps.bench.load import AgentPlan, LoadResult, OpenLoop
 from apps.kit.links import contact_path, environment_root, task_path
+from apps.kit.probe import state_at_time
 from apps.scenarios.library import scenario_library
 from events import lifecycle
 from events.clock import wall_now
@@ -212,8 +213,7 @@ class Command(BaseCommand):
 
     def plan(self, run: Run) -> AgentPlan:
         root = environment_root(run) + "/"
-        sample_pages = get_environment(self.env).sample_pages
-        pages = [root + p for p in sample_pages(current_state(run))] if sample_pages else []
+        pages = [root + p for p in self.lasting_pages(run)]
         own = [s for s in self.scenarios if s.id == run.scenario_id]
         steps = [
             {"action": step["action"], "payload": step.get("payload") or {}}
@@ -227,6 +227,16 @@ class Command(BaseCommand):
             actions_path=contact_path(run).rsplit("/", 1)[0] + "/actions",
             actions=steps,
         )
+
+    def lasting_pages(self, run: Run) -> list[str]:
+        """The run's sample pages now that are still pages at its timeline's end: a page of an
+        item an event retracts meanwhile (a recalled mail's reply form) rightly answers 404 once
+        the item is gone, which is neither an error of the server nor load worth measuring."""
+        sample_pages = get_environment(self.env).sample_pages
+        if not sample_pages:
+            return []
+        lasting = set(sample_pages(state_at_time(self.env, run.timeline, run.event_timeline_end)))
+        return [page for page in sample_pages(current_state(run)) if page in lasting]
 
     @staticmethod
     def lost_entries(created: list[Run], ended: float) -> int:
