@@ -106,7 +106,7 @@ def test_an_expired_story_leaves_the_tray_and_the_count_and_can_no_longer_be_wat
     assert not opens_story.applies(gram, NEW_STORY)
 
 
-def test_a_video_made_private_leaves_every_list_and_is_refused_to_a_like():
+def test_a_video_made_private_leaves_every_list_but_playlists_and_is_refused_to_a_like():
     tube = TUBE.arrive(TUBE.preloaded(), "new_video", {"video_id": DESK_SETUP}, at=120.0)
     assert DESK_SETUP in [c.video.id for c in tube_screens.home(tube)]
     tube = TUBE.act(tube, "save_video", {"video_id": DESK_SETUP}, at=130.0)
@@ -115,9 +115,10 @@ def test_a_video_made_private_leaves_every_list_and_is_refused_to_a_like():
         tube_screens.home(tube),
         tube_screens.subscriptions(tube),
         tube_screens.channel_videos(tube, "ch-pixel-forge"),
-        tube_screens.marked(tube, "saved"),
     ):
         assert DESK_SETUP not in [c.video.id for c in cards]
+    later = tube_screens.marked(tube, "saved")  # its row kept, as "[Private video]"
+    assert [c.private for c in later if c.video.id == DESK_SETUP] == [True]
     assert window_of(MICROTUBE, tube, "videos", DESK_SETUP) == (120.0, 300.0)
     with pytest.raises(ActionRejected, match="no video"):
         TUBE.act(tube, "like_video", {"video_id": DESK_SETUP}, at=310.0)

@@ -2,8 +2,10 @@
 
 One table, `microlendar/events.jsonl`, holds events and tasks alike (`is_task` tells them apart),
 as upstream's does. A record: id, title, description, start_time / end_time (ISO), category
-(Work, Family, Personal…), is_task, is_completed, attendees (user ids), location, order. Our
-catalog may add `due_date` (YYYY-MM-DD) to tasks; upstream's tasks have none.
+(Work, Family, Personal…), is_task, is_completed, attendees (user ids), location, order,
+owner_id (whose calendar: always the self user). Our catalog may add `due_date` (YYYY-MM-DD) to
+tasks, and `organizer` (a user id, or the address of someone outside the company) to an event
+someone else invited the user to; upstream has neither: all its events are the user's own.
 """
 
 from __future__ import annotations
@@ -38,6 +40,17 @@ def attendee(catalog: Any, user_id: str) -> Attendee | None:
     )
 
 
+def organizer(catalog: Any, record: dict) -> Attendee | None:
+    """Who invited the user to the event; None when it is their own. `owner_id` is the calendar
+    the record is on (always the self user's), not who organises the event."""
+    who = str(record.get("organizer") or "")
+    self_id = (getattr(catalog, "self_user", None) or {}).get("id")
+    if not who or who == self_id:
+        return None
+    # Someone not among the users (a school committee, a vendor): Google shows the bare address.
+    return attendee(catalog, who) or Attendee(id=who, name=who, email=who)
+
+
 def catalog_event(catalog: Any, event_id: str) -> CalendarEvent | None:
     """The event `event_id`; None if the catalog lacks it, it is a task or has no start time."""
     record = catalog.table(ENVIRONMENT, TABLE).get(event_id)
@@ -63,6 +76,7 @@ def catalog_event(catalog: Any, event_id: str) -> CalendarEvent | None:
         description=str(record.get("description") or ""),
         location=str(record.get("location") or ""),
         attendees=tuple(p for p in people if p is not None),
+        organizer=organizer(catalog, record),
         order=int(record.get("order") or 0),
     )
 

@@ -55,6 +55,8 @@ class CalendarEvent:
     description: str = ""
     location: str = ""
     attendees: tuple[Attendee, ...] = ()
+    # Who invited the user (the catalog's `organizer`); None: the user organises it themselves.
+    organizer: Attendee | None = None
     user_created: bool = False
     order: int = 0  # the catalog's display order, for events starting at the same minute
     arrived_at: float = 0.0  # simulated second it reached the calendar (0: the starting world)
@@ -76,6 +78,14 @@ class CalendarEvent:
     def overlaps(self, other: CalendarEvent) -> bool:
         """Same day and [start, end) minute ranges intersect (upstream's conflict rule)."""
         return self.day == other.day and self.start < other.end and other.start < self.end
+
+
+@dataclass(frozen=True)
+class Guest:
+    """A row of an event's guest list: who, and what Google shows under the name."""
+
+    person: Attendee
+    note: str  # "Organizer", the user's answer to an invitation, or the job title
 
 
 @dataclass(frozen=True)
@@ -124,6 +134,15 @@ class Agenda(SelfUserState):
         event = self.events.get(event_id)
         return event is not None and is_gone(event)
 
+    def me_as_guest(self) -> Attendee:
+        return Attendee(id=self.self_id, name=self.self_name, email=self.self_email)
+
+    def response(self, event_id: str) -> str:
+        """The user's answer to an invitation. There is no reply button: one already on the
+        calendar when the run starts was accepted; one that came in during the run awaits it."""
+        state = self.event_states.get(event_id)
+        return "Awaiting response" if state and state.arrived_during_run else "Accepted"
+
     def has_task(self, task_id: str) -> bool:
         state = self.task_states.get(task_id)
         return state is not None and not state.deleted
@@ -155,6 +174,19 @@ def with_created(agenda: Agenda, kind: str, item: CalendarEvent | Task, state: A
 def live_events(agenda: Agenda) -> list[CalendarEvent]:
     """Every event not deleted nor cancelled, in delivery order."""
     return [e for e in agenda.events.values() if agenda.has_event(e.id)]
+
+
+def guests(agenda: Agenda, event: CalendarEvent) -> tuple[Guest, ...]:
+    """The guest list as Google Calendar's event details give it: the organiser first, then the
+    user (with their answer, when someone else invited them), then the other attendees."""
+    me = agenda.me_as_guest()
+    if event.organizer is None:
+        first = (Guest(me, "Organizer"),)
+    else:
+        first = (Guest(event.organizer, "Organizer"), Guest(me, agenda.response(event.id)))
+    listed = {guest.person.id for guest in first}
+    others = (Guest(p, p.job_title) for p in event.attendees if p.id not in listed)
+    return (*first, *others)
 
 
 def live_tasks(agenda: Agenda) -> list[tuple[Task, TaskState]]:

@@ -21,7 +21,14 @@ from apps.kit.rendering import redirect_after, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, EVENT_FIELDS, existing_event
 from apps.microlendar.query import VIEW_TITLES, VIEWS, CalendarQuery
-from apps.microlendar.state import CALENDAR_COLORS, CALENDARS, Agenda, CalendarEvent, conflicts_with
+from apps.microlendar.state import (
+    CALENDAR_COLORS,
+    CALENDARS,
+    Agenda,
+    CalendarEvent,
+    conflicts_with,
+    guests,
+)
 from events.registry import ActionRejected
 
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
@@ -85,6 +92,7 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
         screen=screen,
         now_top=screens.now_line_top(context["moment"]),
         details=agenda.events[query.event] if query.event else None,
+        guests=guests(agenda, agenda.events[query.event]) if query.event else (),
         conflicts=conflicts_with(agenda, agenda.events[query.event])
         if query.event and agenda.has_event(query.event)
         else (),

@@ -7,8 +7,8 @@ Scenario events (SentinelBench format):
 - `new_paper {paper_id}` (and its original twin `inject_target_paper`) — a paper is indexed.
 - `new_alert {alert_id}` — an alert arrives, unread.
 - `withdraw_paper {paper_id}` — its authors withdraw a preprint (apps.kit.retractions): it leaves
-  results, recommendations, profiles and the library; its page says it was withdrawn, as arXiv's
-  does, and it can no longer be saved or cited.
+  results, recommendations, profiles and the library; its page (an alert about it still links
+  there) says it was withdrawn, as arXiv's does, and it can no longer be saved or cited.
 
 Unlike the original (a KeyError that aborted the event), an id missing from the catalog is
 skipped, as in every other environment; scenario validation names it to the author. A paper

@@ -368,8 +368,10 @@ def alerts_screen(scholar: Scholar, query: AlertsQuery, root: str) -> AlertsScre
             alert,
             scholar.alert_read[alert.id],
             ALERT_ICONS.get(alert.type, "bell"),
+            # A paper withdrawn since keeps its link, as arXiv keeps the withdrawn paper's page
+            # (which says so); one not indexed yet has no page to lead to.
             paper_url(root, alert.related_paper_id)
-            if index.is_listed(scholar, alert.related_paper_id)
+            if alert.related_paper_id in scholar.papers
             else None,
         )
         for _, alert in newest

@@ -118,8 +118,9 @@ EVENT_TYPES = event_types(
         "video_id",
         "videos",
         "videos",
-        help="Its uploader makes a video private: it leaves every list; its watch page says "
-        '"Video unavailable. This video is private."',
+        help="Its uploader makes a video private: it leaves every list but playlists, where it "
+        'stays as "[Private video]"; its watch page says "Video unavailable. This video is '
+        'private."',
     ),
     arrival(
         "new_comment",

@@ -10,7 +10,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from apps.kit.derived import per_state
-from apps.kit.retractions import present
+from apps.kit.retractions import is_gone, present
 from apps.microtube.state import (
     LIKED_VIDEOS,
     WATCH_LATER,
@@ -32,13 +32,23 @@ class Card:
     video: Video
     channel: Channel | None
 
+    @property
+    def private(self) -> bool:
+        """Made private by its uploader: a playlist shows it as "[Private video]"."""
+        return is_gone(self.video)
+
 
 @dataclass(frozen=True)
 class PlaylistView:
     id: str
     name: str
-    cards: tuple[Card, ...]
+    cards: tuple[Card, ...]  # private videos included: YouTube keeps their rows and counts them
     built_in: bool = False
+
+    @property
+    def cover(self) -> Video | None:
+        """The thumbnail heading the playlist: its first video still public."""
+        return next((c.video for c in self.cards if not c.private), None)
 
 
 def _card(tube: Tube, video: Video) -> Card:
@@ -46,8 +56,8 @@ def _card(tube: Tube, video: Video) -> Card:
 
 
 def _cards(tube: Tube, videos: Sequence[Video]) -> tuple[Card, ...]:
-    """The cards of `videos` still public: a video its uploader made private leaves every list
-    it was in (Home, Subscriptions, the channel, search, history, playlists)."""
+    """The cards of `videos` still public: a video its uploader made private leaves the lists
+    it was in (Home, Subscriptions, the channel, search, history), playlists aside."""
     return tuple(_card(tube, v) for v in present(videos))
 
 
@@ -199,9 +209,16 @@ def notification_target(tube: Tube, notification_id: str) -> str:
     return ""
 
 
+def _playlist_cards(tube: Tube, videos: Sequence[Video]) -> tuple[Card, ...]:
+    """A playlist's cards: unlike every other list, a playlist keeps the row of a video made
+    private since, as YouTube does ("[Private video]", counted in the playlist's videos)."""
+    return tuple(_card(tube, v) for v in videos)
+
+
 def marked(tube: Tube, flag: str) -> tuple[Card, ...]:
     """The videos whose state has `flag` set (liked, saved for later), in arrival order."""
-    return _cards(tube, [tube.videos[v] for v, s in tube.video_states.items() if getattr(s, flag)])
+    flagged = [tube.videos[v] for v, s in tube.video_states.items() if getattr(s, flag)]
+    return _playlist_cards(tube, flagged)
 
 
 @per_state()
@@ -213,7 +230,9 @@ def playlists(tube: Tube) -> tuple[PlaylistView, ...]:
     )
     own = tuple(
         PlaylistView(
-            p.id, p.name, _cards(tube, [tube.videos[v] for v in p.video_ids if v in tube.videos])
+            p.id,
+            p.name,
+            _playlist_cards(tube, [tube.videos[v] for v in p.video_ids if v in tube.videos]),
         )
         for p in tube.playlists.values()
     )

@@ -4,8 +4,9 @@ page never reloading — MicroChat's message deleted by its sender (Teams' notic
 MicroMail's recalled mail (out of the list; the open reading pane says so), MicroHood's dip
 (the price below the level, then recovered), MicroGram's expired story (out of the tray; the open
 viewer says it is unavailable), MicroTube's video made private (its open watch page turns
-"Video unavailable"), MicroFy's track made unavailable (its open page says so), MicroScholar's
-preprint withdrawn by its authors (out of the recommendations; its open page says so),
+"Video unavailable"; an open playlist keeps its row as "[Private video]"), MicroFy's track
+made unavailable (its open page says so), MicroScholar's preprint withdrawn by its authors
+(out of the recommendations; its open page says so),
 MicroDin's job closed to applications (LinkedIn's "No longer accepting applications" in
 place of Apply), MicroHub's pull request someone else closed (Closed, no comment box),
 MicroLendar's invitation its organiser cancelled (off the calendar; its open details say so)."""
@@ -127,6 +128,26 @@ def test_a_video_made_private_turns_its_open_watch_page_unavailable(live_site, b
         "This video is private.",
     )
     expect(story.page.get_by_role("button", name="Save to Watch later")).to_have_count(0)
+
+
+def test_a_saved_video_made_private_stays_in_the_open_playlist_as_a_private_video(
+    live_site, browser
+):
+    story = opened(live_site, browser, "microtube-pulled-upload-ephemeral-active", "microtube/")
+    story.advance(382.5)
+    story.page.get_by_role("link", name="Developing Colour Film at Home").first.click()
+    story.page.get_by_role("button", name="Save to Watch later").click()
+    expect(story.page.get_by_role("button", name="Remove from Watch later")).to_be_visible()
+    go_to(story, live_site, "microtube/playlist?list=WL")
+    row = story.page.locator("#playlist-videos article").first
+    expect(row).to_contain_text("Developing Colour Film at Home")
+    story.advance(472.5)
+    expect(row).to_have_attribute("aria-label", "[Private video]")
+    story.assert_not_reloaded()
+    expect(story.page.locator("#playlist-videos")).not_to_contain_text("Developing Colour Film")
+    expect(story.page.locator(".yt-playlist-hero")).to_contain_text("1 video")  # still counted
+    row.get_by_role("link", name="[Private video]").click()
+    expect(story.page.locator("#watch-primary")).to_contain_text("This video is private.")
 
 
 def test_a_track_made_unavailable_says_so_on_its_open_page(live_site, browser):

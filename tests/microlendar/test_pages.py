@@ -140,3 +140,32 @@ def test_deleting_an_event_closes_it(browser, cal_url):
     response = browser.post(cal_url("events/cf-01/delete"), {"back": "view=week&event=cf-01"})
     assert response["Location"].endswith("?view=week")
     assert browser.get(cal_url("?event=cf-01")).status_code == 404
+
+
+def guest_list(page: str) -> list[tuple[str, str]]:
+    """(name, what is written under it) per row of the open event's guest list."""
+    rows = re.search(r'<ul aria-label="Guests">(.*?)</ul>', page, re.S)
+    assert rows, "no guest list"
+    return re.findall(r"<span[^>]*>([^<]+)<small>([^<]*)</small>", rows.group(1))
+
+
+def test_an_invitation_names_whoever_sent_it_as_organizer_and_me_as_a_guest_awaiting(
+    browser, cal_url, calendar_run
+):
+    lifecycle.advance(calendar_run, LATE_AT)
+    page = html(browser.get(cal_url(f"?view=day&event={LATE_EVENT}")))
+    assert guest_list(page) == [
+        ("Hana Sato", "Organizer"),
+        ("Chris Taylor", "Awaiting response"),
+    ]
+    assert "2 guests" in page and 'title="hsato@mymicromail.com"' in page
+
+
+def test_an_invitation_there_from_the_start_was_accepted_and_my_own_event_is_mine(browser, cal_url):
+    interview = html(browser.get(cal_url("?view=day&event=td-04")))
+    assert guest_list(interview) == [
+        ("Declan Rourke", "Organizer"),
+        ("Chris Taylor", "Accepted"),
+    ]
+    lunch = html(browser.get(cal_url("?view=day&event=td-03")))
+    assert guest_list(lunch)[0] == ("Chris Taylor", "Organizer")

@@ -166,3 +166,21 @@ def test_created_tasks_count_with_catalog_tasks_and_deleted_ones_do_not():
     ]
     assert agenda_state.task_count(agenda) == 3
     assert conn.execute("SELECT dueDate FROM tasks WHERE id='tk-01'").fetchone() == ("2025-09-19",)
+
+
+def test_an_invitation_from_outside_the_company_names_its_organizer_by_address():
+    agenda = CAST.arrive(preloaded(), "new_event", {"event_id": "clash-04"})
+    bake_sale = agenda.events["clash-04"]  # from the school's parents' committee
+    assert bake_sale.organizer is not None
+    assert bake_sale.organizer.name == bake_sale.organizer.email == "bakesale@rosewoodparents.org"
+    assert [(g.person.name, g.note) for g in agenda_state.guests(agenda, bake_sale)] == [
+        ("bakesale@rosewoodparents.org", "Organizer"),
+        ("Chris Taylor", "Awaiting response"),
+    ]
+
+
+def test_an_event_of_the_users_own_names_them_organizer_and_lists_the_attendees_after():
+    agenda = preloaded()
+    guests = agenda_state.guests(agenda, agenda.events["td-01"])  # the standup Chris runs
+    assert guests[0].person.name == "Chris Taylor" and guests[0].note == "Organizer"
+    assert [g.person.name for g in guests[1:]] == [a.name for a in agenda.events["td-01"].attendees]

@@ -13,7 +13,7 @@ from apps.scenarios.format import load_scenario_file
 from events import lifecycle
 from events.commands import current_state
 from events.models import ClockMode, Event, EventKind
-from tests.microscholar.cast import TARGET
+from tests.microscholar.cast import CAST, TARGET
 
 pytestmark = pytest.mark.django_db
 
@@ -128,3 +128,21 @@ def test_a_withdrawn_preprint_says_so_and_can_no_longer_be_saved_cited_or_export
     response = client.post(root + "library/save", {"paper_id": "paper-046", "back": ""})
     assert response.status_code == 404
     assert actions(run) == []  # opening its Cite page cited nothing
+
+
+def test_an_alert_about_a_preprint_withdrawn_since_still_leads_to_its_page_which_says_so(client):
+    offline_rl, its_alert = "paper-047", "alert-03"  # "Offline Reinforcement Learning for…"
+    run = CAST.start(
+        events=[
+            {"time": 0.0, "type": "preload_papers", "payload": {"paper_ids": [offline_rl]}},
+            {"time": 5.0, "type": "new_alert", "payload": {"alert_id": its_alert}},
+            {"time": 8.0, "type": "withdraw_paper", "payload": {"paper_id": offline_rl}},
+        ]
+    )
+    root = f"/r/{run.token}/microscholar/"
+    lifecycle.advance(run, 8.0)
+    alerts = client.get(root + "alerts").content.decode()
+    assert "Offline Reinforcement Learning for Notification Timing" in alerts  # the alert's text
+    assert f'<a href="{root}papers/{offline_rl}">View article</a>' in alerts
+    paper = client.get(f"{root}papers/{offline_rl}").content.decode()
+    assert "This paper has been withdrawn by its authors." in paper

@@ -7,7 +7,9 @@ from django.test import Client
 from apps.kit.live import render_update
 from events import lifecycle
 from events.commands import current_state
-from tests.microtube.cast import DESK_SETUP, UPLOAD_AT, WALKTHROUGH
+from tests.microtube.cast import CAST, DESK_SETUP, UPLOAD_AT, WALKTHROUGH
+
+REEL = "vid-reel-01"  # Reel Talk's, public throughout
 
 
 def test_home_shows_cards_with_channel_views_age_and_the_bell_badge(tube_url):
@@ -92,6 +94,37 @@ def test_saving_to_watch_later_and_a_new_playlist(tube_run, tube_url):
     assert "Created playlist Strategy night" in created
     assert current_state(tube_run).playlists["pl-user-1"].video_ids == (WALKTHROUGH,)
     assert "Strategy night" in browser.get(tube_url("feed/playlists")).content.decode()
+
+
+def test_a_video_made_private_keeps_its_row_in_a_playlist_as_youtubes_private_video(db):
+    made_private_at = 30.0
+    run = CAST.start(
+        events=[
+            CAST.scenario["events"][0],  # the preload
+            {
+                "time": made_private_at,
+                "type": "make_private",
+                "payload": {"video_id": WALKTHROUGH},
+            },
+        ]
+    )
+    root, browser = f"/r/{run.token}/microtube/", Client()
+    for video in (WALKTHROUGH, REEL):
+        browser.post(f"{root}videos/{video}/save_video")
+    lifecycle.advance(run, made_private_at)
+
+    page = browser.get(root + "playlist?list=WL").content.decode()
+    videos = page.split('id="playlist-videos"', 1)[1]
+    row = videos.split("</article>", 1)[0]  # the first saved, made private since
+    assert 'aria-label="[Private video]"' in row and 'class="yt-thumb-empty"' in row
+    assert f'<a href="{root}watch?v={WALKTHROUGH}">[Private video]</a>' in row
+    assert "Skyward Colony 2" not in videos and "Pixel Forge" not in row and "views" not in row
+    assert "Private • 2 videos" in page  # YouTube still counts it
+    hero = page.split('class="yt-playlist-hero"', 1)[1].split("</section>", 1)[0]
+    assert REEL in hero and WALKTHROUGH not in hero  # the first public one's thumbnail
+    assert "Watch later, 2 videos" in browser.get(root + "feed/playlists").content.decode()
+    watch = browser.get(f"{root}watch?v={WALKTHROUGH}").content.decode()
+    assert "This video is private." in watch
 
 
 def test_search_channel_tabs_and_bad_urls(tube_url):

@@ -59,7 +59,10 @@ def video_cards(context: template.Context, cards, layout: str = "grid") -> SafeS
     """Each card through `microtube/_card.html` in `layout` (grid | row | compact)."""
     page, root = context["page"], context["root"]
     html = [
-        render_fragment(
+        render_fragment("microtube/_private_card.html", card=card, layout=layout, root=root)
+        # A private video's row shows no count nor age: nothing of it moves with the clock.
+        if card.private
+        else render_fragment(
             "microtube/_card.html",
             card=card,
             views=views(card.video, page),
