@@ -8,19 +8,32 @@ viewer says it is unavailable), MicroTube's video made private (its open watch p
 preprint withdrawn by its authors (out of the recommendations; its open page says so),
 MicroDin's job closed to applications (LinkedIn's "No longer accepting applications" in
 place of Apply), MicroHub's pull request someone else closed (Closed, no comment box),
-MicroLendar's invitation its organiser cancelled (off the calendar; its open details say so)."""
+MicroLendar's invitation its organiser cancelled (off the calendar; its open details say so).
+What leads to an item follows it too: an open story viewer's arrows skip a story that expired
+and reach a new one."""
 
 from __future__ import annotations
+
+import re
 
 import pytest
 from playwright.sync_api import expect
 
 from tests.browser_story import BrowserStory
+from tests.microgram.cast import CAST as GRAM
+from tests.microgram.cast import (
+    EXPIRES_AT,
+    LATE_STORY,
+    POSTED_AT,
+    SGRANT,
+    STORIES,
+    TRAY_EVENTS,
+)
 
 pytestmark = pytest.mark.browser
 
 
-def opened(live_site, browser, scenario: str, path: str) -> BrowserStory:
+def opened(live_site, browser, scenario: str | dict, path: str) -> BrowserStory:
     story = BrowserStory.start(live_site, browser, scenario, open_task=False)
     go_to(story, live_site, path)
     return story
@@ -109,6 +122,29 @@ def test_an_open_story_that_expires_says_it_is_unavailable(live_site, browser):
     frame = story.page.locator("#story-frame")
     held_then_gone(story, frame, 61.2, "fadeyemi", 151.2, "This story is unavailable.")
     expect(frame.get_by_role("img")).to_have_count(0)
+
+
+def leads_to(story_id: str) -> re.Pattern:
+    """An arrow's href: the viewer of `story_id`."""
+    return re.compile(f"/stories/{story_id}/$")
+
+
+def test_an_open_story_viewers_arrows_skip_an_expired_story_and_reach_a_new_one(live_site, browser):
+    tray = {**GRAM.scenario, "id": "browser-microgram-changing-tray", "events": TRAY_EVENTS}
+    story = opened(live_site, browser, tray, f"microgram/stories/{SGRANT}/")
+    oldest, after_it = STORIES
+    viewer = story.page.get_by_role("main", name="Story by sgrant")
+    onward = viewer.get_by_role("link", name="Next story")
+    back = viewer.get_by_role("link", name="Previous story")
+    expect(onward).to_have_attribute("href", leads_to(after_it))
+    expect(back).to_have_count(0)
+    story.advance(EXPIRES_AT)  # the story after the open one expires: the arrow leads past it
+    expect(onward).to_have_attribute("href", leads_to(oldest))
+    story.advance(POSTED_AT)  # a new story: the newest, reachable from here
+    expect(back).to_have_attribute("href", leads_to(LATE_STORY))
+    story.assert_not_reloaded()
+    onward.click()
+    expect(story.page.get_by_role("main", name="Story by rduarte")).to_be_visible()
 
 
 def test_a_video_made_private_turns_its_open_watch_page_unavailable(live_site, browser):
