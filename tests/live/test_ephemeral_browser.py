@@ -10,7 +10,7 @@ MicroDin's job closed to applications (LinkedIn's "No longer accepting applicati
 place of Apply), MicroHub's pull request someone else closed (Closed, no comment box),
 MicroLendar's invitation its organiser cancelled (off the calendar; its open details say so).
 What leads to an item follows it too: an open story viewer's arrows skip a story that expired
-and reach a new one."""
+and reach a new one, and a song made unavailable while it plays stops in the player bar."""
 
 from __future__ import annotations
 
@@ -179,6 +179,22 @@ def test_a_track_made_unavailable_says_so_on_its_open_page(live_site, browser):
         417.8,
         "This song is unavailable.",
     )
+
+
+def test_a_track_made_unavailable_while_it_plays_stops_in_the_open_pages_player(live_site, browser):
+    story = opened(live_site, browser, "microfy-pulled-single-ephemeral-active", "microfy/")
+    story.advance(327.8)
+    go_to(story, live_site, "microfy/track/track-090")
+    story.page.get_by_role("button", name="Play Secret Stations", exact=True).click()
+    player = story.page.get_by_role("contentinfo", name="Now playing")
+    expect(player.get_by_role("link", name="Secret Stations")).to_be_visible()
+    expect(player.get_by_role("button", name="Pause")).to_be_visible()
+    story.watch_for_reload()
+    story.advance(417.8)
+    expect(player).to_contain_text("Pick something to play")
+    expect(player.get_by_role("link", name="Secret Stations")).to_have_count(0)
+    expect(story.page.locator("#track-actions")).to_contain_text("This song is unavailable.")
+    story.assert_not_reloaded()
 
 
 def test_a_withdrawn_preprint_leaves_the_recommendations_and_its_open_page_says_so(
