@@ -28,7 +28,9 @@ class _Text(HTMLParser):
         self.open: list[str] = []  # tags open inside a skipped element, outermost first
         self.skip_ids = skip_ids
         # For a push's signature: what is seen without being text — a picture (its address),
-        # an icon (its name), how an element is styled (its classes: bold when unread).
+        # an icon (its name), how an element is styled (its classes: bold when unread) — and
+        # what pressing does: where a link leads, where a form posts (a viewer's "Next" arrow
+        # that now skips an expired story reads the same but goes elsewhere).
         self.pictures = pictures
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
@@ -38,6 +40,10 @@ class _Text(HTMLParser):
                 self.parts.append(f" [img {named.get('src') or ''}] ")
             elif tag == "use":
                 self.parts.append(f" [icon {named.get('href') or ''}] ")
+            elif tag == "a" and named.get("href"):
+                self.parts.append(f"[→ {named['href']}]")
+            elif tag == "form" and named.get("action"):
+                self.parts.append(f"[⇢ {named['action']}]")
             if named.get("class"):
                 self.parts.append(f"[.{named['class']}]")
         if tag in _VOID:
@@ -84,8 +90,9 @@ def visible_text(html: str) -> str:
 
 def visible_signature(html: str) -> str:
     """What a person sees of `html`: its text, the shell's clock included, its pictures, icons
-    and styling (classes), not its attributes for machines (ids, links, data-*, CSRF tokens,
-    labels). A live push that would not change it is not sent (apps.kit.consumers)."""
+    and styling (classes), and what pressing does (where links lead, where forms post); not its
+    other attributes for machines (ids, data-*, CSRF tokens, labels). A live push that would not
+    change it is not sent (apps.kit.consumers)."""
     parser = _Text(skip_ids=(), pictures=True)
     parser.feed(html)
     parser.close()

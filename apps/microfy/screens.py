@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 
 from apps.kit.derived import per_state
-from apps.kit.retractions import present
+from apps.kit.retractions import present, still_there
 from apps.kit.streaming import shown_count
 from apps.kit.waypoints import Waypoints
 from apps.microfy.catalog import artists, tracks_by_artist
@@ -180,9 +180,12 @@ class Player:
 
 
 def player(music: Music, now: float) -> tuple[Player | None, float | None]:
-    """The player bar at `now`, and when what it shows next changes (None: never)."""
+    """The player bar at `now`, and when what it shows next changes (None: never).
+
+    A track made unavailable stops, as on Spotify: the bar shows nothing playing (MicroFy has no
+    queue to move on to), and playing it again is refused (`apps.kit.deciding.found`)."""
     playing = music.now_playing
-    if playing is None or playing.track_id not in music.tracks:
+    if playing is None or not still_there(music.tracks, playing.track_id):
         return None, None
     track = music.tracks[playing.track_id]
     elapsed = max(0.0, now - playing.started_at)

@@ -126,16 +126,20 @@ def story_bar(gram: Gram) -> tuple[StoryBubble, ...]:
 
 
 def story_neighbours(gram: Gram, story_id: str) -> tuple[str | None, str | None]:
-    """The viewer's previous and next story, newest first: next is the first later story not
-    yet watched (the bar's point), else simply the next one."""
-    ids = [s.id for s in newest_first(present(gram.stories.values()))]
-    if story_id not in ids:  # expired: nothing to step from
+    """The viewer's previous and next story in the tray as it is now, newest first: next is the
+    first later story not yet watched (the bar's point), else simply the next one. A story that
+    expired is skipped; one that expired while open still steps on to its neighbours (its
+    viewer says it is unavailable, and Instagram's moves on from it)."""
+    ordered = [s.id for s in newest_first(gram.stories.values())]
+    if story_id not in ordered:
         return (None, None)
-    n = ids.index(story_id)
-    later = ids[n + 1 :]
+    n = ordered.index(story_id)
+    up = {s.id for s in present(gram.stories.values())}
+    earlier = [i for i in ordered[:n] if i in up]
+    later = [i for i in ordered[n + 1 :] if i in up]
     unwatched = [i for i in later if i not in gram.viewed_stories]
     following = unwatched[0] if unwatched else (later[0] if later else None)
-    return (ids[n - 1] if n > 0 else None, following)
+    return (earlier[-1] if earlier else None, following)
 
 
 @per_state()

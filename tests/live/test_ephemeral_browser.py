@@ -9,19 +9,32 @@ made unavailable (its open page says so), MicroScholar's preprint withdrawn by i
 (out of the recommendations; its open page says so),
 MicroDin's job closed to applications (LinkedIn's "No longer accepting applications" in
 place of Apply), MicroHub's pull request someone else closed (Closed, no comment box),
-MicroLendar's invitation its organiser cancelled (off the calendar; its open details say so)."""
+MicroLendar's invitation its organiser cancelled (off the calendar; its open details say so).
+What leads to an item follows it too: an open story viewer's arrows skip a story that expired
+and reach a new one, and a song made unavailable while it plays stops in the player bar."""
 
 from __future__ import annotations
+
+import re
 
 import pytest
 from playwright.sync_api import expect
 
 from tests.browser_story import BrowserStory
+from tests.microgram.cast import CAST as GRAM
+from tests.microgram.cast import (
+    EXPIRES_AT,
+    LATE_STORY,
+    POSTED_AT,
+    SGRANT,
+    STORIES,
+    TRAY_EVENTS,
+)
 
 pytestmark = pytest.mark.browser
 
 
-def opened(live_site, browser, scenario: str, path: str) -> BrowserStory:
+def opened(live_site, browser, scenario: str | dict, path: str) -> BrowserStory:
     story = BrowserStory.start(live_site, browser, scenario, open_task=False)
     go_to(story, live_site, path)
     return story
@@ -112,6 +125,29 @@ def test_an_open_story_that_expires_says_it_is_unavailable(live_site, browser):
     expect(frame.get_by_role("img")).to_have_count(0)
 
 
+def leads_to(story_id: str) -> re.Pattern:
+    """An arrow's href: the viewer of `story_id`."""
+    return re.compile(f"/stories/{story_id}/$")
+
+
+def test_an_open_story_viewers_arrows_skip_an_expired_story_and_reach_a_new_one(live_site, browser):
+    tray = {**GRAM.scenario, "id": "browser-microgram-changing-tray", "events": TRAY_EVENTS}
+    story = opened(live_site, browser, tray, f"microgram/stories/{SGRANT}/")
+    oldest, after_it = STORIES
+    viewer = story.page.get_by_role("main", name="Story by sgrant")
+    onward = viewer.get_by_role("link", name="Next story")
+    back = viewer.get_by_role("link", name="Previous story")
+    expect(onward).to_have_attribute("href", leads_to(after_it))
+    expect(back).to_have_count(0)
+    story.advance(EXPIRES_AT)  # the story after the open one expires: the arrow leads past it
+    expect(onward).to_have_attribute("href", leads_to(oldest))
+    story.advance(POSTED_AT)  # a new story: the newest, reachable from here
+    expect(back).to_have_attribute("href", leads_to(LATE_STORY))
+    story.assert_not_reloaded()
+    onward.click()
+    expect(story.page.get_by_role("main", name="Story by rduarte")).to_be_visible()
+
+
 def test_a_video_made_private_turns_its_open_watch_page_unavailable(live_site, browser):
     story = opened(live_site, browser, "microtube-pulled-upload-ephemeral-active", "microtube/")
     card = story.page.locator('#home-grid a[href*="v=vid-film-02"]').first
@@ -164,6 +200,22 @@ def test_a_track_made_unavailable_says_so_on_its_open_page(live_site, browser):
         417.8,
         "This song is unavailable.",
     )
+
+
+def test_a_track_made_unavailable_while_it_plays_stops_in_the_open_pages_player(live_site, browser):
+    story = opened(live_site, browser, "microfy-pulled-single-ephemeral-active", "microfy/")
+    story.advance(327.8)
+    go_to(story, live_site, "microfy/track/track-090")
+    story.page.get_by_role("button", name="Play Secret Stations", exact=True).click()
+    player = story.page.get_by_role("contentinfo", name="Now playing")
+    expect(player.get_by_role("link", name="Secret Stations")).to_be_visible()
+    expect(player.get_by_role("button", name="Pause")).to_be_visible()
+    story.watch_for_reload()
+    story.advance(417.8)
+    expect(player).to_contain_text("Pick something to play")
+    expect(player.get_by_role("link", name="Secret Stations")).to_have_count(0)
+    expect(story.page.locator("#track-actions")).to_contain_text("This song is unavailable.")
+    story.assert_not_reloaded()
 
 
 def test_a_withdrawn_preprint_leaves_the_recommendations_and_its_open_page_says_so(

@@ -10,6 +10,7 @@ import pytest
 from django.conf import settings
 from django.test import Client
 
+from apps.kit.live import render_update
 from apps.scenarios.format import load_scenario_file
 from events import lifecycle
 from events.commands import current_state
@@ -118,6 +119,23 @@ def test_the_player_position_follows_the_simulated_clock(run, get):
     assert "0:00" in get()
     lifecycle.advance(run, 33.0)  # 13 s in: shown in 5-second steps
     assert re.search(r'<span class="time">0:10</span>', get())
+
+
+def test_a_track_made_unavailable_while_playing_leaves_the_open_pages_player_idle():
+    run = start("pulled-single-ephemeral-active")  # Secret Stations: 327.8 s, gone at 417.8 s
+    client = Client()
+    page = f"/r/{run.token}/microfy/track/track-090"
+    lifecycle.advance(run, 327.8)
+    client.post(f"/r/{run.token}/microfy/tracks/track-090/play_track", {"back": "track/track-090"})
+
+    def player() -> str:
+        return dict(render_update(run, page).regions)["player"]
+
+    assert "Secret Stations" in player() and 'aria-label="Pause"' in player()
+    lifecycle.advance(run, 417.8)
+    assert "Secret Stations" not in player() and "Pick something to play" in player()
+    response = client.post(f"/r/{run.token}/microfy/tracks/track-090/play_track", {})
+    assert response.status_code == 404 and b"track-090" in response.content
 
 
 def test_an_artists_listeners_drift_and_the_page_agrees_with_the_tables(run, get):

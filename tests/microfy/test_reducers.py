@@ -11,7 +11,7 @@ from apps.microfy import screens
 from apps.microfy.environment import MICROFY, materialize
 from events.catalog import load_catalog
 from events.registry import ActionRejected
-from tests.microfy.cast import CAST, FIRST_TEN, arrive
+from tests.microfy.cast import CAST, FIRST_TEN, SLOW_HARBOR, arrive
 
 act, preloaded = CAST.act, CAST.preloaded
 
@@ -71,6 +71,20 @@ def test_play_counts_every_press_and_starts_the_player():
     assert (player.track.id, player.position_s, changes) == ("track-003", 5.0, 60.0)
     ended, never = screens.player(music, 50.0 + music.tracks["track-003"].duration_s)
     assert ended.playing is False and never is None
+
+
+def test_a_track_made_unavailable_while_playing_stops_and_cannot_be_played_again():
+    music = act(arrive(preloaded(), SLOW_HARBOR, at=30.0), "play_track", {"track_id": SLOW_HARBOR})
+    playing, _ = screens.player(music, 60.0)
+    assert playing.track.id == SLOW_HARBOR and playing.playing
+    music = CAST.arrive(music, "make_track_unavailable", {"track_id": SLOW_HARBOR}, at=60.0)
+    assert screens.player(music, 60.0) == (None, None)  # nothing playing: no queue to move on to
+    with pytest.raises(ActionRejected, match="no track"):
+        act(music, "play_track", {"track_id": SLOW_HARBOR}, at=70.0)
+    # Another song plays on when one it is not goes.
+    music = act(music, "play_track", {"track_id": "track-003"}, at=80.0)
+    music = CAST.arrive(music, "make_track_unavailable", {"track_id": "track-004"}, at=90.0)
+    assert screens.player(music, 90.0)[0].track.id == "track-003"
 
 
 def test_like_and_unlike_are_explicit_and_follow_needs_an_artist_in_the_session():

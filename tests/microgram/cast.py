@@ -4,6 +4,9 @@
 - Noor Haddad's market haul (`post-market-haul`, 2 comments), in the feed from the start;
 - Marco Bellini's desk post (`post-desk-plant-jungle`, 5 comments), arriving at 120 s;
 - two stories, one watched by the time the test looks;
+- a tray that changes under an open story viewer (`TRAY_EVENTS`): sgrant's desk view, the
+  newest of three, then amenon's climbing night, which expires at 30 s, then rduarte's coffee
+  run; hquinn's new story arrives at 60 s;
 - Maya's thread (read) and Tobias's (two unread), Rosa's mockup thread arriving at 120 s;
 - a read follow (`act-01`) and an unread follow from Marco (`act-10`).
 """
@@ -30,6 +33,15 @@ PRELOAD = {
     "activity_ids": ["act-01", "act-10"],
 }
 ARRIVES_AT = 120.0
+SGRANT = "story-sgrant-desk-view"  # newer than both STORIES
+TRAY = [*STORIES, SGRANT]  # oldest first
+LATE_STORY = "story-hquinn-new-feature"
+EXPIRES_AT, POSTED_AT = 30.0, 60.0
+TRAY_EVENTS = [
+    {"time": 0.0, "type": "preload_posts", "payload": {**PRELOAD, "story_ids": TRAY}},
+    {"time": EXPIRES_AT, "type": "expire_story", "payload": {"story_id": STORIES[1]}},
+    {"time": POSTED_AT, "type": "new_story", "payload": {"story_id": LATE_STORY}},
+]
 
 # A run over the cast: preload at 0; Marco's post and Rosa's thread at 120 (the condition).
 CAST = Cast(

@@ -6,10 +6,23 @@ import re
 
 from django.test import Client
 
+from apps.kit.live import render_update
 from apps.kit.screen_cache import CSRF_PLACEHOLDER
 from events import lifecycle
 from events.commands import current_state
-from tests.microgram.cast import ARRIVES_AT, DESK, MARCO, MARKET, STORIES
+from tests.microgram.cast import (
+    ARRIVES_AT,
+    CAST,
+    DESK,
+    EXPIRES_AT,
+    LATE_STORY,
+    MARCO,
+    MARKET,
+    POSTED_AT,
+    SGRANT,
+    STORIES,
+    TRAY_EVENTS,
+)
 
 
 def test_home_shows_the_story_bar_the_feed_and_the_rail_badges(gram_url):
@@ -62,6 +75,24 @@ def test_opening_a_story_watches_it_and_links_to_the_next(gram_run, gram_url):
     home = Client().get(gram_url()).content.decode()
     assert 'aria-label="Story by amenon, seen"' in home
     assert home.index("Story by rduarte, not seen yet") < home.index("Story by amenon, seen")
+
+
+def pushed_arrows(run, url: str) -> list[tuple[str, str]]:
+    """(story id, "Previous" | "Next") of the viewer's arrows in a live push of `url`."""
+    html = "".join(outer for _, outer in render_update(run, url).regions)
+    return re.findall(r'stories/([^/"]+)/" aria-label="(Previous|Next) story"', html)
+
+
+def test_the_story_viewers_arrows_are_pushed_as_the_tray_changes(db):
+    run = CAST.start(events=TRAY_EVENTS)
+    url = f"/r/{run.token}/microgram/stories/{SGRANT}/"
+    assert Client().get(url).status_code == 200
+    oldest, middle = STORIES
+    assert pushed_arrows(run, url) == [(middle, "Next")]
+    lifecycle.advance(run, EXPIRES_AT)  # the story after the open one expires: skipped
+    assert pushed_arrows(run, url) == [(oldest, "Next")]
+    lifecycle.advance(run, POSTED_AT)  # a new one: reachable
+    assert pushed_arrows(run, url) == [(LATE_STORY, "Previous"), (oldest, "Next")]
 
 
 def test_opening_a_thread_reads_it_and_sending_adds_a_bubble(gram_run, gram_url):

@@ -13,7 +13,18 @@ from apps.microgram import screens
 from apps.microgram.environment import MICROGRAM
 from apps.microgram.state import unread_activity_count, unread_in
 from events.registry import ActionRejected
-from tests.microgram.cast import ARRIVES_AT, CAST, DESK, MARCO, MARKET, OWN_POST, STORIES
+from tests.microgram.cast import (
+    ARRIVES_AT,
+    CAST,
+    DESK,
+    LATE_STORY,
+    MARCO,
+    MARKET,
+    OWN_POST,
+    SGRANT,
+    STORIES,
+    TRAY,
+)
 
 
 def tables(gram, sql: str) -> list[tuple]:
@@ -92,6 +103,17 @@ def test_watching_a_story_greys_its_ring_and_moves_it_behind_the_unwatched():
     bar = screens.story_bar(gram)
     assert [b.story.id for b in bar][-1] == STORIES[0] and bar[-1].viewed
     assert tables(gram, "SELECT story_id FROM story_states WHERE isViewed = 1") == [(STORIES[0],)]
+
+
+def test_the_viewers_arrows_skip_an_expired_story_even_the_open_one_and_reach_a_new_one():
+    oldest, middle = STORIES
+    gram = CAST.preloaded(story_ids=TRAY)
+    assert screens.story_neighbours(gram, SGRANT) == (None, middle)
+    gram = CAST.arrive(gram, "expire_story", {"story_id": middle}, at=30.0)
+    gram = CAST.arrive(gram, "new_story", {"story_id": LATE_STORY}, at=60.0)
+    assert screens.story_neighbours(gram, SGRANT) == (LATE_STORY, oldest)
+    # Its own viewer, open when it expired, says so and still steps on past it.
+    assert screens.story_neighbours(gram, middle) == (SGRANT, oldest)
 
 
 def test_a_thread_arrives_whole_its_data_searchable_and_reading_it_clears_unread():
