@@ -50,7 +50,8 @@ def pytest_configure(config):
 
 SLOW_MARKERS = ("e2e", "browser", "slow")
 # The suite runs on the production shape when it is given a database or a channel layer of its
-# own (.ci/run's second leg); a `user_clone` test sets both aside and would repeat itself there.
+# own (.ci/run's second leg); a `user_clone` test sets both aside and would repeat itself there,
+# and a `production_shape` test, which starts the production shape itself, runs only there.
 PRODUCTION_SHAPE = bool(os.environ.get("DATABASE_URL") or os.environ.get("REDIS_URL"))
 
 
@@ -61,9 +62,13 @@ def pytest_collection_modifyitems(items):
     the quick tests in the other processes; drawn last, one minute-long test would be the only
     thing left running at the end while the other processes sat idle.
 
-    On the production shape, the tests that run the README in a user's fresh clone are skipped:
-    they drop the suite's settings and run on embedded defaults whatever the leg, so the
-    embedded leg has already run exactly them."""
+    Each leg skips what the other runs as it would itself:
+    - on the production shape, the tests that run the README in a user's fresh clone: they drop
+      the suite's settings and run on embedded defaults whatever the leg, so the embedded leg
+      has already run exactly them;
+    - on embedded defaults, the tests that start the production shape themselves (supervisord,
+      two Daphnes, a ticker or Celery, their own Redis): on SQLite they would prove a shape
+      nobody deploys, at a tenth of the leg's CPU; the production leg runs them on PostgreSQL."""
     items.sort(
         key=lambda item: (
             not any(item.get_closest_marker(m) for m in SLOW_MARKERS),
@@ -71,10 +76,12 @@ def pytest_collection_modifyitems(items):
         )
     )
     if PRODUCTION_SHAPE:
-        repeat = pytest.mark.skip(reason="a user's clone on embedded defaults: the embedded leg")
-        for item in items:
-            if item.get_closest_marker("user_clone"):
-                item.add_marker(repeat)
+        elsewhere, reason = "user_clone", "a user's clone on embedded defaults: the embedded leg"
+    else:
+        elsewhere, reason = "production_shape", "the production shape on PostgreSQL: its leg"
+    for item in items:
+        if item.get_closest_marker(elsewhere):
+            item.add_marker(pytest.mark.skip(reason=reason))
 
 
 @pytest.fixture(scope="session")

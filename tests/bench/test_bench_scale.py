@@ -39,6 +39,7 @@ def test_bench_scale_loads_the_embedded_server():
     assert found["shape"] == "embedded"
 
 
+@pytest.mark.production_shape
 def test_bench_scale_loads_the_production_shape(settings):
     if not REDIS_SERVER.exists():
         pytest.skip(f"{REDIS_SERVER} is absent")

@@ -39,6 +39,10 @@ def counts(line: str) -> str:
 
 
 def test_validate_gives_the_same_counts_three_times_on_a_busy_machine(bench_scenarios):
+    # A passive, an active and a no-op: each kind of verdict, three times over, while the
+    # burners take both cores (whose CPU is the most of this test's).
+    for extra in ("bench-early", "bench-hung", "bench-linger"):
+        (bench_scenarios / "micromail" / f"{extra}.json").unlink()
     burners = [subprocess.Popen([sys.executable, "-c", BURN]) for _ in range(2)]
     try:
         lines = [counts(validate("--parallel", "10").splitlines()[-1]) for _ in range(3)]
@@ -48,7 +52,7 @@ def test_validate_gives_the_same_counts_three_times_on_a_busy_machine(bench_scen
             burner.wait()
     print("\n".join(lines))
     assert lines[0] == lines[1] == lines[2]
-    assert lines[0].startswith("bench_validate: scenarios=6 oracle=6/6 early_fail=5/5 never_ok=6/6")
+    assert lines[0].startswith("bench_validate: scenarios=3 oracle=3/3 early_fail=2/2 never_ok=3/3")
 
 
 def test_a_control_verdict_that_differs_from_the_scenario_fails_validation(tmp_path, settings):

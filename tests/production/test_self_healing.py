@@ -18,7 +18,11 @@ from events.models import Event, Run, RunStatus
 from sentinel_site.figures import percentile
 from tests.control_api import post
 
-pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.e2e]
+pytestmark = [
+    pytest.mark.django_db(transaction=True),
+    pytest.mark.e2e,
+    pytest.mark.production_shape,
+]
 
 SPEED = 4.0
 PATIENCE_S = 90.0  # how long a test waits for the ticker before calling it dead
