@@ -524,7 +524,9 @@ def load_library(root: str | Path) -> LoadedLibrary:
         try:
             scenario = load_scenario_file(path)
         except ScenarioError as error:
-            problems.append(LibraryProblem(relative, str(error)))
+            # Named by its place in the folder, never by where the folder lies on disk: the
+            # home page lists problems, and an agent's browser can open it.
+            problems.append(LibraryProblem(relative, str(error).removeprefix(f"{path}: ")))
             continue
         by_path[relative] = scenario
         if scenario.id in by_id:
@@ -532,7 +534,7 @@ def load_library(root: str | Path) -> LoadedLibrary:
             problems.append(
                 LibraryProblem(
                     relative,
-                    f"{path}: id: duplicate id {scenario.id!r}, already used by {first}; "
+                    f"id: duplicate id {scenario.id!r}, already used by {first}; "
                     f"run this file by its path ({relative})",
                     duplicate_of=first,
                 )

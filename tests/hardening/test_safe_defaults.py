@@ -162,6 +162,20 @@ def test_with_a_control_token_the_home_page_lists_runs_to_admins_only(
     assert f"/admin/events/run/{run.pk}/change/" in client.get("/").content.decode()
 
 
+def test_a_broken_scenario_file_is_named_on_the_home_page_without_where_the_folder_lies(
+    client, settings, tmp_path
+):
+    """The home page (which an agent's browser can open) lists the folder's problems by their
+    place in it; an invalid file's message used to carry the folder's absolute path."""
+    (tmp_path / "micromail").mkdir()
+    (tmp_path / "micromail" / "broken.json").write_text('{"id": "x",, }')
+    settings.SENTINEL_SCENARIO_DIR = tmp_path
+    settings.SENTINEL_CONTROL_TOKEN = "secret"
+    public = client.get("/").content.decode()
+    assert "micromail/broken.json" in public and "invalid JSON at line 1" in public
+    assert str(tmp_path) not in public
+
+
 def test_run_creation_is_rate_limited_per_client_unless_it_holds_the_token(api, settings):
     from django.core.cache import cache
 
