@@ -62,6 +62,74 @@ async def get(app, path: str) -> tuple[int, dict]:
     return start["status"], json.loads(body)
 
 
+def test_a_request_takes_one_hop_to_its_thread_signals_included(app, monkeypatch):
+    """request_started, the chain and view, and request_finished (the response's close) all run
+    on the request's thread in one hand-off; Django's own handler took three."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from django.core import signals
+
+    hops = []
+    submit = ThreadPoolExecutor.submit
+    monkeypatch.setattr(
+        ThreadPoolExecutor, "submit", lambda self, *a, **k: hops.append(1) or submit(self, *a, **k)
+    )
+    seen = []
+
+    def started(**kwargs):
+        seen.append(("started", threading.current_thread().name))
+
+    def finished(**kwargs):
+        seen.append(("finished", threading.current_thread().name))
+
+    signals.request_started.connect(started)
+    signals.request_finished.connect(finished)
+    try:
+        status, body = asyncio.run(get(app, "/where"))
+    finally:
+        signals.request_started.disconnect(started)
+        signals.request_finished.disconnect(finished)
+    assert status == 200
+    assert seen == [("started", body["view_thread"]), ("finished", body["view_thread"])]
+    assert len(hops) == 1
+
+
+@pytest.mark.filterwarnings("ignore:StreamingHttpResponse must consume synchronous iterators")
+def test_a_streaming_response_is_closed_after_it_is_sent_on_its_thread(app):
+    from django.core import signals
+
+    finished = []
+
+    def note(**kwargs):
+        finished.append(threading.current_thread().name)
+
+    async def streamed():
+        scope = {
+            "type": "http", "method": "GET", "path": "/streamed", "query_string": b"",
+            "headers": [(b"host", b"testserver")], "http_version": "1.1", "scheme": "http",
+            "server": ("testserver", 80), "client": ("127.0.0.1", 1),
+        }  # fmt: skip
+        communicator = ApplicationCommunicator(app, scope)
+        await communicator.send_input({"type": "http.request", "body": b""})
+        body = b""
+        while True:
+            message = await communicator.receive_output(timeout=10)
+            if message["type"] == "http.response.body":
+                body += message.get("body", b"")
+                if not message.get("more_body"):
+                    break
+        await communicator.wait()
+        return body.decode()
+
+    signals.request_finished.connect(note)
+    try:
+        body = asyncio.run(streamed())
+    finally:
+        signals.request_finished.disconnect(note)
+    assert body.splitlines()[0].startswith("request-")
+    assert finished and finished[0].startswith("request-")  # closed on a request thread
+
+
 def test_middleware_and_view_run_on_one_kept_thread_with_a_kept_connection(app, settings):
     settings.DATABASES["default"]["CONN_MAX_AGE"] = None  # as the servers run (config.py)
 

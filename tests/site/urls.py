@@ -4,7 +4,7 @@ import threading
 import time
 
 from django.db import connection
-from django.http import JsonResponse
+from django.http import JsonResponse, StreamingHttpResponse
 from django.urls import path
 
 _active = 0
@@ -35,6 +35,11 @@ def slow(request):
     return JsonResponse({"most_at_once": _most})
 
 
+def streamed(request):
+    """Content produced while it is sent: each part says which thread made it."""
+    return StreamingHttpResponse(f"{threading.current_thread().name}\n" for _ in range(2))
+
+
 def reset_concurrency() -> None:
     global _active, _most
     _active = _most = 0
@@ -55,6 +60,7 @@ def arrival(request):
 
 urlpatterns = [
     path("where", where),
+    path("streamed", streamed),
     path("slow", slow),
     # Under the run prefix: served on the agents' lane (sentinel_site.http_handler.Lanes).
     path("r/where", where),
