@@ -24,7 +24,8 @@ from typing import Any
 from django.conf import settings
 from django.contrib.messages import get_messages
 from django.http import HttpRequest, HttpResponse
-from django.middleware.csrf import get_token
+
+from apps.kit.csrf import csrf_token
 
 CSRF_PLACEHOLDER = "__sentinel_csrf_token__"
 # Request headers a view may read to decide what to render (django-htmx's request.htmx).
@@ -69,7 +70,7 @@ def _cacheable(request: HttpRequest, page) -> bool:
 
 
 def _with_token(request: HttpRequest, html: str, status: int) -> HttpResponse:
-    return HttpResponse(html.replace(CSRF_PLACEHOLDER, get_token(request)), status=status)
+    return HttpResponse(html.replace(CSRF_PLACEHOLDER, csrf_token(request)), status=status)
 
 
 def cached_render(
