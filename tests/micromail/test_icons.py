@@ -10,7 +10,7 @@ pytestmark = pytest.mark.django_db
 
 def test_a_page_carries_the_drawing_of_every_icon_it_uses_once(mail_run):
     html = Client().get(f"/r/{mail_run.token}/micromail/?folder=inbox").content.decode()
-    used = {"flag", "pin", "paperclip", "arrow-up"}
+    used = {"flag", "pin", "paperclip", "exclamation-mark"}
     for name in used:
         assert f'<use href="#icon-{name}">' in html
         assert html.count(f'<symbol id="icon-{name}" viewBox="0 0 24 24">') == 1

@@ -5,7 +5,7 @@ Emoji and font glyphs render as empty boxes in a browser without those fonts (De
 so an agent judging a screenshot would not see them; SVG always draws. Each use is a small
 `<svg><use href="#icon-…">` pointing into one hidden sprite of `<symbol>`s, so a list of two
 hundred rows does not repeat the same paths two hundred times. The drawings come from the lucide
-package (a maintained icon set); stroke, fill and size are CSS (static/site/shell.css `svg.lucide`).
+package (a maintained icon set), plus the few marks it lacks (`OWN_DRAWINGS`); stroke, fill and size are CSS (static/site/shell.css `svg.lucide`).
 
 Which icons a page may use is known when its templates are compiled: the tag records each name
 under the template's folder (`micromail/_row.html` → `micromail`), and the sprite holds the
@@ -70,9 +70,17 @@ def icon(parser, token) -> IconNode:
     return IconNode(name, int(options["size"]), options["class"], options["label"] or None)
 
 
+# Marks a real product draws that lucide has no icon for, drawn on lucide's grid and stroke
+# (24 units, round caps): Outlook flags a high-importance message with a bare red "!".
+OWN_DRAWINGS = {"exclamation-mark": '<path d="M12 4v10" /><path d="M12 19.5h.01" />'}
+
+
 @functools.cache
 def _drawing(name: str) -> str | None:
-    """The icon's shapes as SVG markup (without the outer <svg>), or None if lucide has none."""
+    """The icon's shapes as SVG markup (without the outer <svg>), or None if neither lucide nor
+    OWN_DRAWINGS has one."""
+    if name in OWN_DRAWINGS:
+        return OWN_DRAWINGS[name]
     try:
         svg = ElementTree.fromstring(str(lucide_svg(name)))
     except Exception:  # lucide's IconDoesNotExist

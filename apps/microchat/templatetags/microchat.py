@@ -28,11 +28,16 @@ def days_ago(at: float, page) -> tuple[datetime, int]:
 
 @register.filter
 def chat_day(at: float | None, page) -> str:
-    """How Teams dates a chat's last message: today's time, "Yesterday", else d/m."""
+    """How Teams dates a chat's last message: today's time, "Yesterday", the weekday within
+    the week ("Tue"), else d/m (a weekday a week back would read as the coming one)."""
     if at is None:  # no message yet
         return ""
     then, ago = days_ago(at, page)
-    return {0: simclock.clock_time(at), 1: "Yesterday"}.get(ago, f"{then.day}/{then.month}")
+    if ago == 0:
+        return simclock.clock_time(at)
+    if ago == 1:
+        return "Yesterday"
+    return f"{then:%a}" if ago < 7 else f"{then.day}/{then.month}"
 
 
 @register.filter
