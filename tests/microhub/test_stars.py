@@ -184,9 +184,9 @@ def star_run(name: str):
     return lifecycle.create_run(spec, clock_mode=ClockMode.VIRTUAL)
 
 
-def shown(html: str) -> int:
-    match = re.search(r'<span id="star-count"[^>]*>([\d,]+)</span>', html)
-    assert match, "no star-count region"
+def shown(html: str, region: str = "star-count") -> int:
+    match = re.search(rf'id="{region}"[^>]*>([\d,]+)</', html)
+    assert match, f"no {region} region"
     return int(match.group(1).replace(",", ""))
 
 
@@ -198,7 +198,9 @@ def test_page_live_push_and_evaluation_table_agree_at_the_same_instant(client, n
     run.refresh_from_db()
     page_url = f"/r/{run.token}/microhub/"
     page = shown(client.get(page_url).content.decode())
-    pushed = shown(dict(render_update(run, page_url).regions)["star-count"])
+    regions = dict(render_update(run, page_url).regions)
+    pushed = shown(regions["star-count"])
+    assert shown(regions["about-stars"], "about-stars") == pushed  # header and About: one push
     conn = sqlite3.connect(":memory:")
     grading_snapshot(run).write(conn)
     graded = int(conn.execute("SELECT value FROM repo_flags WHERE key='star_count'").fetchone()[0])
