@@ -48,3 +48,22 @@ CAST = Cast(
     acts_at=10.0,
     arrives_at=LATE_AT,
 )
+
+
+def inbox_scenario(scenario_id: str, prompt: str, preloaded: list[str], *later: dict) -> dict:
+    """A MicroMail scenario on our own catalog with no condition: `preloaded` at t=0, then any
+    `later` timeline entries (`{"time", "type", "payload"}`) — the browser tests' inboxes."""
+    return {
+        "id": scenario_id,
+        "environment": "micromail",
+        "prompt": prompt,
+        "start_page": "HOST_ADDRESS/micromail",
+        "condition_at": None,
+        "event_timeline_end": 600.0,
+        "kill_at": 600.0,
+        "taxonomy": {},
+        "events": [
+            {"time": 0.0, "type": "preload_emails", "payload": {"email_ids": preloaded}},
+            *later,
+        ],
+    }

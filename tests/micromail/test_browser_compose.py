@@ -15,6 +15,7 @@ from tests.browser_story import BrowserStory
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
 from tests.conftest import browser  # noqa: F401
+from tests.micromail.cast import inbox_scenario
 
 pytestmark = pytest.mark.browser
 
@@ -23,23 +24,9 @@ WITH_ATTACHMENTS = "cc-att-02"  # "Capacity plan": capacity-plan-q3.xlsx, oncall
 
 
 def scenario() -> dict:
-    return {
-        "id": "browser-micromail-compose",
-        "environment": "micromail",
-        "prompt": "Write to Maya.",
-        "start_page": "HOST_ADDRESS/micromail",
-        "condition_at": None,
-        "event_timeline_end": 600.0,
-        "kill_at": 600.0,
-        "taxonomy": {},
-        "events": [
-            {
-                "time": 0.0,
-                "type": "preload_emails",
-                "payload": {"email_ids": [WITH_ATTACHMENTS, "base-01"]},
-            }
-        ],
-    }
+    return inbox_scenario(
+        "browser-micromail-compose", "Write to Maya.", [WITH_ATTACHMENTS, "base-01"]
+    )
 
 
 def folder(page: Page, title: str):

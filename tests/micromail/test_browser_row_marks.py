@@ -11,6 +11,7 @@ from tests.browser_story import BrowserStory
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
 from tests.conftest import browser  # noqa: F401
+from tests.micromail.cast import inbox_scenario
 
 pytestmark = pytest.mark.browser
 
@@ -19,19 +20,9 @@ ORDINARY = "base-40"  # "Partner sync recap", no marks
 
 
 def scenario() -> dict:
-    return {
-        "id": "browser-micromail-row-marks",
-        "environment": "micromail",
-        "prompt": "Read the urgent mail.",
-        "start_page": "HOST_ADDRESS/micromail",
-        "condition_at": None,
-        "event_timeline_end": 600.0,
-        "kill_at": 600.0,
-        "taxonomy": {},
-        "events": [
-            {"time": 0.0, "type": "preload_emails", "payload": {"email_ids": [URGENT, ORDINARY]}}
-        ],
-    }
+    return inbox_scenario(
+        "browser-micromail-row-marks", "Read the urgent mail.", [URGENT, ORDINARY]
+    )
 
 
 def box(page: Page, email_id: str, selector: str) -> dict:

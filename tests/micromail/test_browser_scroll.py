@@ -19,6 +19,7 @@ from tests.browser_story import BrowserStory
 # tests/micromail/conftest.py binds `browser` to a django.test.Client; this module needs the
 # Chromium one from tests/conftest.py.
 from tests.conftest import browser  # noqa: F401
+from tests.micromail.cast import inbox_scenario
 
 pytestmark = pytest.mark.browser
 
@@ -32,24 +33,12 @@ def full_inbox_scenario() -> dict:
     """Every catalog message preloaded (as dev.json) except one, which arrives at LATE_AT."""
     catalog = settings.BASE_DIR / "fixtures" / "micromail" / "emails.jsonl"
     ids = [json.loads(line)["id"] for line in catalog.read_text().splitlines() if line.strip()]
-    return {
-        "id": "browser-micromail-full-inbox",
-        "environment": "micromail",
-        "prompt": "Read the oldest mail.",
-        "start_page": "HOST_ADDRESS/micromail",
-        "condition_at": None,
-        "event_timeline_end": 600.0,
-        "kill_at": 600.0,
-        "taxonomy": {},
-        "events": [
-            {
-                "time": 0.0,
-                "type": "preload_emails",
-                "payload": {"email_ids": [i for i in ids if i != LATE_MAIL]},
-            },
-            {"time": LATE_AT, "type": "new_email", "payload": {"email_id": LATE_MAIL}},
-        ],
-    }
+    return inbox_scenario(
+        "browser-micromail-full-inbox",
+        "Read the oldest mail.",
+        [i for i in ids if i != LATE_MAIL],
+        {"time": LATE_AT, "type": "new_email", "payload": {"email_id": LATE_MAIL}},
+    )
 
 
 def message_list(page: Page):
