@@ -14,6 +14,21 @@ FIRST_HOUR, LAST_HOUR = 8, 18  # the hours a day or week grid shows
 WORK_WEEK = 5
 
 
+def working_day(start: date, n: int) -> date:
+    """The `n`-th working day (Monday to Friday) counting from `start`, back from it if `n` is
+    negative: day 0 is `start` itself if it is one, else the Monday after. A catalog schedules
+    work meetings this way so that a run started on any weekday never puts one on a weekend."""
+    day = start
+    while day.weekday() >= WORK_WEEK:
+        day += timedelta(days=1)
+    step = timedelta(days=1 if n >= 0 else -1)
+    for _ in range(abs(n)):
+        day += step
+        while day.weekday() >= WORK_WEEK:
+            day += step
+    return day
+
+
 @dataclass(frozen=True)
 class Day:
     day: date

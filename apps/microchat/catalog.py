@@ -5,7 +5,7 @@ The original spells fields both ways (`sender_id` / `senderId`, `is_read` / `isR
 store `reactions` and `attachments` as JSON strings; both are read. Ours adds, all optional:
 `minutesAgo` (how long before the preload a history message was sent), `replyToId`,
 `attachments` [{name, kind: image|file, size, subject}], `reactions` [{reaction, userIds}] and a
-meeting's `schedule` {day, start, minutes}.
+meeting's `schedule` {day, start, minutes}, `day` counting working days from the run's start.
 """
 
 from __future__ import annotations

@@ -6,11 +6,12 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import dataclass
-from datetime import date, timedelta
+from datetime import date
 
 from apps.kit.derived import per_state
 from apps.kit.retractions import present
 from apps.microchat import state as chats
+from apps.microchat.calendar import working_day
 from apps.microchat.query import CallsQuery, ChatQuery
 from apps.microchat.state import Call, Chat, Conversation, Message, Team
 
@@ -455,7 +456,7 @@ def meetings(chat: Chat, today: date, root: str) -> tuple[Meeting, ...]:
         day, start, minutes = c.schedule
         found.append(
             Meeting(
-                today + timedelta(days=day),
+                working_day(today, day),
                 start,
                 minutes,
                 c.name,

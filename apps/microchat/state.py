@@ -60,7 +60,8 @@ class Conversation:
     avatar_color: str = "#5B5FC7"
     team_id: str | None = None
     order: int = 0
-    # A meeting's slot on the calendar: (day offset from today, "HH:MM", minutes); None if unset.
+    # A meeting's slot on the calendar: (n-th working day from the run's start, "HH:MM",
+    # minutes); None if unset.
     schedule: tuple[int, str, int] | None = None
 
 
