@@ -117,6 +117,8 @@ def flags_the_scalability_mail() -> Agent:
             done.append("opened")
             return f"click('{bid(tree, 'link', f'Subject: {SUBJECT}')}')"
         if "flagged" not in done:
+            if f"Flag “{SUBJECT}”" not in tree:  # the opened mail not drawn yet: look again
+                return "noop(1000)"
             done.append("flagged")
             return f"click('{bid(tree, 'button', f'Flag “{SUBJECT}”')}')"
         return 'send_msg_to_user("I flagged the notes on platform scalability.")'
