@@ -8,6 +8,7 @@ import shutil
 import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import pytest
 from django.conf import settings
@@ -16,6 +17,9 @@ from apps.scenarios.format import parse_scenario
 from apps.tally.environment import TALLY, tally_scenario
 from events import registry
 from events.projection import clear_cache
+
+if TYPE_CHECKING:  # imports Playwright when used, not when the suite starts
+    from tests.chromium import SharedChromium
 
 REPO = Path(__file__).resolve().parents[1]
 # The scenarios of ours the tests play and count: the session's copy of the files git tracks in
@@ -277,16 +281,27 @@ def live_site(transactional_db, site_ticker, kept_site_server):
     return kept_site_server.serving()
 
 
-@pytest.fixture
-def browser():
-    """Debian's Chromium driven by Playwright (never `playwright install`)."""
-    import shutil
-
-    from apps.browser_agent.browser import CHROMIUM, CHROMIUM_ARGS
+@pytest.fixture(scope="session")
+def shared_chromium() -> Iterator[SharedChromium]:
+    """Debian's Chromium (never `playwright install`), one per test process (tests/chromium.py),
+    started when the process's first browser test asks for it."""
+    from apps.browser_agent.browser import CHROMIUM
+    from tests.chromium import SharedChromium
 
     executable = shutil.which("chromium") or CHROMIUM
     if not Path(executable).exists():
         pytest.fail("chromium is not installed: apt-get install -y chromium")
+    shared = SharedChromium(executable)
+    try:
+        yield shared
+    finally:
+        shared.stop()
+
+
+@pytest.fixture
+def browser(shared_chromium):
+    """The process's Chromium, driven by this test's own Playwright over the DevTools protocol;
+    the contexts and pages the test opens are discarded after it."""
     from playwright.sync_api import expect, sync_playwright
 
     from tests.browser_story import TIMEOUT_MS
@@ -295,7 +310,7 @@ def browser():
     # miss: the same generous one as actions. It returns as soon as its condition holds.
     expect.set_options(timeout=TIMEOUT_MS)
     with sync_playwright() as playwright:
-        instance = playwright.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
+        instance = playwright.chromium.connect_over_cdp(shared_chromium.endpoint)
         try:
             yield instance
         finally:

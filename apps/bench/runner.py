@@ -270,10 +270,14 @@ class Harness:
         results and the scenario library (the answer key)."""
         return (self.base_dir, *project_python(), self.results_root, *self.private_paths)
 
-    def builtin(self, module: str) -> list[str]:
+    def builtin(self, module: str, *, stdlib_only: bool = False) -> list[str]:
         """The command running a built-in agent, a module of this project: the project's folder
-        goes on its import path through its command line, never through its environment."""
-        return [sys.executable, "-c", LAUNCH_MODULE, str(self.base_dir), module]
+        goes on its import path through its command line, never through its environment. An
+        agent of the standard library only starts without `site` (`-S`): a validation starts
+        one per scenario and control agent, and the virtualenv's path hooks were most of each
+        start's CPU."""
+        flags = ["-S"] if stdlib_only else []
+        return [sys.executable, *flags, "-c", LAUNCH_MODULE, str(self.base_dir), module]
 
     def tasks(self, listing: list[dict], trials: int = 1) -> list[Task]:
         tasks = []
@@ -333,7 +337,7 @@ class Harness:
         if self.agent:
             condition = task.spec.get("condition_at")
             argv = [
-                *self.builtin("apps.bench.agents"),
+                *self.builtin("apps.bench.agents", stdlib_only=True),
                 self.agent,
                 "--task-url",
                 run["task_url"],
@@ -664,9 +668,11 @@ REAPER_STOP_S = 15.0
 
 
 def reaper_command(command: list[str] | str, shell: bool, output: Path) -> list[str]:
-    """The agent's command run under apps/bench/reaper.py (by path: the standard library only)."""
+    """The agent's command run under apps/bench/reaper.py (by path, and without `site`: the
+    standard library only)."""
     argv = [
         sys.executable,
+        "-S",
         str(REAPER),
         "--output",
         str(output.resolve()),

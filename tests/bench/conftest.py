@@ -52,25 +52,27 @@ def shorten(
 
 
 TEST_SCENARIOS = [
-    # id, source, script, options
+    # id, source, script, options. Costs are written before the contact: after it the harness
+    # ends the agent once the grace period is over, which a loaded machine can reach while the
+    # contact's answer is still on its way.
     (
         "bench-passive",
         "sender-absolute-passive",
-        "poll select-base-77; contact; costs 10000 500 4 upstream",
+        "poll select-base-77; costs 10000 500 4 upstream; contact",
         {},
     ),
     (
         "bench-active",
         "body-keyword-absolute-active",
-        "poll select-base-45; action open_email base-45; action flag base-45; contact; "
-        "costs 20000 1000 6",
+        "poll select-base-45; action open_email base-45; action flag base-45; "
+        "costs 20000 1000 6; contact",
         {},
     ),
     # Leaves a child behind when it exits by itself: the harness kills it anyway. It exits
     # after the run's end (kill_at 60 = 15 wall s at speed 4): a no-op passes only if the agent
     # is still there then (the paper's rule).
     ("bench-noop", "sender-absolute-noop", "spawn; sleep 16.5; costs 5000 100 2", {}),
-    ("bench-early", "inbox-relative-passive", "contact; costs 1000 50 1", {}),
+    ("bench-early", "inbox-relative-passive", "costs 1000 50 1; contact", {}),
     ("bench-hung", "junk-relative-passive", "spawn; hang", {"condition_at": 16.0, "kill_at": 20.0}),
     # Contacts in time, then lingers: killed after the grace period, still a success.
     (

@@ -103,9 +103,7 @@ def test_the_readme_validate_command_gives_the_verdicts_played_in_memory(tmp_pat
         cwd=clone, env=user_env(), capture_output=True, text=True, timeout=900,
     )  # fmt: skip
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr
-    played = {
-        i: pair for i, pair in proven_in_memory().items() if pair[0]["environment"] == "micromail"
-    }
+    played = proven_in_memory("micromail")
     mail = {i: proof for i, (_, proof) in played.items()}
     # The late agent plays the ephemeral scenarios only (those with a condition_until).
     ephemeral = {i for i, (doc, _) in played.items() if doc.get("condition_until") is not None}

@@ -24,11 +24,16 @@ def readme_validate_figures() -> str:
     return line.split(" wall_s=")[0]
 
 
-def proven_in_memory() -> dict[str, tuple[dict, Proof]]:
-    """Every scenario of ours, as the server loads it, with its proofs played in memory."""
+def proven_in_memory(environment: str | None = None) -> dict[str, tuple[dict, Proof]]:
+    """Every scenario of ours (or of one environment), as the server loads it, with its proofs
+    played in memory."""
     loaded = library(OUR_SCENARIOS).by_path
-    documents = {path: json.loads((OUR_SCENARIOS / path).read_text()) for path in loaded}
-    return {doc["id"]: (doc, prove(doc)) for doc in documents.values()}
+    documents = [json.loads((OUR_SCENARIOS / path).read_text()) for path in loaded]
+    return {
+        doc["id"]: (doc, prove(doc))
+        for doc in documents
+        if environment in (None, doc["environment"])
+    }
 
 
 def figures_of(proven: dict[str, tuple[dict, Proof]], unseen: int) -> str:

@@ -18,6 +18,7 @@ import pytest
 from playwright.sync_api import Browser, Page, expect
 
 from tests import control_api
+from tests.browser_story import TIMEOUT_MS
 
 pytestmark = pytest.mark.browser
 
@@ -53,7 +54,7 @@ def start_run(base_url: str) -> dict:
 def open_new_message(browser: Browser, base_url: str, *, javascript: bool = True) -> Page:
     """The inbox of a fresh run, then its New message form, as the user would get there."""
     page = browser.new_context(java_script_enabled=javascript).new_page()
-    page.set_default_timeout(5000)
+    page.set_default_timeout(TIMEOUT_MS)  # generous: a loaded machine renders in seconds
     page.goto(start_run(base_url)["task_url"])
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible()
     page.get_by_role("link", name="New mail").click()
