@@ -31,8 +31,8 @@ from typing import Any
 
 from apps.bench.config import BenchConfig, input_tokens, output_tokens
 from apps.bench.judge import Ask, Judgement, judge_result
+from apps.bench.layout import COSTS, ERROR, RESULTS, BenchError, error_cause_of
 from apps.bench.manifest import read_manifest
-from apps.bench.runner import COSTS, ERROR, RESULTS, BenchError, error_cause_of
 from apps.bench.stats import (
     Interval,
     bootstrap_median,

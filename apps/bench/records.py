@@ -9,8 +9,8 @@ from django.utils import timezone
 
 from apps.bench.config import BenchConfig
 from apps.bench.grading import load_rows, task_errors
+from apps.bench.layout import ERROR, trial_folder
 from apps.bench.models import BenchmarkRun, TaskResult
-from apps.bench.runner import ERROR, trial_folder
 from events.models import Run
 
 

@@ -54,16 +54,18 @@ from apps.bench.agents import FIXED_CONTACT_AT, SLEEPER_MARGIN_S
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig
 from apps.bench.everything import every_item_steps
+from apps.bench.layout import (
+    ERROR,
+    EVENTS,
+    OUTPUT,
+    RESULTS,
+    BenchError,
+    error_cause_of,
+    trial_folder,
+)
 from apps.bench.outcomes import error_cause, graded_outcome, noop_rule_applied
 from events.timing import MAX_CONDITION_AT, MIN_CONDITION_AT
 
-RESULTS, ERROR, OUTPUT, EVENTS, COSTS = (
-    "results.json",
-    "error.txt",
-    "output.txt",
-    "events.jsonl",
-    "costs.json",
-)
 START_POLL_S = 0.5
 VIRTUAL_GUARD_FACTOR, VIRTUAL_GUARD_MIN_S = 4.0, 120.0  # a virtual run's wall-time guard
 OUTPUT_TAIL_LINES = 5
@@ -81,10 +83,6 @@ CONTACT_INSTRUCTIONS = (
 
 class Interrupted(Exception):
     """The harness is stopping: the task is left undone (no results.json, no error.txt)."""
-
-
-class BenchError(Exception):
-    """A problem the user can fix (bad selection, missing results): one line, exit 2."""
 
 
 def augment_prompt(prompt: str, contact_url: str) -> str:
@@ -186,20 +184,6 @@ class Task:
     @property
     def label(self) -> str:
         return self.scenario_id if self.trial == 1 else f"{self.scenario_id} (trial {self.trial})"
-
-
-def trial_folder(task_folder: Path, trial: int) -> Path:
-    """Where trial `trial` of a task keeps its files (trial 1: the task's own folder)."""
-    return task_folder if trial == 1 else task_folder / f"trial-{trial}"
-
-
-def error_cause_of(folder: Path) -> str:
-    """The first line of a task's error.txt: why it is an error."""
-    try:
-        with open(folder / ERROR, encoding="utf-8", errors="replace") as fh:
-            return fh.readline().strip()
-    except OSError:
-        return ""
 
 
 @dataclass

@@ -21,10 +21,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from apps.bench.layout import EVENTS, RESULTS
 from apps.bench.transcripts import PROMPT, TRANSCRIPT, Step, read_transcript
 
-EVENTS_FILE = "events.jsonl"
-RESULTS_FILE = "results.json"
 TRIGGER, DISTRACTOR, PRELOAD = "trigger", "distractor", "preload"
 SAME_MOMENT = 1e-6  # simulated seconds: a timeline entry at condition_at is the trigger
 
@@ -128,7 +127,7 @@ def read_result(folder: Path | None) -> dict[str, Any]:
     if folder is None:
         return {}
     try:
-        result = json.loads((folder / RESULTS_FILE).read_text(encoding="utf-8"))
+        result = json.loads((folder / RESULTS).read_text(encoding="utf-8"))
     except (OSError, json.JSONDecodeError):
         return {}
     return result if isinstance(result, dict) else {}
@@ -136,7 +135,7 @@ def read_result(folder: Path | None) -> dict[str, Any]:
 
 def read_task_folder(folder: Path) -> TaskTrace:
     """A task's result folder as a TaskTrace (its log from events.jsonl)."""
-    run, log = read_log_file(folder / EVENTS_FILE)
+    run, log = read_log_file(folder / EVENTS)
     scenario = run.get("scenario") or {}
     return TaskTrace(
         scenario=scenario,

@@ -17,8 +17,8 @@ from django.template.response import TemplateResponse
 from django.urls import reverse
 from django.utils.safestring import mark_safe
 
+from apps.bench.layout import trial_folder
 from apps.bench.models import TaskResult
-from apps.bench.runner import trial_folder
 from apps.bench.task_trace import trace_of
 from apps.bench.timeline import Links, build_timeline, render_timeline
 from apps.kit.links import environment_root

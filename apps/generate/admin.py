@@ -13,7 +13,6 @@ from django.shortcuts import get_object_or_404
 from django.template.response import TemplateResponse
 from django.urls import path, reverse
 
-from apps.generate.variants import VariantsForm, generate_variants
 from apps.scenarios.admin import ScenarioAdmin
 from apps.scenarios.models import Scenario
 
@@ -39,6 +38,10 @@ class GeneratingScenarioAdmin(ScenarioAdmin):
         scenario = get_object_or_404(Scenario, pk=pk)
         if not self.has_add_permission(request):
             raise PermissionDenied
+        # The generator borrows the harness (its HTTP client among it): loaded when used, not
+        # by every process that starts Django.
+        from apps.generate.variants import VariantsForm, generate_variants
+
         form = VariantsForm(request.POST or None)
         outcome = None
         if request.method == "POST" and form.is_valid():
