@@ -255,13 +255,13 @@ class Harness:
         return (self.base_dir, *project_python(), self.results_root, *self.private_paths)
 
     def builtin(self, module: str, *, stdlib_only: bool = False) -> list[str]:
-        """The command running a built-in agent, a module of this project: the project's folder
-        goes on its import path through its command line, never through its environment. An
-        agent of the standard library only starts without `site` (`-S`): a validation starts
-        one per scenario and control agent, and the virtualenv's path hooks were most of each
-        start's CPU."""
+        """The command running a built-in agent, a module of this project: the folder holding
+        its code goes on its import path through its command line, never through its
+        environment. An agent of the standard library only starts without `site` (`-S`): a
+        validation starts one per scenario and control agent, and the virtualenv's path hooks
+        were most of each start's CPU."""
         flags = ["-S"] if stdlib_only else []
-        return [sys.executable, *flags, "-c", LAUNCH_MODULE, str(self.base_dir), module]
+        return [sys.executable, *flags, "-c", LAUNCH_MODULE, str(CODE_DIR), module]
 
     def tasks(self, listing: list[dict], trials: int = 1) -> list[Task]:
         tasks = []
@@ -692,6 +692,9 @@ def stop_agent(process: subprocess.Popen, agent_group: int | None) -> None:
         process.stdout.close()
 
 
+# The folder holding the `apps` package: a checkout's top, or an installed package's
+# site-packages (where the base folder is the package's resources, with no code).
+CODE_DIR = Path(__file__).resolve().parents[2]
 # Runs a module whose folder is given on the command line (`-c CODE FOLDER MODULE ARGS…`).
 LAUNCH_MODULE = (
     "import runpy, sys; sys.path.insert(0, sys.argv.pop(1)); "

@@ -6,6 +6,7 @@ import pytest
 
 from apps.bench.config import ConfigError, load_config, parse_config
 from apps.bench.runner import (
+    CODE_DIR,
     LAUNCH_MODULE,
     Harness,
     Task,
@@ -205,8 +206,8 @@ def test_a_reference_agent_is_configured_instead_of_a_command(tmp_path):
     harness = Harness(config, client=None, results_root=tmp_path, base_dir=tmp_path)
     run = {"task_url": "http://h/r/t/start", "contact_url": "http://h/r/t/contact"}
     argv, shell, env = harness.command_for(task, run, "the prompt")
-    # The project's folder reaches the module by its command line, never its environment.
-    assert not shell and argv[1:5] == ["-c", LAUNCH_MODULE, str(tmp_path), "apps.browser_agent"]
+    # The code's folder reaches the module by its command line, never its environment.
+    assert not shell and argv[1:5] == ["-c", LAUNCH_MODULE, str(CODE_DIR), "apps.browser_agent"]
     options = dict(zip(argv[5::2], argv[6::2], strict=False))
     assert options == {
         "--kind": "wait_for",

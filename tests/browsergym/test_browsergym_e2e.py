@@ -40,13 +40,19 @@ Agent = Callable[[str], str]  # the page's accessibility tree → the next Brows
 STALE = "Could not find element with bid"
 
 
-def bid(tree: str, role: str, name_part: str) -> str:
-    """The BrowserGym id of the first element of `role` whose name holds `name_part`."""
+def find_bid(tree: str, role: str, name_part: str) -> str | None:
+    """The BrowserGym id of the first element of `role` whose name holds `name_part`, if any."""
     for line in tree.splitlines():
         found = re.match(r"\s*\[([^\]]+)\] (\S+) (['\"])(.*)", line)
         if found and found.group(2) == role and name_part in found.group(4):
             return found.group(1)
-    raise AssertionError(f"no {role} named like {name_part!r} on the page")
+    return None
+
+
+def bid(tree: str, role: str, name_part: str) -> str:
+    found = find_bid(tree, role, name_part)
+    assert found is not None, f"no {role} named like {name_part!r} on the page"
+    return found
 
 
 def play(task: str, agent: Agent, max_steps: int = 60) -> tuple[float, dict[str, Any], dict]:
@@ -117,10 +123,11 @@ def flags_the_scalability_mail() -> Agent:
             done.append("opened")
             return f"click('{bid(tree, 'link', f'Subject: {SUBJECT}')}')"
         if "flagged" not in done:
-            if f"Flag “{SUBJECT}”" not in tree:  # the opened mail not drawn yet: look again
+            flag = find_bid(tree, "button", f"Flag “{SUBJECT}”")
+            if flag is None:  # the opened mail's buttons not drawn yet: look again
                 return "noop(1000)"
             done.append("flagged")
-            return f"click('{bid(tree, 'button', f'Flag “{SUBJECT}”')}')"
+            return f"click('{flag}')"
         return 'send_msg_to_user("I flagged the notes on platform scalability.")'
 
     agent.missed = missed  # type: ignore[attr-defined]
