@@ -71,7 +71,7 @@ TEST_SCENARIOS = [
     # Leaves a child behind when it exits by itself: the harness kills it anyway. It exits
     # after the run's end (kill_at 60 = 15 wall s at speed 4): a no-op passes only if the agent
     # is still there then (the paper's rule).
-    ("bench-noop", "sender-absolute-noop", "spawn; sleep 16.5; costs 5000 100 2", {}),
+    ("bench-noop", "sender-absolute-noop", "spawn; costs 5000 100 2; sleep 16.5", {}),
     ("bench-early", "inbox-relative-passive", "costs 1000 50 1; contact", {}),
     ("bench-hung", "junk-relative-passive", "spawn; hang", {"condition_at": 16.0, "kill_at": 20.0}),
     # Contacts in time, then lingers: killed after the grace period, still a success.

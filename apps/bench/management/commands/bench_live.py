@@ -35,6 +35,8 @@ from sentinel_site.site_server import ServerDidNotStart, site_server
 
 SEQ = re.compile(r'"seq": (\d+)')
 LIVE_SOCKET = re.compile(r'id="sentinel-live"[^>]*data-socket="([^"]+)"')
+# Generous: on a fully loaded 2-core machine a page render and a first push take seconds.
+SUBSCRIBE_S = 120.0
 
 
 def bench_scenario(environment: str, events: int) -> dict:
@@ -167,6 +169,26 @@ class Bench:
                 closer.cancel()
 
     @staticmethod
+    async def until_subscribed(clients: list[asyncio.Task], ready: list[asyncio.Event]) -> None:
+        """Every client subscribed, or a clear error: the one a client failed with (not a
+        timeout hiding it), else how many subscribed within SUBSCRIBE_S."""
+        everyone = asyncio.ensure_future(asyncio.gather(*(r.wait() for r in ready)))
+        done, _ = await asyncio.wait(
+            [everyone, *clients], timeout=SUBSCRIBE_S, return_when=asyncio.FIRST_COMPLETED
+        )
+        failed = [c for c in clients if c.done() and c.exception() is not None]
+        if failed:
+            everyone.cancel()
+            raise CommandError(f"a websocket client failed to subscribe: {failed[0].exception()!r}")
+        if everyone not in done:
+            everyone.cancel()
+            joined = sum(r.is_set() for r in ready)
+            raise CommandError(
+                f"the websocket clients did not all subscribe within {SUBSCRIBE_S:g} s "
+                f"({joined}/{len(ready)} did)"
+            )
+
+    @staticmethod
     async def close_on(stop: asyncio.Event, ws) -> None:
         await stop.wait()
         await ws.close()
@@ -187,12 +209,7 @@ class Bench:
                 asyncio.create_task(self.client(run, received, ready, stop))
                 for run, received, ready in inboxes
             ]
-            try:
-                await asyncio.wait_for(asyncio.gather(*(r.wait() for _, _, r in inboxes)), 60)
-            except TimeoutError:
-                raise CommandError(
-                    "the websocket clients did not all subscribe within 60 s"
-                ) from None
+            await self.until_subscribed(tasks, [ready for _, _, ready in inboxes])
             self.say(
                 f"{self.clients} clients subscribed to {self.runs} run(s); firing "
                 f"{self.rate:g}/s for {self.seconds:g} s"
