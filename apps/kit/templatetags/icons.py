@@ -5,7 +5,8 @@ Emoji and font glyphs render as empty boxes in a browser without those fonts (De
 so an agent judging a screenshot would not see them; SVG always draws. Each use is a small
 `<svg><use href="#icon-…">` pointing into one hidden sprite of `<symbol>`s, so a list of two
 hundred rows does not repeat the same paths two hundred times. The drawings come from the lucide
-package (a maintained icon set), plus the few marks it lacks (`OWN_DRAWINGS`); stroke, fill and size are CSS (static/site/shell.css `svg.lucide`).
+package (a maintained icon set), plus the few marks it lacks (`OWN_DRAWINGS`); stroke, fill and
+size are CSS (static/site/shell.css `svg.lucide`).
 
 Which icons a page may use is known when its templates are compiled: the tag records each name
 under the template's folder (`micromail/_row.html` → `micromail`), and the sprite holds the

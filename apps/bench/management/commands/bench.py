@@ -41,6 +41,7 @@ from apps.bench.grading import (
     summarise,
     task_errors,
 )
+from apps.bench.layout import ERROR, BenchError
 from apps.bench.manifest import (
     build_manifest,
     git_commit,
@@ -54,9 +55,7 @@ from apps.bench.outcomes import NOOP_RULES
 from apps.bench.runner import (
     CHEATING_AGENTS,
     CONTROL_AGENTS,
-    ERROR,
     WINDOW_AGENTS,
-    BenchError,
     Harness,
     Progress,
     Task,
