@@ -10,6 +10,9 @@ leaks from one test to the next.
 
 from __future__ import annotations
 
+import contextlib
+import os
+import signal
 import subprocess
 import tempfile
 import threading
@@ -72,7 +75,10 @@ class SharedChromium:
         from apps.browser_agent.browser import CHROMIUM_ARGS  # imports Playwright: only when used
 
         self.stop()
-        self._profile = tempfile.TemporaryDirectory(prefix="sentinel-chromium-")
+        # A profile left behind is a temporary folder, never a failed test.
+        self._profile = tempfile.TemporaryDirectory(
+            prefix="sentinel-chromium-", ignore_cleanup_errors=True
+        )
         self._process = subprocess.Popen(
             [
                 self.executable,
@@ -87,16 +93,21 @@ class SharedChromium:
             stdout=subprocess.DEVNULL,
             stderr=subprocess.PIPE,
             text=True,
+            start_new_session=True,  # its helpers in one group, stopped with it
         )
         self._endpoint = _await_endpoint(self._process)
 
     def stop(self) -> None:
         if self._process is not None:
-            self._process.terminate()
+            # The whole group: Chromium's helper processes still write to the profile after the
+            # browser process itself has gone.
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(self._process.pid, signal.SIGTERM)
             try:
                 self._process.wait(timeout=10)
             except subprocess.TimeoutExpired:
-                self._process.kill()
+                with contextlib.suppress(ProcessLookupError):
+                    os.killpg(self._process.pid, signal.SIGKILL)
                 self._process.wait()
             self._process = None
         if self._profile is not None:
