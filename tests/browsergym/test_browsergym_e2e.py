@@ -38,6 +38,7 @@ pytestmark = [pytest.mark.e2e, pytest.mark.browser, pytest.mark.django_db(transa
 
 Agent = Callable[[str], str]  # the page's accessibility tree → the next BrowserGym action
 STALE = "Could not find element with bid"
+RETRIED = (STALE, "Locator.click: Timeout")
 
 
 def find_bid(tree: str, role: str, name_part: str) -> str | None:
@@ -67,9 +68,10 @@ def play(task: str, agent: Agent, max_steps: int = 60) -> tuple[float, dict[str,
                 action = agent(flatten_axtree_to_str(obs["axtree_object"]))
                 obs, reward, done, _, info = env.step(action)
                 missed = obs["last_action_error"]
-                # The one error a live page may cause: a push re-rendered the element between
-                # the look and the click, so its id is gone; the agent looks again and redoes it.
-                assert not missed or STALE in missed, (action, missed)
+                # The errors a live page on a busy machine may cause: a push re-rendered the
+                # element between the look and the click, so its id is gone, or BrowserGym's own
+                # half-second click ceiling passed; the agent looks again and redoes it.
+                assert not missed or any(m in missed for m in RETRIED), (action, missed)
                 if missed:
                     agent.missed()  # type: ignore[attr-defined]
                 if done:
