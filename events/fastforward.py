@@ -4,8 +4,13 @@ The run's clock is a live clock (it runs at the speed factor while the agent wor
 `skipped`, the sum of every skip (see events.clock for the one formula). A wait is one of
 
 - `Wait(seconds=s)`: skip `s` simulated seconds, waking early at nothing (a sleep);
+  `Wait(to=t)`: the same, up to simulated second `t` (an agent that keeps to moments of the
+  run's clock lands on them exactly, though the clock ran on while its request travelled);
 - `Wait(until_change=True, timeout=s)`: skip to the next scheduled timeline entry, at most `s`
-  seconds (a wait for something to happen).
+  seconds, or at most up to second `to` (a wait for something to happen). With `since=t` the
+  wait is for the first entry after simulated second `t` (the agent's last look): one that
+  came while the agent was looking has happened already, so the wait answers at once instead
+  of sleeping through it.
 
 A skip never passes the run's kill_at (nor its timeline end). It moves the sum forward and, in
 the same transaction, logs itself — a lifecycle `skip` event {from, to, why} at its `from` — and
@@ -56,11 +61,21 @@ class Wait:
     seconds: float | None = None
     until_change: bool = False
     timeout: float | None = None  # for until_change; None: as far as the run allows
+    since: float | None = None  # for until_change: a change after this moment; None: after now
+    to: float | None = None  # the simulated second it ends at, instead of seconds or timeout
 
     def __post_init__(self) -> None:
-        if (self.seconds is None) == (not self.until_change):
-            raise ValueError("a wait is either some seconds or until a change")
-        for name in ("seconds", "timeout"):
+        if self.until_change:
+            if self.seconds is not None:
+                raise ValueError("a wait is either a sleep or until a change")
+            if self.timeout is not None and self.to is not None:
+                raise ValueError("a wait until a change ends after a timeout or at to, not both")
+        else:
+            if (self.seconds is None) == (self.to is None):
+                raise ValueError("a sleep is either some seconds or up to a moment (to)")
+            if self.since is not None or self.timeout is not None:
+                raise ValueError("since and timeout go with a wait until a change")
+        for name in ("seconds", "timeout", "since", "to"):
             value = getattr(self, name)
             if value is not None and not (math.isfinite(value) and value >= 0):
                 raise ValueError(f"{name} must be a finite number of seconds ≥ 0, got {value!r}")
@@ -86,13 +101,20 @@ def skip_limit(run: Run) -> float:
 def target(run: Run, wait: Wait, now: float) -> tuple[float, str]:
     """Where a wait starting at `now` stops, and why (pure: the run's timeline and limit)."""
     limit = skip_limit(run)
-    if wait.seconds is not None:
-        to, why = now + wait.seconds, SLEPT
+    if not wait.until_change:
+        end = now + wait.seconds if wait.seconds is not None else wait.to
+        assert end is not None  # Wait's own check
+        to, why = max(now, end), SLEPT
     else:
-        upcoming = (entry["time"] for entry in run.timeline if entry["time"] > now)
+        after = now if wait.since is None else min(wait.since, now)
+        upcoming = (entry["time"] for entry in run.timeline if entry["time"] > after)
         nxt = next(upcoming, math.inf)
-        horizon = math.inf if wait.timeout is None else now + wait.timeout
-        to, why = (nxt, CHANGE) if nxt <= horizon else (horizon, TIMEOUT)
+        if wait.to is not None:
+            horizon = max(now, wait.to)
+        else:
+            horizon = math.inf if wait.timeout is None else now + wait.timeout
+        # A change after `since` that came while the agent looked is there now: no skip.
+        to, why = (max(nxt, now), CHANGE) if nxt <= horizon else (horizon, TIMEOUT)
     if to >= limit:
         return max(now, limit), KILL_AT
     return to, why

@@ -71,6 +71,34 @@ def test_until_change_wakes_at_the_next_entry(api, agent):
     assert answer["sim_time"] == pytest.approx(answer["from"] + 5)
 
 
+def test_a_change_since_the_agents_last_look_answers_at_once(api, agent):
+    run = started(api, agent)
+    status, answer = wait(agent, run, {"seconds": 10.5})  # the ping at 10 fires on the way
+    assert (status, answer["why"]) == (200, "slept")
+    looked = answer["sim_time"]
+    # Since a moment before the ping: it is the change, it has come, the clock stays.
+    status, answer = wait(agent, run, {"until": "change", "timeout": 100, "since": 9.0})
+    assert (status, answer["why"], answer["fired"]) == (200, "change", [])
+    assert answer["sim_time"] == answer["from"] == pytest.approx(looked, abs=0.5)
+    # Since the last look: the next change is the ping at 30.
+    status, answer = wait(agent, run, {"until": "change", "timeout": 100, "since": looked})
+    assert (answer["sim_time"], answer["why"]) == (30.0, "change")
+    assert Event.objects.filter(run_id=run["id"], type="skip").count() == 2
+
+
+def test_a_wait_to_a_moment_lands_on_it_though_the_clock_ran_on(api, agent):
+    run = started(api, agent)
+    status, answer = wait(agent, run, {"to": 12.25})
+    assert (status, answer["sim_time"], answer["why"]) == (200, 12.25, "slept")
+    assert [fired["at"] for fired in answer["fired"]] == [10.0]
+    status, answer = wait(agent, run, {"until": "change", "to": 20.25})
+    assert (answer["sim_time"], answer["why"]) == (20.25, "timeout")
+    status, answer = wait(agent, run, {"until": "change", "to": 40.0})
+    assert (answer["sim_time"], answer["why"]) == (30.0, "change")
+    status, answer = wait(agent, run, {"to": 5.0})  # passed already: the clock stays
+    assert answer["sim_time"] == answer["from"] >= 30.0
+
+
 @pytest.mark.parametrize("mode", ["live", "virtual"])
 def test_live_and_virtual_runs_refuse_with_409_naming_the_clock(api, agent, mode):
     run = started(api, agent, clock_mode=mode)
@@ -106,6 +134,11 @@ def test_a_wait_never_passes_kill_at(api, agent):
         ({"until": "lunch"}, 'until: must be "change"'),
         ({"until": "change", "timeout": -5}, "timeout: must be a finite number"),
         ({"seconds": 3, "timeout": 5}, "timeout goes with"),
+        ({"seconds": 3, "since": 1}, "since goes with"),
+        ({"seconds": 3, "to": 10}, '{"to": t}'),
+        ({"until": "change", "timeout": 3, "to": 10}, '"timeout": s or "to": t'),
+        ({"to": -2}, "to: must be a finite number"),
+        ({"until": "change", "since": "then"}, "since: must be a finite number"),
         ({"seconds": 3, "sleep": 5}, "sleep: unknown field"),
         ([1, 2], '{"seconds": s}'),
     ],

@@ -137,8 +137,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with Browser.launch(contact_url=task.contact_url) as browser:
             browser_started = True
-            clock: TaskClock | RunClock = TaskClock(args.speed_factor)
             readings = [browser.clock_reading]  # the run's clock, as its pages report it
+            clock: TaskClock | RunClock = TaskClock(args.speed_factor, browser.clock_reading)
             if args.wait_url:
                 clock = RunClock(post_json(args.wait_url), browser)
                 wall.skipped = clock.skipped_wall  # a skip spends the budget as the wait would

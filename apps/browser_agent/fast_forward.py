@@ -89,15 +89,20 @@ class RunClock:
         """`sleep(seconds)` as one skip (the run's kill_at may cut it short)."""
         self._wait({"seconds": max(0.0, seconds)})
 
-    def skip_to(self, at: float, *, wake_at_change: bool) -> bool:
-        now = self.now()
+    def skip_to(self, at: float, *, wake_at_change: bool) -> float | None:
+        # To the moment itself (`to`), not a number of seconds from the agent's reading, which
+        # lags the server's clock by the request's travel: the skip lands where it was aimed.
         if wake_at_change:
+            now = self.now()
             due = self.page.next_change()
             horizon = at if due is None else min(at, max(due, now))
-            answer = self._wait({"until": "change", "timeout": max(0.0, horizon - now)})
+            # A change since the last skip landed came while the agent looked at that moment
+            # (the clock runs meanwhile): the wait answers at once rather than sleep through it.
+            since = self._read[0] if self._read is not None else now
+            answer = self._wait({"until": "change", "to": horizon, "since": since})
         else:
-            answer = self._wait({"seconds": max(0.0, at - now)})
-        return answer["why"] != KILL_AT
+            answer = self._wait({"to": at})
+        return None if answer["why"] == KILL_AT else float(answer["sim_time"])
 
     def reading(self) -> ClockReading | None:
         """The wait URL's last answer as a reading of the run's clock (None before any)."""

@@ -34,6 +34,7 @@ from apps.browser_agent.browser import Browser, BrowserError, first_line
 from apps.browser_agent.fast_forward import KILL_AT, RunClock, WaitFailed
 from apps.browser_agent.judging import JUDGE_PROMPT, judge_question, parse_judge_answer
 from apps.browser_agent.model import ChatModel
+from apps.browser_agent.sim_clock import ClockReading
 
 WaitKind = Literal["sleep", "wait_for"]
 WAIT_KINDS: tuple[WaitKind, ...] = ("sleep", "wait_for")
@@ -112,14 +113,31 @@ def tool_schemas(kind: WaitKind) -> list[dict[str, Any]]:
     return [*BROWSER_TOOLS, waiting_tool, *ENDING_TOOLS]
 
 
-@dataclass(frozen=True)
 class TaskClock:
-    """The task's seconds: `speed_factor` of them pass every wall-clock second."""
+    """The task's seconds: `speed_factor` of them pass every wall-clock second.
 
-    speed_factor: float = 1.0
+    They count on the run's own clock when a page of the run has reported it by the clock's
+    first reading (`reading`: sim_clock), so wait_for looks at the same simulated moments on
+    every run of a task (waiting.look_at); else from the wall clock. Fixed at that first
+    reading, so the clock never jumps during a wait.
+    """
+
+    def __init__(
+        self,
+        speed_factor: float = 1.0,
+        reading: Callable[[], ClockReading | None] = lambda: None,
+    ) -> None:
+        self.speed_factor = speed_factor
+        self.reading = reading
+        self._offset: float | None = None  # the run's simulated time at wall time 0
 
     def now(self) -> float:
-        return time.monotonic() * self.speed_factor
+        wall = time.monotonic()
+        if self._offset is None:
+            heard = self.reading()
+            run_time = heard.at(wall) if heard is not None else wall * self.speed_factor
+            self._offset = run_time - wall * self.speed_factor
+        return wall * self.speed_factor + self._offset
 
     def sleep(self, seconds: float) -> None:
         time.sleep(seconds / self.speed_factor)

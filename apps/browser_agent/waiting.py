@@ -14,12 +14,18 @@ both change as time passes, so a long wait sees a new block about once a simulat
 when nothing else happens. That is what a person watching the page sees, and what the paper's
 tool saw on real sites; the back-off is what keeps it cheap, so those blocks are not filtered.
 
+The looks fall on the run's own clock (the one its pages report), a quarter of a second past
+each simulated second (`look_at`): every run of a task looks at the same simulated moments,
+and never at a whole or tenth of a second, where scenario entries and the page's minute fall,
+so whether a look sees an entry never hangs on which of two processes was a millisecond sooner.
+
 On a fast-forward run the clock is the run's own and can skip (`SkippingClock`): instead of
 looking every second, the loop skips straight to the next moment a look could lead somewhere —
 while the model may not be asked yet, to the moment it may (a one-second poller would see then
-whatever changed meanwhile, and ask about it then); once it may, to the page's next change.
-Either way never past the next reload or the timeout. So the model is asked at the same
-simulated moments, about the same changes, as on a live run: the same calls, less wall time.
+whatever changed meanwhile, and ask about it then); once it may, to the page's next change,
+and from there on to the next look a poller would take. Either way never past the next reload
+or the timeout. So the model is asked at the same simulated moments, about the same changes,
+as on a live run: the same calls, the same reaction, less wall time.
 """
 
 from __future__ import annotations
@@ -42,9 +48,10 @@ class Clock(Protocol):
 class SkippingClock(Clock, Protocol):
     """A fast-forward run's clock (apps.browser_agent.fast_forward.RunClock)."""
 
-    def skip_to(self, at: float, *, wake_at_change: bool) -> bool:
+    def skip_to(self, at: float, *, wake_at_change: bool) -> float | None:
         """Skip ahead to `at` (earlier at the page's next change when `wake_at_change`), the page
-        caught up with it; False when the run allows no further skip (its kill_at is reached)."""
+        caught up with it: the simulated second it landed at; None when the run allows no
+        further skip (its kill_at is reached)."""
         ...
 
 
@@ -73,7 +80,8 @@ Judge = Callable[[str, list[str]], tuple[bool, str]]
 class WaitSchedule:
     """How often wait_for looks, asks and reloads, in seconds (defaults: the paper's)."""
 
-    poll: float = 1.0  # a fresh snapshot this often
+    poll: float = 1.0  # a fresh snapshot this often …
+    look_offset: float = 0.25  # … this far past each whole poll of the run's clock (look_at)
     first_check: float = 10.0  # the least time between two questions to the model …
     max_check: float = 60.0  # … doubling after each "no", up to this
     first_reload: float = 180.0  # the first reload this long after the wait starts …
@@ -83,6 +91,7 @@ class WaitSchedule:
 PAPER_SCHEDULE = WaitSchedule()
 
 NO_CHANGES = "no changes detected before the timeout"
+LOOK_EPSILON = 1e-6  # simulated seconds: a clock this close to a look moment is at it
 
 
 @dataclass(frozen=True)
@@ -105,50 +114,58 @@ def wait_for(
 ) -> WaitResult:
     """Wait up to `timeout` seconds for `page` to change so that `judge` says `condition` holds.
 
-    The clock is read again after each step that takes time (a reload, a snapshot, the
-    model's answer), as the algorithm does: a slow model must not eat into the rate limit.
+    Everything is decided at look moments (look_at): whether to reload, whether the model may
+    be asked, whether the time is up. The rate limit is counted from the model's answer, as the
+    algorithm does (a slow model must not eat into it); reloads from the look that reloaded.
     """
     if not (math.isfinite(timeout) and timeout >= 0):
         raise ValueError(f"timeout must be a finite number of seconds ≥ 0, got {timeout!r}")
     start = clock.now()
     base = page.markdown()
+    look = start  # the moment of this look: where the last sleep or skip ended
     reload_interval = schedule.first_reload
     next_reload = start + reload_interval
     check_interval = schedule.first_check
-    last_check = -math.inf
+    may_ask_at = -math.inf
     shown: set[str] = set()
     checks = reloads = 0
 
     def result(met: bool, explanation: str) -> WaitResult:
         return WaitResult(met, explanation, checks, reloads, waited_s=clock.now() - start)
 
-    while (now := clock.now()) - start < timeout:
-        if now >= next_reload:
+    while look - start < timeout:
+        if look >= next_reload - LOOK_EPSILON:
             page.reload()
             reloads += 1
             reload_interval = min(2 * reload_interval, schedule.max_reload)
-            next_reload = clock.now() + reload_interval
+            next_reload = look + reload_interval
         blocks = unified_diff_blocks(base, page.markdown())
         # In page order; the same text in two places is one block, like a block seen before.
         new = [block for block in dict.fromkeys(blocks) if block not in shown]
-        if new and clock.now() - last_check >= check_interval:
+        if new and look >= may_ask_at - LOOK_EPSILON:
             met, why = judge(condition, new)
             checks += 1
-            last_check = clock.now()
             shown.update(new)
             if met:
                 return result(True, why)
             check_interval = min(2 * check_interval, schedule.max_check)
+            # Counted from the answer (a slow model must not eat into the rate limit), to the
+            # first look from then on.
+            may_ask_at = look_at(clock.now() + check_interval, schedule)
         if isinstance(clock, SkippingClock):
             at, wake_at_change = next_look(
-                clock.now(),
-                end=min(start + timeout, next_reload),
-                may_ask_at=last_check + check_interval,
+                clock.now(), end=min(start + timeout, next_reload), may_ask_at=may_ask_at
             )
-            if not clock.skip_to(at, wake_at_change=wake_at_change):
+            landed = clock.skip_to(look_at(at, schedule), wake_at_change=wake_at_change)
+            if landed is not None and (moment := look_at(landed, schedule)) > landed + LOOK_EPSILON:
+                # Woke at a change between two looks: a poller sees it at its next look.
+                landed = clock.skip_to(moment, wake_at_change=False)
+            if landed is None:
                 break  # the run's time is up: the final check below, as at a timeout
+            look = landed
         else:
-            clock.sleep(schedule.poll)
+            look = next_look_after(clock.now(), schedule)
+            clock.sleep(look - clock.now())
 
     # The final check sees every block, those already shown included: the model judges the
     # page's whole change since the start, not only what arrived after its last answer.
@@ -171,6 +188,19 @@ def next_look(now: float, *, end: float, may_ask_at: float) -> tuple[float, bool
     if now < may_ask_at:
         return min(may_ask_at, end), False
     return end, True
+
+
+def look_at(moment: float, schedule: WaitSchedule = PAPER_SCHEDULE) -> float:
+    """The first moment at or after `moment` (simulated seconds) that a watcher looks at:
+    `look_offset` past a whole number of polls (pure)."""
+    polls = math.ceil((moment - schedule.look_offset - LOOK_EPSILON) / schedule.poll)
+    return schedule.look_offset + polls * schedule.poll
+
+
+def next_look_after(now: float, schedule: WaitSchedule = PAPER_SCHEDULE) -> float:
+    """The first look moment after `now`, for a watcher that has just looked (pure)."""
+    moment = look_at(now, schedule)
+    return moment if moment > now + LOOK_EPSILON else moment + schedule.poll
 
 
 def unified_diff_blocks(base: str, current: str) -> list[str]:

@@ -110,23 +110,23 @@ def run_action(request: HttpRequest, token: str) -> JsonResponse:
     )
 
 
-WAIT_SHAPE = 'body must be {"seconds": s} or {"until": "change", "timeout": s}'
+WAIT_SHAPE = (
+    'body must be {"seconds": s}, {"to": t} or {"until": "change"} '
+    '(with "timeout": s or "to": t, and "since": t)'
+)
+NUMBER_FIELDS = ("seconds", "timeout", "since", "to")  # simulated seconds, each ≥ 0
 
 
 def wait_of(body: object) -> fastforward.Wait:
     """The wait a `/wait` body asks for; BadBody naming the field otherwise."""
     if not isinstance(body, dict):
         raise BadBody(WAIT_SHAPE)
-    unknown = sorted(set(body) - {"seconds", "until", "timeout"})
+    unknown = sorted(set(body) - {"until", *NUMBER_FIELDS})
     if unknown:
         raise BadBody(f"{unknown[0]}: unknown field; {WAIT_SHAPE}")
-    if ("seconds" in body) == ("until" in body):
-        raise BadBody(WAIT_SHAPE)
-    if "seconds" in body and "timeout" in body:
-        raise BadBody('timeout goes with "until": a sleep of "seconds" has no timeout')
     if "until" in body and body["until"] != "change":
         raise BadBody(f'until: must be "change", got {body["until"]!r}')
-    for name in ("seconds", "timeout"):
+    for name in NUMBER_FIELDS:
         value = body.get(name)
         if name in body and (
             isinstance(value, bool)
@@ -134,17 +134,24 @@ def wait_of(body: object) -> fastforward.Wait:
             or not (math.isfinite(value) and value >= 0)
         ):
             raise BadBody(f"{name}: must be a finite number of seconds ≥ 0, got {value!r}")
-    if "seconds" in body:
-        return fastforward.Wait(seconds=float(body["seconds"]))
-    timeout = body.get("timeout")
-    return fastforward.Wait(until_change=True, timeout=None if timeout is None else float(timeout))
+    if "until" not in body:
+        for name in ("timeout", "since"):
+            if name in body:
+                raise BadBody(f'{name} goes with "until": a sleep has no {name}')
+        if ("seconds" in body) == ("to" in body):
+            raise BadBody(WAIT_SHAPE)
+    elif "seconds" in body or ("timeout" in body and "to" in body):
+        raise BadBody(WAIT_SHAPE)
+    numbers = {name: float(body[name]) for name in NUMBER_FIELDS if name in body}
+    return fastforward.Wait(until_change="until" in body, **numbers)
 
 
 @csrf_exempt  # JSON API authenticated by the run token in the path
 @require_POST
 def run_wait(request: HttpRequest, token: str) -> JsonResponse:
-    """`POST {"seconds": s}` or `{"until": "change", "timeout": s}` on a fast_forward run: skip
-    its clock ahead instead of sleeping; answers where the clock is now and what fired."""
+    """`POST {"seconds": s}` or `{"until": "change", "timeout": s}` (or another shape of
+    WAIT_SHAPE) on a fast_forward run: skip its clock ahead instead of sleeping; answers where
+    the clock is now and what fired."""
     run = run_for_token(token)
     try:
         wait = wait_of(read_json(request.body or b"{}"))

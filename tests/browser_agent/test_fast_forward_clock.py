@@ -29,9 +29,15 @@ class Server:
         start = self.sim
         if "seconds" in body:
             to, why = start + body["seconds"], "slept"
+        elif "until" not in body:
+            to, why = max(start, body["to"]), "slept"
         else:
-            horizon = start + body["timeout"]
-            to, why = (self.entry, "change") if self.entry <= horizon else (horizon, "timeout")
+            horizon = max(start, body["to"]) if "to" in body else start + body["timeout"]
+            entry = self.entry if self.entry > body.get("since", start) else None
+            if entry is not None and entry <= horizon:
+                to, why = max(start, entry), "change"
+            else:
+                to, why = horizon, "timeout"
         if to >= self.kill_at:
             to, why = max(start, self.kill_at), "kill_at"
         self.sim = to
@@ -82,17 +88,26 @@ def test_a_sleep_is_one_skip_and_the_page_catches_up_with_it(cast):
 def test_waking_at_a_change_stops_at_the_pages_own_next_change_if_sooner(cast):
     server, page, _, clock = cast
     page.due = 20.0  # e.g. the minute turns at 20 s, before the next entry at 50 s
-    assert clock.skip_to(200.0, wake_at_change=True)
-    assert server.asked[-1] == {"until": "change", "timeout": 15.0} and clock.now() == 20.0
+    assert clock.skip_to(200.0, wake_at_change=True) == 20.0 == clock.now()
+    assert server.asked[-1] == {"until": "change", "to": 20.0, "since": 5.0}
     page.due = None
-    assert clock.skip_to(200.0, wake_at_change=True)
-    assert server.asked[-1] == {"until": "change", "timeout": 180.0} and clock.now() == 50.0
+    assert clock.skip_to(200.0, wake_at_change=True) == 50.0 == clock.now()
+    # A change since its last landing: the one that came while the agent looked at 20.
+    assert server.asked[-1] == {"until": "change", "to": 200.0, "since": 20.0}
+
+
+def test_a_skip_aims_at_its_moment_not_at_seconds_from_a_lagging_reading(cast):
+    server, *_, clock = cast
+    clock.now()
+    server.sim += 0.3  # the server's clock ran on while the answer travelled
+    assert clock.skip_to(40.25, wake_at_change=False) == 40.25
+    assert server.asked[-1] == {"to": 40.25}
 
 
 def test_a_skip_to_kill_at_says_no_further_skip_is_possible(cast):
     *_, clock = cast
-    assert clock.skip_to(600.0, wake_at_change=False)
-    assert not clock.skip_to(900.0, wake_at_change=False)
+    assert clock.skip_to(600.0, wake_at_change=False) == 600.0
+    assert clock.skip_to(900.0, wake_at_change=False) is None
     assert clock.now() == 630.0 and clock.skipped == 625.0
 
 

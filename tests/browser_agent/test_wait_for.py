@@ -20,7 +20,14 @@ import pytest
 from django.test import Client
 
 from apps.browser_agent.snapshot import html_to_markdown
-from apps.browser_agent.waiting import NO_CHANGES, PAPER_SCHEDULE, unified_diff_blocks, wait_for
+from apps.browser_agent.waiting import (
+    NO_CHANGES,
+    PAPER_SCHEDULE,
+    look_at,
+    next_look_after,
+    unified_diff_blocks,
+    wait_for,
+)
 
 pytestmark = pytest.mark.slow
 
@@ -165,9 +172,10 @@ def test_the_model_sees_only_new_blocks_no_faster_than_the_rate_limit(inbox):
 
     wait_for(CONDITION, 600, page=page, judge=judge, clock=clock)
 
-    # Nothing changes before the distractor: the first question is about it, as it arrives.
+    # Nothing changes before the distractor: the first question is about it, at the first look
+    # after it arrives.
     first = judge.calls[0]
-    assert first.time == 20
+    assert first.time == look_at(20) == 20.25
     assert any(added(block, DISTRACTOR) for block in first.blocks)
     shown: set[str] = set()
     for call in judge.calls:
@@ -178,8 +186,8 @@ def test_the_model_sees_only_new_blocks_no_faster_than_the_rate_limit(inbox):
         assert later.time - earlier.time >= check_interval_after(answers)
     # The target's blocks wait for the rate limit, then go out at the first moment it allows.
     *_, before, last = judge.calls
-    assert last.time == max(
-        TARGET_AT_70[0], before.time + check_interval_after(len(judge.calls) - 1)
+    assert last.time == look_at(
+        max(TARGET_AT_70[0], before.time + check_interval_after(len(judge.calls) - 1))
     )
     assert any(added(block, TARGET) for block in last.blocks)
 
@@ -200,8 +208,9 @@ def test_reloads_come_at_180_then_every_doubled_interval_up_to_480(inbox):
 
     result = wait_for(CONDITION, 1100, page=page, judge=judge, clock=clock)
 
-    # 180, +360, +480 (the cap), then the final reload when the timeout runs out.
-    assert page.reloads == [180, 540, 1020, 1100]
+    # 180, +360, +480 (the cap), then the final reload when the timeout runs out: each at the
+    # first look from then on.
+    assert page.reloads == [180.25, 540.25, 1020.25, 1100.25]
     assert result.reloads == 4
     assert not result.met
 
@@ -212,8 +221,8 @@ def test_a_static_page_shows_the_target_after_its_reload(inbox):
     result = wait_for(CONDITION, 600, page=page, judge=judge, clock=clock)
 
     assert result.met
-    assert page.reloads == [180]
-    assert [call.time for call in judge.calls] == [180]
+    assert page.reloads == [180.25]
+    assert [call.time for call in judge.calls] == [180.25]
 
 
 def test_the_final_check_after_the_timeout_gets_every_block(inbox):
@@ -222,11 +231,11 @@ def test_the_final_check_after_the_timeout_gets_every_block(inbox):
     result = wait_for(CONDITION, 50, page=page, judge=judge, clock=clock)
 
     during, final = judge.calls
-    assert during.time == 20
-    assert page.reloads == [50] and final.time == 50
+    assert during.time == 20.25
+    assert page.reloads == [50.25] and final.time == 50.25
     assert final.blocks == unified_diff_blocks(page.snapshots[0], page.snapshots[-1])
     assert set(during.blocks) <= set(final.blocks)  # already shown, and shown again
-    assert (result.met, result.checks, result.waited_s) == (False, 2, 50)
+    assert (result.met, result.checks, result.waited_s) == (False, 2, 50.25)
     assert result.explanation == f"no email from {TARGET} yet"
 
 
@@ -237,10 +246,20 @@ def test_no_change_before_the_timeout_means_no_question(inbox):
 
     assert judge.calls == []
     assert (result.met, result.explanation, result.checks) == (False, NO_CHANGES, 0)
-    assert page.reloads == [30]
+    assert page.reloads == [30.25]
 
 
 def test_a_negative_timeout_is_refused(inbox):
     page, clock, judge = inbox()
     with pytest.raises(ValueError, match="timeout must be a finite number"):
         wait_for(CONDITION, -1, page=page, judge=judge, clock=clock)
+
+
+def test_looks_fall_a_quarter_past_each_second_of_the_runs_clock():
+    assert [look_at(t) for t in (0.0, 0.25, 0.2500000001, 0.3, 20.0, 69.9)] == [
+        0.25, 0.25, 0.25, 1.25, 20.25, 70.25,
+    ]  # fmt: skip
+    # After a look, the next: never the same moment twice, never a second skipped.
+    assert [next_look_after(t) for t in (0.0, 0.25, 0.7, 1.24)] == [0.25, 1.25, 1.25, 1.25]
+    # Never on a whole or tenth second, where scenario entries and the minute fall.
+    assert all(round(look_at(t / 10) * 10) != look_at(t / 10) * 10 for t in range(1000))

@@ -5,12 +5,16 @@ The cast is test_wait_for's: a MicroMail inbox, *a distractor* at t=20, *the tar
 The one-second watcher plays on a virtual clock advanced a second per look (a live run without
 the wall time); the skipping one on a fast_forward run through its real wait URL
 (`POST /r/<token>/wait`), reading the page's declared next change as the browser agent does.
+Each look of the skipping one is timed at the moment its skip landed (its clock runs on while it
+reads the page, for a second or two on a loaded machine; a poller's look is timed at its tick).
 """
 
 from __future__ import annotations
 
+import functools
 import json
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import pytest
@@ -23,6 +27,7 @@ from tests.browser_agent.test_wait_for import (
     CONDITION,
     DISTRACTOR_AT_20,
     TARGET_AT_70,
+    FakeClock,
     InboxPage,
     RecordingJudge,
     scenario,
@@ -31,7 +36,45 @@ from tests.browser_agent.test_wait_for import (
 pytestmark = pytest.mark.slow
 
 
+TOKEN = re.compile(r"/r/[^/]+/")
+
+
+def untokened(blocks: list[str]) -> list[str]:
+    """Blocks with the run's token taken out of their links: two runs, one page."""
+    return [TOKEN.sub("/r/TOKEN/", block) for block in blocks]
+
+
 DUE = re.compile(r'id="sentinel-live"[^>]*data-due="([^"]*)"')
+
+
+WORK_S = 0.05  # simulated seconds each look of the one-second watcher takes
+
+
+class WorkingPoller(FakeClock):
+    """test_wait_for's fake clock for a watcher whose every look takes WORK_S (the snapshot,
+    the model's answer), as a real one's does: its rate limit and reloads count from after."""
+
+    def now(self) -> float:
+        return self.time + WORK_S  # the look began at self.time
+
+    def sleep(self, seconds: float) -> None:
+        super().sleep(self.now() + seconds - self.time)
+
+
+@dataclass
+class LookMoments:
+    """A clock read at the moment of the watcher's latest look (where its sleep or skip ended)."""
+
+    look: Callable[[], float]
+
+    def now(self) -> float:
+        return self.look()
+
+
+def landed(clock: RunClock) -> float:
+    reading = clock.reading()
+    assert reading is not None
+    return reading.sim
 
 
 @dataclass
@@ -66,13 +109,13 @@ def watched(arrivals, timeout: float, *, fast_forward: bool):
 
         page = FastForwardInbox(client, f"/r/{run['token']}/micromail/", None)  # type: ignore[arg-type]
         clock = RunClock(post, page)
-        page.clock = clock  # type: ignore[assignment]
+        moments = LookMoments(functools.partial(landed, clock))
     else:
-        from tests.browser_agent.test_wait_for import FakeClock
-
-        clock = FakeClock(client, run["id"])  # type: ignore[assignment]
-        page = InboxPage(client, f"/r/{run['token']}/micromail/", clock)  # type: ignore[arg-type]
-    judge = RecordingJudge(clock)  # type: ignore[arg-type]
+        clock = WorkingPoller(client, run["id"])  # type: ignore[assignment]
+        moments = LookMoments(lambda: clock.time)  # type: ignore[attr-defined]
+        page = InboxPage(client, f"/r/{run['token']}/micromail/", moments)  # type: ignore[arg-type]
+    page.clock = moments  # type: ignore[assignment]
+    judge = RecordingJudge(moments)  # type: ignore[arg-type]
     result = wait_for(CONDITION, timeout, page=page, judge=judge, clock=clock)
     skips = Event.objects.filter(run_id=run["id"], type="skip").count()
     return result, judge.calls, page.reloads, skips
@@ -91,12 +134,10 @@ def test_skipping_asks_the_model_as_often_and_when_a_one_second_watcher_does(arr
     assert (skipped.met, skipped.checks) == (polled.met, polled.checks)
     assert len(skipped_calls) == len(polled_calls) >= 2
     for one_second, skipping in zip(polled_calls, skipped_calls, strict=True):
-        # A watcher looking every second sees a change up to a second after it happens; the
-        # skipping one a moment after it skipped there (its clock runs while it reads the page,
-        # a second or two on a fully loaded machine). A wrong skip is off by a reload interval.
-        assert one_second.time == pytest.approx(skipping.time, abs=3.0)
-    assert len(skipped_reloads) == len(polled_reloads)
-    assert skipped_reloads == pytest.approx(polled_reloads, abs=3.0)
+        # The same look: the same moment, the same blocks (the shell's clock included).
+        assert skipping.time == pytest.approx(one_second.time, abs=1e-6)
+        assert untokened(skipping.blocks) == untokened(one_second.blocks)
+    assert skipped_reloads == pytest.approx(polled_reloads, abs=1e-6)
     # Far fewer looks than seconds waited: one skip per moment worth a look.
     assert 0 < skips < polled.waited_s / 10
 

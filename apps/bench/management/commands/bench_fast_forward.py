@@ -147,6 +147,13 @@ class Command(BaseCommand):
         parser.add_argument("--kind", choices=("wait_for", "sleep"), default="wait_for")
         parser.add_argument("--parallel", type=int, default=10)
         parser.add_argument(
+            "--live-parallel",
+            type=int,
+            default=None,
+            help="tasks at a time on live clocks (default: --parallel); fewer keep a "
+            "one-second watcher on time on a small machine",
+        )
+        parser.add_argument(
             "--subset", dest="subset_only", action="store_true", help="two per environment"
         )
         parser.add_argument(
@@ -159,8 +166,10 @@ class Command(BaseCommand):
         parser.add_argument("--results-dir", default=None, help="default: a temporary folder")
 
     def handle(self, *args, kind, parallel, subset_only, with_live, tolerance, **options):
-        if parallel < 1:
-            raise CommandError(f"--parallel must be >= 1, got {parallel}")
+        live_parallel = options["live_parallel"] or parallel
+        for flag, value in (("--parallel", parallel), ("--live-parallel", live_parallel)):
+            if value < 1:
+                raise CommandError(f"{flag} must be >= 1, got {value}")
         library = scenario_library()
         scenarios = [library[name].to_run_spec() for name in sorted(library)]
         few = two_per_environment(scenarios)
@@ -181,12 +190,12 @@ class Command(BaseCommand):
             )
             fast = f"{kind}-fast-forward-{stamp}"
             wall = self.run(fast, config, root, parallel, picked, "fast_forward")
-            self.line(fast, root, wall, "fast_forward", len(picked))
+            self.line(fast, root, wall, "fast_forward", len(picked), parallel)
             if not with_live:
                 return
             live = f"{kind}-live-{stamp}"
-            wall_live = self.run(live, config, root, parallel, few, "live")
-            self.line(live, root, wall_live, "live", len(few))
+            wall_live = self.run(live, config, root, live_parallel, few, "live")
+            self.line(live, root, wall_live, "live", len(few), live_parallel)
         result = comparison(task_outcomes(root / fast), task_outcomes(root / live), tolerance)
         self.stdout.write(
             f"bench_fast_forward: compare kind={kind} tasks={result['tasks']} "
@@ -209,11 +218,12 @@ class Command(BaseCommand):
             (root / f"{name}.log").write_text(out.getvalue())
         return time.monotonic() - began
 
-    def line(self, name, root, wall: float, clock: str, count: int) -> None:
+    def line(self, name, root, wall: float, clock: str, count: int, parallel: int) -> None:
         outcomes = task_outcomes(root / name)
         passed = sum(o["success"] for o in outcomes.values())
         calls = sum(o["calls"] or 0 for o in outcomes.values())
         self.stdout.write(
-            f"bench_fast_forward: run={name} clock={clock} tasks={count} passed={passed} "
+            f"bench_fast_forward: run={name} clock={clock} tasks={count} parallel={parallel} "
+            f"passed={passed} "
             f"model_calls={calls} wall_s={wall:.1f} results={root / name}"
         )
