@@ -93,22 +93,20 @@ def by_model(ask: Ask, model: str, task_prompt: str, rubric: dict[str, Any], mes
 
 def model_asker(model: str, base_url: str | None, api_key: str) -> Ask:
     """A question to `model` behind an OpenAI-compatible endpoint, its answer's text."""
-    from openai import OpenAIError
-
+    from apps.browser_agent.chat_api import ModelAPIError
     from apps.browser_agent.model import make_client
 
     client = make_client(base_url=base_url, api_key=api_key, max_retries=JUDGE_RETRIES)
 
     def ask(prompt: str) -> str:
+        body = {"model": model, "messages": [{"role": "user", "content": prompt}]}
         try:
-            response = client.chat.completions.create(
-                model=model, messages=[{"role": "user", "content": prompt}]
-            )
-        except OpenAIError as error:
+            reply = client.complete(body).message
+        except ModelAPIError as error:
             raise JudgeError(f"the judge model {model!r} could not be asked: {error}") from None
-        if not response.choices or not response.choices[0].message.content:
+        if reply is None or not reply.content:
             raise JudgeError(f"the judge model {model!r} gave an empty answer")
-        return response.choices[0].message.content
+        return reply.content
 
     return ask
 

@@ -20,10 +20,10 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import NoReturn
 
-import openai
 from playwright.sync_api import Error as PlaywrightError
 
 from apps.browser_agent.browser import CHROMIUM, Browser, first_line
+from apps.browser_agent.chat_api import ModelAPIError
 from apps.browser_agent.fast_forward import RunClock, post_json
 from apps.browser_agent.loop import DEFAULT_MAX_STEPS, AgentLoop, Task, WallBudget
 from apps.browser_agent.model import COSTS_FILE, ChatModel, CostLedger, make_client
@@ -165,7 +165,7 @@ def main(argv: list[str] | None = None) -> int:
                 say=say,
             )
             loop.run()
-    except openai.APIError as error:
+    except ModelAPIError as error:
         say(f"stopped: the model failed: {first_line(error)}")
         return SETUP_FAILED if endpoint_failed(error) else 1
     except PlaywrightError as error:
@@ -176,11 +176,9 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def endpoint_failed(error: openai.APIError) -> bool:
+def endpoint_failed(error: ModelAPIError) -> bool:
     """Whether the model endpoint itself failed (unreachable, wrong, unavailable)."""
-    if isinstance(error, openai.APIConnectionError):  # refused, reset, timed out
-        return True
-    status = getattr(error, "status_code", None)
+    status = error.status_code  # None: never reached (refused, reset, timed out)
     return status is None or status in ENDPOINT_STATUSES or status >= 500
 
 

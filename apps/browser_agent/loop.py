@@ -19,10 +19,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from openai.types.chat import ChatCompletionMessage
 from playwright.sync_api import Error as PlaywrightError
 
 from apps.browser_agent.browser import Browser, BrowserError, Observation, first_line
+from apps.browser_agent.chat_api import Message
 from apps.browser_agent.model import BudgetExhausted, ChatModel, Usage
 from apps.browser_agent.tools import Toolbox, WaitKind
 from apps.browser_agent.transcript import Transcript
@@ -187,7 +187,7 @@ class AgentLoop:
 
     def _act(
         self,
-        reply: ChatCompletionMessage,
+        reply: Message,
         usage: Usage,
         observation: Observation,
         messages: list[dict[str, Any]],
@@ -261,7 +261,7 @@ class AgentLoop:
         return reason
 
 
-def _assistant_message(reply: ChatCompletionMessage) -> dict[str, Any]:
+def _assistant_message(reply: Message) -> dict[str, Any]:
     # Built by hand: echoing the whole response object back would send fields (refusal,
     # reasoning extras) that some OpenAI-compatible servers reject.
     message: dict[str, Any] = {"role": "assistant", "content": reply.content}

@@ -19,8 +19,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from openai import OpenAI
-from openai.types.chat import ChatCompletion, ChatCompletionMessage
+from apps.browser_agent.chat_api import ChatAPI, Completion, Message
 
 COSTS_FILE = "costs.json"
 DEFAULT_MAX_RETRIES = 6
@@ -68,17 +67,16 @@ class Usage:
         return {"input_tokens": self.input_tokens, "output_tokens": self.output_tokens}
 
 
-def usage_of(response: ChatCompletion) -> Usage:
+def usage_of(response: Completion) -> Usage:
     """One response's tokens (0 when the server reports none) and the tool calls it made."""
     reported = response.usage
-    details = getattr(reported, "prompt_tokens_details", None) if reported else None
-    message = response.choices[0].message if response.choices else None
+    details = reported.get("prompt_tokens_details") or {}
     return Usage(
-        input_tokens=reported.prompt_tokens if reported else 0,
-        output_tokens=reported.completion_tokens if reported else 0,
-        cached_tokens=(getattr(details, "cached_tokens", None) or 0) if details else 0,
+        input_tokens=int(reported.get("prompt_tokens") or 0),
+        output_tokens=int(reported.get("completion_tokens") or 0),
+        cached_tokens=int(details.get("cached_tokens") or 0) if isinstance(details, dict) else 0,
         calls=1,
-        tool_calls=len(message.tool_calls or []) if message else 0,
+        tool_calls=len(response.message.tool_calls) if response.message else 0,
     )
 
 
@@ -124,10 +122,10 @@ def make_client(
     api_key: str,
     max_retries: int = DEFAULT_MAX_RETRIES,
     timeout: float = DEFAULT_TIMEOUT_S,
-) -> OpenAI:
+) -> ChatAPI:
     # The client's own retries back off exponentially (honouring Retry-After) on 408, 409, 429,
     # 5xx and connection errors; they are all the retrying this agent does.
-    return OpenAI(base_url=base_url, api_key=api_key, max_retries=max_retries, timeout=timeout)
+    return ChatAPI(base_url=base_url, api_key=api_key, max_retries=max_retries, timeout=timeout)
 
 
 class ChatModel:
@@ -135,7 +133,7 @@ class ChatModel:
 
     def __init__(
         self,
-        client: OpenAI,
+        client: ChatAPI,
         model: str,
         ledger: CostLedger,
         *,
@@ -148,18 +146,17 @@ class ChatModel:
 
     def complete(
         self, messages: list[dict[str, Any]], *, tools: list[dict[str, Any]] | None = None
-    ) -> tuple[ChatCompletionMessage, Usage]:
+    ) -> tuple[Message, Usage]:
         spent = self.ledger.total.total_tokens
         if self.max_tokens_total is not None and spent >= self.max_tokens_total:
             raise BudgetExhausted(
                 f"token budget exhausted ({spent} of {self.max_tokens_total} tokens spent)"
             )
-        options: dict[str, Any] = {"tools": tools} if tools else {}
-        response = self.client.chat.completions.create(
-            model=self.model, messages=messages, **options
-        )
+        body: dict[str, Any] = {"model": self.model, "messages": messages}
+        if tools:
+            body["tools"] = tools
+        response = self.client.complete(body)
         usage = usage_of(response)
         self.ledger.record(self.model, usage)
-        if not response.choices:  # some servers answer a filtered prompt with no choice at all
-            return ChatCompletionMessage(role="assistant", content=None), usage
-        return response.choices[0].message, usage
+        # Some servers answer a filtered prompt with no choice at all: an empty reply.
+        return response.message or Message(), usage

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import json
 
-import openai
 import pytest
 
+from apps.browser_agent.chat_api import ModelAPIError
 from apps.browser_agent.judging import parse_judge_answer
 from apps.browser_agent.model import BudgetExhausted, ChatModel, CostLedger, make_client
 from apps.browser_agent.tools import ModelJudge
@@ -41,8 +41,9 @@ def test_a_429_and_a_500_are_retried_then_the_answer_counts_once(scripted_model)
 def test_failures_beyond_the_retries_reach_the_caller(scripted_model):
     server = scripted_model({**SCRIPT, "failures": [{"status": 503}] * 3})
     ledger = CostLedger("scripted-1")
-    with pytest.raises(openai.InternalServerError):
+    with pytest.raises(ModelAPIError, match="Error code: 503") as failed:
         chat_model(server, ledger, max_retries=1).complete(ASK, tools=TOOLS)
+    assert failed.value.status_code == 503
     assert served(server.base_url)["requests"] == 2
     assert ledger.total.calls == 0
 
