@@ -254,17 +254,6 @@ def render_page(run: Run, url: str, host: str = "testserver") -> HttpRequest:
     return request
 
 
-_BETWEEN_TAGS = re.compile(r">\s+<")
-
-
-def compact(outer: str) -> str:
-    """Whitespace-only runs between tags become one space (rendered the same, the push smaller;
-    one space, not none, so inline neighbours keep their gap), except where it is content."""
-    if "<pre" in outer or "<textarea" in outer:
-        return outer
-    return _BETWEEN_TAGS.sub("> <", outer)
-
-
 @dataclass(frozen=True)
 class LiveUpdate:
     url: str  # the page URL rendered (the client ignores updates for a page it has left)
@@ -313,7 +302,9 @@ def render_update(run: Run, url: str, host: str = "testserver") -> LiveUpdate:
     page = request_attrs.page(request)
     if page is not None:
         seq = max(seq, page.live_seq)  # the render may have fired what was due itself
-    html = "\n".join(compact(outer) for _, outer in regions)
+    # Verbatim, whitespace between tags included: a browser draws "\n    " and " " alike,
+    # but an agent reading the page's text or markup would see a change where none was.
+    html = "\n".join(outer for _, outer in regions)
     return LiveUpdate(
         url=url,
         seq=seq,
