@@ -33,10 +33,11 @@ from apps.scenarios.library import scenario_library
 MODEL = "scripted"
 TEXT_FIELDS = ("subject", "title", "name", "headline", "content", "text", "body", "description")
 PHRASE_CHARS = 24
-# Its final check and the contact after it fall inside the agent's budget (its deadline, 630 s)
-# even when a loaded machine starts the agent half a minute late: no task's verdict hangs on
+# The wait outlasts a no-op task's run (600 s: the paper's rule has the agent stay to its end),
+# and its final check and the contact after it still fall inside the agent's budget (its
+# deadline, 630 s) when a loaded machine starts the agent up to 25 s late: no verdict hangs on
 # whether the budget ran out between the two, which depends on load, not on the clock.
-WAIT_TIMEOUT_S = 590.0
+WAIT_TIMEOUT_S = 600.0
 # Two sleeps well inside the budget even when a loaded machine starts the agent slowly: its
 # turns, not the budget, decide how often it asks the model.
 SLEEP_S = 250.0
