@@ -165,7 +165,7 @@ def wait_for(
             look = landed
         else:
             look = next_look_after(clock.now(), schedule)
-            clock.sleep(look - clock.now())
+            clock.sleep(max(0.0, look - clock.now()))  # the clock ran on since it was read
 
     # The final check sees every block, those already shown included: the model judges the
     # page's whole change since the start, not only what arrived after its last answer.
