@@ -135,14 +135,15 @@ def test_the_agent_waits_for_kevins_email_and_contacts(live_site, scripted_model
 
     # On the run's clock: the judge was shown Kevin's row after it arrived and said yes; any
     # question before was about other changes, and said no. The contact step ends after the
-    # log's contact, on the same clock.
+    # log's contact, on the same clock: within seconds of it (its screenshot and transcript take
+    # a few wall seconds on a loaded machine, four times as many simulated ones), not twice it.
     *before, last = wait["checks"]
     assert last["met"] is True and any(KEVIN in block for block in last["blocks"])
     assert all(not c["met"] and KEVIN not in "".join(c["blocks"]) for c in before)
     assert wait["sim_start"] < ARRIVES_AT <= last["sim_time"] <= wait["sim_time"]
     log = control_api.call(live_site, "GET", f"/api/runs/{run['id']}/events/")
     contacted = next(e["at"] for e in log if e["type"].startswith("contact"))
-    assert last["sim_time"] <= contacted <= contact["sim_time"] < contacted + 10
+    assert last["sim_time"] <= contacted <= contact["sim_time"] < contacted + 10 * SPEED_FACTOR
 
     stats = served(server.base_url)
     assert stats["judge_requests"] >= 1 and stats["agent_requests"] == 2
