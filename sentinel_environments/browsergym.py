@@ -52,6 +52,10 @@ TASK_PREFIX = "sentinel."
 # A condition never comes later than this (authored seconds): a run's end is its kill_at, at
 # most this (events.timing.MAX_CONDITION_AT; the harness's `run_end`).
 MAX_CONDITION_AT = 600.0
+# How long the task's own page work may take (ms): opening its first page, and a page catching
+# up with a skip. Not an agent's step: BrowserGym's 5-second ceiling for those would make a
+# loaded server's slowness the episode's error.
+OURS_TIMEOUT_MS = 60_000
 # What Debian's Chromium needs in a container, beside BrowserGym's own launch options.
 CHROMIUM_FLAGS = (
     "--no-sandbox",
@@ -290,7 +294,7 @@ class SentinelTask(AbstractBrowserTask):
         if self.clock == "fast_forward":
             self._skip_on_wait(page)
             page.context.on("page", self._skip_on_wait)
-        page.goto(self.run.task_url)  # the clock starts
+        page.goto(self.run.task_url, timeout=OURS_TIMEOUT_MS)  # the clock starts
         info = {
             "run": self.run.id,
             "scenario_id": self.run.scenario_id,
@@ -312,7 +316,8 @@ class SentinelTask(AbstractBrowserTask):
         def wait_for_timeout(timeout: float) -> None:
             waited = run.wait(seconds=max(0.0, float(timeout)) / 1000 * run.speed_factor)
             if not page.is_closed():
-                page.wait_for_function(SHOWS_SEQ, arg=waited.raw.get("seq", 0))
+                seq = waited.raw.get("seq", 0)
+                page.wait_for_function(SHOWS_SEQ, arg=seq, timeout=OURS_TIMEOUT_MS)
 
         page.wait_for_timeout = wait_for_timeout  # type: ignore[method-assign,assignment]
 

@@ -50,12 +50,6 @@ def find_bid(tree: str, role: str, name_part: str) -> str | None:
     return None
 
 
-def bid(tree: str, role: str, name_part: str) -> str:
-    found = find_bid(tree, role, name_part)
-    assert found is not None, f"no {role} named like {name_part!r} on the page"
-    return found
-
-
 def play(task: str, agent: Agent, max_steps: int = 60) -> tuple[float, dict[str, Any], dict]:
     """One episode in a thread of its own: (last reward, its task info, the reset's info)."""
 
@@ -113,24 +107,29 @@ SUBJECT = "Notes from Tuesday's architecture sync"  # base-45, at 289.55 s
 
 
 def flags_the_scalability_mail() -> Agent:
-    done: list[str] = []
+    """Opens the notes' mail, flags it and reports once its row says it is flagged. Each step is
+    decided on the fresh tree, so a step a live page made miss — the tree caught mid-push, or a
+    click on an element re-rendered meanwhile (BrowserGym's error: `missed`) — is done again."""
+    opened: list[str] = []  # the open's click, once it went through
+    last: list[str] = [""]
 
-    def missed() -> None:  # its last click found no element: not done after all
-        done.pop()
+    def missed() -> None:
+        if last[0] == "open":
+            opened.clear()
 
     def agent(tree: str) -> str:
-        if f"Subject: {SUBJECT}" not in tree:
-            return "noop(30000)"
-        if "opened" not in done:
-            done.append("opened")
-            return f"click('{bid(tree, 'link', f'Subject: {SUBJECT}')}')"
-        if "flagged" not in done:
-            flag = find_bid(tree, "button", f"Flag “{SUBJECT}”")
-            if flag is None:  # the opened mail's buttons not drawn yet: look again
-                return "noop(1000)"
-            done.append("flagged")
-            return f"click('{flag}')"
-        return 'send_msg_to_user("I flagged the notes on platform scalability.")'
+        last[0] = ""
+        if f"Unflag “{SUBJECT}”" in tree:
+            return 'send_msg_to_user("I flagged the notes on platform scalability.")'
+        link = find_bid(tree, "link", f"Subject: {SUBJECT}")
+        if link is None:  # not arrived yet, or its row being redrawn: look again
+            return "noop(1000)" if f"Subject: {SUBJECT}" in tree else "noop(30000)"
+        if not opened:
+            opened.append(link)
+            last[0] = "open"
+            return f"click('{link}')"
+        flag = find_bid(tree, "button", f"Flag “{SUBJECT}”")
+        return "noop(1000)" if flag is None else f"click('{flag}')"  # flagging twice is one flag
 
     agent.missed = missed  # type: ignore[attr-defined]
     return agent
