@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import importlib
 import json
 import subprocess
 import sys
+from typing import TYPE_CHECKING
 
-import openai
 import pytest
 
 from apps.browser_agent.judging import judge_question
@@ -18,6 +19,16 @@ from apps.browser_agent.scripted_model import (
     parse_script,
 )
 from tests.browser_agent.conftest import REPO, served
+
+if TYPE_CHECKING:
+    import openai
+
+
+def sdk():
+    """The `openai` package, imported by the tests that use it: importing it takes seconds of
+    CPU, which every test process would otherwise pay to collect this module."""
+    return importlib.import_module("openai")
+
 
 TASK_URL = "http://site.test/r/abc/start"
 CONTACT_URL = "http://site.test/r/abc/contact"
@@ -43,7 +54,7 @@ DANA = {
 
 
 def client(server, **options) -> openai.OpenAI:
-    return openai.OpenAI(base_url=server.base_url, api_key="not-needed", **options)
+    return sdk().OpenAI(base_url=server.base_url, api_key="not-needed", **options)
 
 
 def conversation(*results: str) -> list[dict]:
@@ -110,7 +121,7 @@ def test_a_text_turn_and_the_end_of_the_script_call_no_tool(scripted_model):
 
 def test_a_placeholder_without_its_url_in_the_conversation_is_a_one_line_400(scripted_model):
     server = scripted_model({"agent": [{"call": "visit_url", "arguments": {"url": "{task_url}"}}]})
-    with pytest.raises(openai.BadRequestError) as error:
+    with pytest.raises(sdk().BadRequestError) as error:
         client(server).chat.completions.create(
             model="scripted", messages=[{"role": "user", "content": "Go."}], tools=TOOLS
         )
@@ -194,7 +205,7 @@ def test_stats_count_what_was_served(scripted_model):
 def test_it_lists_its_model_and_refuses_others(scripted_model):
     server = scripted_model(DANA)
     assert [m.id for m in client(server).models.list()] == ["scripted-1"]
-    with pytest.raises(openai.NotFoundError, match="model 'gpt-4o' not found"):
+    with pytest.raises(sdk().NotFoundError, match="model 'gpt-4o' not found"):
         client(server).chat.completions.create(model="gpt-4o", messages=[], tools=TOOLS)
 
 
@@ -242,8 +253,12 @@ def test_the_command_prints_its_base_url_and_serves_the_script(tmp_path):
     try:
         base_url = process.stdout.readline().strip()
         assert base_url.startswith("http://127.0.0.1:") and base_url.endswith("/v1")
-        reply = openai.OpenAI(base_url=base_url, api_key="x").chat.completions.create(
-            model="scripted-1", messages=[{"role": "user", "content": "Go."}], tools=TOOLS
+        reply = (
+            sdk()
+            .OpenAI(base_url=base_url, api_key="x")
+            .chat.completions.create(
+                model="scripted-1", messages=[{"role": "user", "content": "Go."}], tools=TOOLS
+            )
         )
         assert reply.choices[0].message.tool_calls[0].function.name == "read_page"
     finally:
