@@ -32,12 +32,17 @@ def slow(request):
     time.sleep(0.2)
     with _lock:
         _active -= 1
-    return JsonResponse({"most_at_once": _most})
+    return JsonResponse({"most_at_once": _most, "ended": time.time()})
 
 
 def streamed(request):
     """Content produced while it is sent: each part says which thread made it."""
     return StreamingHttpResponse(f"{threading.current_thread().name}\n" for _ in range(2))
+
+
+def active() -> int:
+    """How many slow views are running now."""
+    return _active
 
 
 def reset_concurrency() -> None:
