@@ -19,6 +19,7 @@ from typing import Any
 
 import pytest
 
+from events.timing import REACTION_WINDOW
 from sentinel_environments import Client
 from tests.conftest import REPO, ours
 
@@ -97,8 +98,9 @@ def test_a_passive_scenario_passes_and_the_reward_is_the_verdict(tasks):
     assert started["clock"] == "fast_forward" and started["category"] == "passive"
     assert reward == 1.0 and verdict["success"], verdict
     assert verdict["verdict"]["contact_message"] == "Kevin Lee has written to you."
-    # Kevin's mail comes at 19.5 s; five-second skips see it within one more step.
-    assert 0 <= verdict["reaction_time"] < 10
+    # Kevin's mail comes at 19.5 s; five-second skips see it within one more step, whose own
+    # work runs on the clock (seconds on a loaded machine): timely, within the reaction window.
+    assert 0 <= verdict["reaction_time"] < REACTION_WINDOW
     with Client(tasks) as server:
         assert server.run(verdict["run"]).evaluate().success is True
 
