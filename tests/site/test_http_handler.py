@@ -176,16 +176,21 @@ def lanes(settings):
     app.shutdown()
 
 
+async def both_slow_views_running() -> None:
+    """Until two slow views run at once (both threads of their lane busy)."""
+    deadline = time.monotonic() + 30
+    while active() < 2:
+        assert time.monotonic() < deadline, "the slow views never ran together"
+        await asyncio.sleep(0.001)
+
+
 def test_agents_pages_do_not_wait_behind_control_requests(lanes):
     reset_concurrency()
 
     async def busy_control_then_a_page():
         # Two rounds of work for the control lane's two threads: two run, two wait their turn.
         slow = [asyncio.create_task(get(lanes, "/slow")) for _ in range(4)]
-        deadline = time.monotonic() + 30
-        while active() < 2:
-            assert time.monotonic() < deadline, "the slow views never ran together"
-            await asyncio.sleep(0.001)
+        await both_slow_views_running()
         status, body = await get(lanes, "/r/where")
         answered = time.time()
         control_done = max(answer["ended"] for _, answer in await asyncio.gather(*slow))
@@ -201,10 +206,7 @@ def test_a_request_is_stamped_when_it_arrives_not_when_a_thread_is_free(lanes):
 
     async def busy_agents_then_arrival():
         slow = [asyncio.create_task(get(lanes, "/r/slow")) for _ in range(2)]
-        deadline = time.monotonic() + 30
-        while active() < 2:  # both agent threads busy
-            assert time.monotonic() < deadline, "the slow views never ran together"
-            await asyncio.sleep(0.001)
+        await both_slow_views_running()  # both agent threads busy
         sent = time.time()
         status, body = await get(lanes, "/r/arrival")
         freed = min(answer["ended"] for _, answer in await asyncio.gather(*slow))
