@@ -4,11 +4,15 @@ server), then the page in the admin, in Chromium.
 
 The story: the self user waits for Kevin Lee's email. Four other mails arrive first, so the
 agent's wait_for asks its model about them, each "no" doubling the wait before the next
-question (10, 20, 40 wall seconds after its first look); Kevin's mail (the trigger, at 120 simulated seconds, 60 wall
-seconds at speed 2) arrives while wait_for is between two questions. The next question shows the
-model his mail's diff block, the model says yes, the agent reports. On the timeline, in
-simulated seconds: the agent's first model call, the trigger, then the question that showed
-it, then the contact.
+question; Kevin's mail (the trigger, at 120 simulated seconds) arrives while wait_for is between
+two questions. The next question shows the model his mail's diff block, the model says yes, the
+agent reports. On the timeline, in simulated seconds: the agent's first model call, the
+trigger, then the question that showed it, then the contact.
+
+The run is on the fast-forward clock: wait_for skips between its looks instead of sleeping, and
+looks and asks at the simulated moments a live watcher would (tests/browser_agent/
+test_wait_for_fast_forward.py), so the timeline is the live one's, in seconds of wall time
+instead of a minute and a half.
 """
 
 from __future__ import annotations
@@ -31,7 +35,7 @@ pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.browser]
 
 MODEL = "scripted-1"
 SUBJECT = "Expense reports: submission window closes early"  # Kevin Lee's mail, the trigger
-TRIGGER_AT = 120.0  # 60 wall s: the agent may start late on a loaded machine
+TRIGGER_AT = 120.0
 SPEED = 2
 SCRIPT = {
     "model": MODEL,
@@ -65,6 +69,7 @@ def graded_task(tmp_path, settings, live_site):
             yaml.safe_dump(
                 {
                     "speed_factor": SPEED,
+                    "clock": "fast_forward",
                     "parallel": 1,
                     "grace": 5,
                     "agent": {"kind": "wait_for", "model": MODEL, "base_url": model.base_url},
