@@ -31,7 +31,7 @@ from typing import Any
 
 from apps.bench.config import BenchConfig, input_tokens, output_tokens
 from apps.bench.judge import Ask, Judgement, judge_result
-from apps.bench.layout import COSTS, ERROR, RESULTS, BenchError, error_cause_of
+from apps.bench.layout import COSTS, ERROR, RESULTS, BenchError, agent_files, error_cause_of
 from apps.bench.manifest import read_manifest
 from apps.bench.stats import (
     Interval,
@@ -180,7 +180,7 @@ def load_rows(
         result = _read_json(path)
         if not isinstance(result, dict):
             continue
-        costs = _read_json(path.parent / COSTS)
+        costs = _read_json(agent_files(path.parent) / COSTS)
         costs = costs if isinstance(costs, dict) else None
         stop = first_contact(result)
         condition = result.get("condition_at")

@@ -1,7 +1,8 @@
 """An agent cannot fool the harness (findings): the control side of the harness's server is
 sealed from it (a fresh control token, the flat endpoints off); it writes in a fresh folder of
-its own, so a results.json it forges is never a verdict; nothing it starts outlives its task,
-even a process in a session of its own whose parent is gone; its output is capped."""
+its own, copied back into its trial's `agent/` folder but for links and the harness's names, so
+a results.json it forges — its own trial's, another trial's — is never a verdict; nothing it starts outlives its task, even a process in a session of its own
+whose parent is gone; its output is capped."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from pathlib import Path
 import pytest
 from django.core.management import call_command
 
+from apps.bench.grading import load_rows
 from apps.bench.runner import OUTPUT_CAP
 from tests.bench.conftest import REPO, shorten
 from tests.bench.test_harness_e2e import alive
@@ -44,17 +46,34 @@ def test_a_hostile_agent_forges_nothing_leaves_nothing_and_is_capped(
     folder = results / "hostile" / "micromail" / "bench-hostile"
     result = json.loads((folder / "results.json").read_text())
     assert result["success"] is False and result["detail"] != "forged by the agent"
-    assert json.loads((folder / "costs.json").read_text())["input_tokens"] == 100  # copied back
-    escaped = int((folder / "escaped.pid").read_text())
+    # What it left is in agent/ (its costs.json, read by grade); its forgeries nowhere.
+    agent = folder / "agent"
+    assert json.loads((agent / "costs.json").read_text())["input_tokens"] == 100
+    assert not (folder / "trial-2").exists() and not (agent / "trial-2").exists()
+    left = {p.relative_to(agent).as_posix() for p in agent.rglob("*")}
+    assert {"costs.json", "snoop.json", "environ.json", "escaped.pid"} <= left, left
+    assert not left & {"results.json", "logs/events.jsonl", "notes/error.txt", "leak.txt", "up"}
+    assert not any(p.is_symlink() for p in agent.rglob("*"))
+    assert {
+        "results.json: a name of the harness's",
+        "trial-2: a name of the harness's",
+        "logs/events.jsonl: a name of the harness's",
+        "notes/error.txt: a name of the harness's",
+        "leak.txt: a symbolic link or unreadable",
+        "up: a symbolic link",
+    } <= set(result["agent_files_refused"])
+    (row,) = load_rows(results / "hostile")
+    assert (row.trial, row.success, row.prompt_tokens) == (1, False, 100)
+    escaped = int((agent / "escaped.pid").read_text())
     assert not alive(escaped), "a process the agent set loose outlived its task"
     # The answer key is sealed: no run list, no scenario, no clock of its own to move.
-    snooped = json.loads((folder / "snoop.json").read_text())
+    snooped = json.loads((agent / "snoop.json").read_text())
     assert all(code in (401, 403, 404) for code in snooped.values()), snooped
     assert {"runs", "scenario", "run advance"} <= snooped.keys()
     # No way to the answer key on disk: nothing in its environment names the project, its
     # Python, its scenarios or the results, and it works outside all of them, yet `python`
     # is the project's.
-    seen = json.loads((folder / "environ.json").read_text())
+    seen = json.loads((agent / "environ.json").read_text())
     project = [REPO, Path(sys.prefix), results, hostile_scenario]
     names = {str(p) for p in project} | {str(p.resolve()) for p in project}
     leaks = {k: v for k, v in seen["env"].items() if any(n in v for n in names)}
