@@ -17,12 +17,14 @@ RESULTS, ERROR, OUTPUT, EVENTS, COSTS, PROMPT = (
 # The sub-folder of a trial's folder holding what its agent left in its own folder (costs.json,
 # transcript.jsonl, screenshots): everything else in a trial's folder is the harness's.
 AGENT = "agent"
+LEDGER = "harness-records.jsonl"  # at the top of a result set: what the harness wrote (ledger.py)
+UNVERIFIED = RESULTS + ".unverified"  # a results.json the harness did not write, set aside
 # Every name the harness writes or reads as its own, in a trial's folder or at the top of a
 # result set (judge.JUDGEMENT, manifest.MANIFEST and summary.SUMMARY among them): an agent's
 # file or folder of one of these names, or named like a trial's folder, is never copied back,
 # at whatever depth it put it (runner.AgentWorkspace).
 HARNESS_NAMES = frozenset(
-    {RESULTS, ERROR, OUTPUT, EVENTS, PROMPT, RESULTS + ".tmp"}
+    {RESULTS, ERROR, OUTPUT, EVENTS, PROMPT, LEDGER, UNVERIFIED, RESULTS + ".tmp"}
     | {"judgement.json", "manifest.json", "summary.json"}
 )
 TRIAL_PREFIX = "trial-"

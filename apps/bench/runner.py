@@ -19,9 +19,10 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
    process survives into the next task;
 5. evaluate, save the log (events.jsonl, in `export_run`'s format: `import_run` reads it),
    close the run, apply the no-op rule (outcomes.py: under the paper's, an agent that left
-   before the run's end fails a no-op), write results.json last — its presence means "done". A
-   task whose outcome is an error (outcomes.py: ours or the setup's, not the agent's) writes
-   error.txt instead, never a failed result.
+   before the run's end fails a no-op), write results.json last and record it in the set's
+   ledger (ledger.py) — a results.json the ledger has means "done". A task whose outcome is an
+   error (outcomes.py: ours or the setup's, not the agent's) writes error.txt instead, never a
+   failed result.
 
 `--trials k` runs every task k times, each its own run: trial 1 in `<env>/<id>/`, trial n in
 `<env>/<id>/trial-<n>/`, so a result set run once can be given more trials later.
@@ -46,12 +47,13 @@ import tempfile
 import threading
 import time
 import traceback
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
+from apps.bench import ledger
 from apps.bench.agents import FIXED_CONTACT_AT, SLEEPER_MARGIN_S
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig
@@ -61,10 +63,12 @@ from apps.bench.layout import (
     ERROR,
     EVENTS,
     HARNESS_NAMES,
+    LEDGER,
     OUTPUT,
     PROMPT,
     RESULTS,
     TRIAL_PREFIX,
+    UNVERIFIED,
     BenchError,
     error_cause_of,
     trial_folder,
@@ -289,9 +293,27 @@ class Harness:
                 tasks.append(task)
         return tasks
 
-    def should_skip(self, task: Task) -> str | None:
-        if (task.folder / RESULTS).exists():
-            return "already done" + self._speed_note(task)
+    def should_skip(
+        self,
+        task: Task,
+        records: ledger.Records | None = None,
+        say: Callable[[str], None] | None = None,
+    ) -> str | None:
+        """Why the task is not run again (None: it is run). A results.json the set's ledger
+        (`records`, read now if not given) does not have as written is no verdict: it is set
+        aside as results.json.unverified, `say` is told in one line and the task runs again."""
+        results = task.folder / RESULTS
+        if results.exists():
+            if records is None:
+                records = ledger.Records.of(self.results_root)
+            if records.vouches(results):
+                return "already done" + self._speed_note(task)
+            results.replace(results.with_name(UNVERIFIED))
+            if say is not None:
+                say(
+                    f"Running {task.label} again: {results} was not written by the harness "
+                    f"(no match in {LEDGER}; kept as {UNVERIFIED})"
+                )
         if (task.folder / ERROR).exists():
             if not self.retry_errors:
                 return (
@@ -461,6 +483,7 @@ class Harness:
         )
         (task.folder / PROMPT).write_text(prompt, encoding="utf-8")
         limit = deadline_s(task.spec, sf, self.config.reaction_window)
+        ledger.start(self.results_root)  # (bench run started it; bench validate's sets here)
         launched = time.monotonic()
         # The agent works in a fresh folder of its own, outside the project and the results:
         # it can never write a result of its own (a forged results.json was taken as done).
@@ -537,7 +560,7 @@ class Harness:
             cause = "the agent outlived its wall-time guard on a virtual clock (a loaded machine?)"
         if cause:
             return {**result, "error_cause": cause}
-        write_json_atomically(task.folder / RESULTS, result)
+        ledger.write_result(self.results_root, task.folder / RESULTS, result)
         return result
 
     def _clock_reading(self, run_id: int) -> float | None:
@@ -600,9 +623,16 @@ class Harness:
 
     def pending(self, tasks: list[Task], progress: Progress) -> list[Task]:
         """The tasks still to run; the others are reported as skipped (resumability)."""
+        adopted = ledger.start(self.results_root)
+        if adopted:
+            progress.line(
+                f"{self.results_root / LEDGER}: started, with the {adopted} results.json "
+                "written before it"
+            )
+        records = ledger.Records.of(self.results_root)
         todo = []
         for task in tasks:
-            reason = self.should_skip(task)
+            reason = self.should_skip(task, records, progress.line)
             if reason:
                 progress.line(f"Skipping {task.label} ({reason})")
             else:

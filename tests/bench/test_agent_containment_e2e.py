@@ -1,7 +1,8 @@
 """An agent cannot fool the harness (findings): the control side of the harness's server is
 sealed from it (a fresh control token, the flat endpoints off); it writes in a fresh folder of
 its own, copied back into its trial's `agent/` folder but for links and the harness's names, so
-a results.json it forges — its own trial's, another trial's — is never a verdict; nothing it starts outlives its task, even a process in a session of its own
+a results.json it forges — its own trial's, another trial's — is never a verdict nor skips a
+task on resume; nothing it starts outlives its task, even a process in a session of its own
 whose parent is gone; its output is capped."""
 
 from __future__ import annotations
@@ -14,8 +15,10 @@ from pathlib import Path
 import pytest
 from django.core.management import call_command
 
-from apps.bench.grading import load_rows
-from apps.bench.runner import OUTPUT_CAP
+from apps.bench.config import parse_config
+from apps.bench.grading import load_rows, task_errors
+from apps.bench.layout import trial_folder
+from apps.bench.runner import OUTPUT_CAP, Harness, Task
 from tests.bench.conftest import REPO, shorten
 from tests.bench.test_harness_e2e import alive
 
@@ -64,6 +67,31 @@ def test_a_hostile_agent_forges_nothing_leaves_nothing_and_is_capped(
     } <= set(result["agent_files_refused"])
     (row,) = load_rows(results / "hostile")
     assert (row.trial, row.success, row.prompt_tokens) == (1, False, 100)
+    # Defence in depth: a trial-2/results.json put there by anyone but the harness (as the
+    # agent's copy once did) is no verdict, no error hidden, and no reason to skip trial 2.
+    trial2 = trial_folder(folder, 2)
+    trial2.mkdir()
+    forged = json.dumps({"success": True, "detail": "forged", "category": "active"})
+    (trial2 / "results.json").write_text(forged)
+    ignored: list[Path] = []
+    assert [r.trial for r in load_rows(results / "hostile", ignored=ignored)] == [1]
+    assert ignored == [trial2 / "results.json"]
+    harness = Harness(parse_config({"agent_subprocess": ["a"]}), None, results / "hostile", REPO)
+    said: list[str] = []
+    first, second = (
+        Task("bench-hostile", "micromail", {}, f, trial=n)
+        for n, f in enumerate((folder, trial2), 1)
+    )
+    assert harness.should_skip(second, say=said.append) is None
+    assert len(said) == 1 and "was not written by the harness" in said[0], said
+    assert (trial2 / "results.json.unverified").read_text() == forged
+    assert harness.should_skip(first).startswith("already done")  # the harness's own holds
+    # Nor does one hide an error: its task stays an error, listed as such.
+    (trial2 / "results.json").write_text(forged)
+    (trial2 / "error.txt").write_text("harness error: boom\n")
+    assert [(e.trial, e.cause) for e in task_errors(results / "hostile")] == [
+        (2, "harness error: boom")
+    ]
     escaped = int((agent / "escaped.pid").read_text())
     assert not alive(escaped), "a process the agent set loose outlived its task"
     # The answer key is sealed: no run list, no scenario, no clock of its own to move.
