@@ -84,7 +84,7 @@ class Row:
     run: int | None
     result: dict[str, Any] = field(default_factory=dict)
     costs: dict[str, Any] | None = None
-    folder: Path | None = None  # the task's result folder (transcript, screenshots, output)
+    folder: Path | None = None  # the task's result folder (output; agent/: transcript, costs)
     trial: int = 1  # bench run --trials: which of the task's runs this is
     judgement: Judgement | None = None  # its report judged against the scenario's contact_rubric
 
