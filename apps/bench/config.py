@@ -11,7 +11,8 @@ Placeholders: __TASK_URL__, __TASK_PROMPT__, __BASE_DIR__, __CONTACT_URL__, and 
 __PYTHON__ (the project's Python, with its packages), __TASK_DIR__ (the agent's folder)
 and __WAIT_URL__ (the run's wait URL: skips its clock on a fast_forward run).
 The agent runs in a fresh folder of its own (runner.AgentWorkspace: agents write `costs.json`
-there, as upstream's did in the task's folder, and it is copied back); an argument of a list command naming a file beside the config file (`my_agent.py`) is given
+there, as upstream's did in the task's folder, and it is copied into the trial's `agent/`
+folder); an argument of a list command naming a file beside the config file (`my_agent.py`) is given
 as that file's absolute path, so the README's `["python", "my_agent.py", ...]` finds it.
 """
 

@@ -16,6 +16,9 @@ without it (the original harness's) are given the same rule here (`reaction_time
 
 Times are those of results.json: simulated seconds ÷ the run's speed factor, i.e. wall seconds
 on a live clock (and what they would have been, on `bench validate`'s virtual clocks).
+
+Only a results.json the harness wrote is graded (ledger.py): any other is left out, each named
+on one line (`ignored …`), and its task is neither a result nor hidden as one.
 """
 
 from __future__ import annotations
@@ -31,7 +34,8 @@ from typing import Any
 
 from apps.bench.config import BenchConfig, input_tokens, output_tokens
 from apps.bench.judge import Ask, Judgement, judge_result
-from apps.bench.layout import COSTS, ERROR, RESULTS, BenchError, error_cause_of
+from apps.bench.layout import COSTS, ERROR, RESULTS, BenchError, agent_files, error_cause_of
+from apps.bench.ledger import Records
 from apps.bench.manifest import read_manifest
 from apps.bench.stats import (
     Interval,
@@ -80,7 +84,7 @@ class Row:
     run: int | None
     result: dict[str, Any] = field(default_factory=dict)
     costs: dict[str, Any] | None = None
-    folder: Path | None = None  # the task's result folder (transcript, screenshots, output)
+    folder: Path | None = None  # the task's result folder (output; agent/: transcript, costs)
     trial: int = 1  # bench run --trials: which of the task's runs this is
     judgement: Judgement | None = None  # its report judged against the scenario's contact_rubric
 
@@ -143,6 +147,13 @@ def _read_json(path: Path) -> Any:
         return None
 
 
+def _parse_json(data: bytes) -> Any:
+    try:
+        return json.loads(data.decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError):
+        return None
+
+
 def _int(value: Any) -> int | None:
     return int(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
 
@@ -170,17 +181,29 @@ def load_rows(
     *,
     task: str | None = None,
     filter: str | None = None,
+    ignored: list[Path] | None = None,
 ) -> list[Row]:
+    """The graded tasks of a result set. A results.json the harness did not write (ledger.py)
+    is left out, and appended to `ignored` when given, so the caller can say so."""
     if not run_dir.is_dir():
         raise BenchError(f"results folder not found: {run_dir}")
+    records = Records.of(run_dir)
     rows = []
     for path, environment, name, trial in _result_files(run_dir, RESULTS):
         if (task is not None and name != task) or (filter and filter.lower() not in name.lower()):
             continue
-        result = _read_json(path)
+        try:
+            data = path.read_bytes()
+        except OSError:
+            continue
+        if not records.vouches(path, data):
+            if ignored is not None:
+                ignored.append(path)
+            continue
+        result = _parse_json(data)
         if not isinstance(result, dict):
             continue
-        costs = _read_json(path.parent / COSTS)
+        costs = _read_json(agent_files(path.parent) / COSTS)
         costs = costs if isinstance(costs, dict) else None
         stop = first_contact(result)
         condition = result.get("condition_at")
@@ -245,10 +268,13 @@ class TaskError:
 
 
 def task_errors(run_dir: Path) -> list[TaskError]:
+    """Errored tasks: error.txt and no results.json of the harness's (one it did not write
+    hides no error)."""
+    records = Records.of(run_dir)
     return [
         TaskError(name, environment, trial, error_cause_of(path.parent))
         for path, environment, name, trial in _result_files(run_dir, ERROR)
-        if not (path.parent / RESULTS).exists()
+        if not records.vouches(path.parent / RESULTS)
     ]
 
 
@@ -539,6 +565,7 @@ class ResultSet:
     rows: list[Row]
     errors: list[TaskError]
     manifest: dict[str, Any] | None = None
+    ignored: list[Path] = field(default_factory=list)  # results.json the harness did not write
 
 
 def load_result_sets(
@@ -564,15 +591,13 @@ def load_result_sets(
             f"results folder not found: {results_dir / missing[0]} "
             f"(result sets in {results_dir}: {', '.join(present) or 'none'})"
         )
-    return [
-        ResultSet(
-            name,
-            load_rows(results_dir / name, config, task=task, filter=filter),
-            [] if task or filter else task_errors(results_dir / name),
-            read_manifest(results_dir / name),
-        )
-        for name in names
-    ]
+    sets = []
+    for name in names:
+        ignored: list[Path] = []
+        rows = load_rows(results_dir / name, config, task=task, filter=filter, ignored=ignored)
+        errors = [] if task or filter else task_errors(results_dir / name)
+        sets.append(ResultSet(name, rows, errors, read_manifest(results_dir / name), ignored))
+    return sets
 
 
 CATEGORY_HEADERS = {"noop": "no-op"}

@@ -5,8 +5,8 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
 1. create a live run of the scenario (POST /api/runs/);
 2. launch the agent under `reaper.py` (which kills everything it starts and abandons, and
    caps its output), cwd = a fresh temporary folder of its own that `__TASK_DIR__` names
-   (upstream's agents write costs.json there; it is copied into the task's result folder
-   afterwards, never a file named like the harness's own), a file named beside the config
+   (upstream's agents write costs.json there; it is copied into the trial's `agent/` folder
+   afterwards, never a link nor a name of the harness's), a file named beside the config
    file passed by its absolute path (`python my_agent.py` works: `python` on its PATH is a
    shim running the project's Python), an environment naming no folder of the project
    (`agent_environment`), stdout+stderr to output.txt (the first and last 8 MiB);
@@ -19,9 +19,10 @@ Per task (upstream-protocol.md §6 "Per-task run", with its weaknesses fixed):
    process survives into the next task;
 5. evaluate, save the log (events.jsonl, in `export_run`'s format: `import_run` reads it),
    close the run, apply the no-op rule (outcomes.py: under the paper's, an agent that left
-   before the run's end fails a no-op), write results.json last — its presence means "done". A
-   task whose outcome is an error (outcomes.py: ours or the setup's, not the agent's) writes
-   error.txt instead, never a failed result.
+   before the run's end fails a no-op), write results.json last and record it in the set's
+   ledger (ledger.py) — a results.json the ledger has means "done". A task whose outcome is an
+   error (outcomes.py: ours or the setup's, not the agent's) writes error.txt instead, never a
+   failed result.
 
 `--trials k` runs every task k times, each its own run: trial 1 in `<env>/<id>/`, trial n in
 `<env>/<id>/trial-<n>/`, so a result set run once can be given more trials later.
@@ -35,30 +36,39 @@ import json
 import math
 import os
 import random
+import re
 import shlex
 import shutil
 import signal
+import stat
 import subprocess
 import sys
 import tempfile
 import threading
 import time
 import traceback
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
+from apps.bench import ledger
 from apps.bench.agents import FIXED_CONTACT_AT, SLEEPER_MARGIN_S
 from apps.bench.client import ControlClient, HarnessError
 from apps.bench.config import BenchConfig
 from apps.bench.everything import every_item_steps
 from apps.bench.layout import (
+    AGENT,
     ERROR,
     EVENTS,
+    HARNESS_NAMES,
+    LEDGER,
     OUTPUT,
+    PROMPT,
     RESULTS,
+    TRIAL_PREFIX,
+    UNVERIFIED,
     BenchError,
     error_cause_of,
     trial_folder,
@@ -283,9 +293,27 @@ class Harness:
                 tasks.append(task)
         return tasks
 
-    def should_skip(self, task: Task) -> str | None:
-        if (task.folder / RESULTS).exists():
-            return "already done" + self._speed_note(task)
+    def should_skip(
+        self,
+        task: Task,
+        records: ledger.Records | None = None,
+        say: Callable[[str], None] | None = None,
+    ) -> str | None:
+        """Why the task is not run again (None: it is run). A results.json the set's ledger
+        (`records`, read now if not given) does not have as written is no verdict: it is set
+        aside as results.json.unverified, `say` is told in one line and the task runs again."""
+        results = task.folder / RESULTS
+        if results.exists():
+            if records is None:
+                records = ledger.Records.of(self.results_root)
+            if records.vouches(results):
+                return "already done" + self._speed_note(task)
+            results.replace(results.with_name(UNVERIFIED))
+            if say is not None:
+                say(
+                    f"Running {task.label} again: {results} was not written by the harness "
+                    f"(no match in {LEDGER}; kept as {UNVERIFIED})"
+                )
         if (task.folder / ERROR).exists():
             if not self.retry_errors:
                 return (
@@ -453,13 +481,14 @@ class Harness:
         prompt = augment_prompt(
             run.get("prompt") or task.spec.get("prompt", ""), run["contact_url"]
         )
-        (task.folder / "prompt.txt").write_text(prompt, encoding="utf-8")
+        (task.folder / PROMPT).write_text(prompt, encoding="utf-8")
         limit = deadline_s(task.spec, sf, self.config.reaction_window)
+        ledger.start(self.results_root)  # (bench run started it; bench validate's sets here)
         launched = time.monotonic()
         # The agent works in a fresh folder of its own, outside the project and the results:
         # it can never write a result of its own (a forged results.json was taken as done).
         with AgentWorkspace(task.folder) as workspace:
-            (workspace.path / "prompt.txt").write_text(prompt, encoding="utf-8")
+            workspace.place(PROMPT, prompt)
             command, shell, env = self.command_for(task, run, prompt, workspace)
             try:
                 process = subprocess.Popen(
@@ -510,6 +539,8 @@ class Harness:
             "agent_wall_s": round(time.monotonic() - launched, 3),
             "noop_rule": self.config.noop_rule,
         }
+        if workspace.refused:  # what the agent left that was not kept, and why
+            result["agent_files_refused"] = workspace.refused
         # (A clock stops at its timeline's end: an agent cannot outstay that.)
         end = min(run_end(task.spec), float(task.spec.get("event_timeline_end") or math.inf))
         result = noop_rule_applied(result, self.config.noop_rule, end / sf)
@@ -529,7 +560,7 @@ class Harness:
             cause = "the agent outlived its wall-time guard on a virtual clock (a loaded machine?)"
         if cause:
             return {**result, "error_cause": cause}
-        write_json_atomically(task.folder / RESULTS, result)
+        ledger.write_result(self.results_root, task.folder / RESULTS, result)
         return result
 
     def _clock_reading(self, run_id: int) -> float | None:
@@ -592,9 +623,16 @@ class Harness:
 
     def pending(self, tasks: list[Task], progress: Progress) -> list[Task]:
         """The tasks still to run; the others are reported as skipped (resumability)."""
+        adopted = ledger.start(self.results_root)
+        if adopted:
+            progress.line(
+                f"{self.results_root / LEDGER}: started, with the {adopted} results.json "
+                "written before it"
+            )
+        records = ledger.Records.of(self.results_root)
         todo = []
         for task in tasks:
-            reason = self.should_skip(task)
+            reason = self.should_skip(task, records, progress.line)
             if reason:
                 progress.line(f"Skipping {task.label} ({reason})")
             else:
@@ -755,17 +793,50 @@ def agent_environment(environ: Mapping[str, str], project: tuple[Path, ...]) -> 
     return env
 
 
-# What the harness writes in a task's folder; an agent's file of the same name is not copied.
-HARNESS_FILES = frozenset({RESULTS, ERROR, OUTPUT, EVENTS, "prompt.txt"})
+REFUSED_KEPT = 50  # refused files named in results.json (`agent_files_refused`), at most
+TRIAL_NAME = re.compile(re.escape(TRIAL_PREFIX) + r"[0-9]+")
+
+
+def refusal(relative: Path) -> str | None:
+    """Why a path the agent left in its folder is not copied back (None: it is)."""
+    if relative.is_absolute() or not relative.parts:
+        return "not inside the agent's folder"
+    if any(part in ("", ".", "..") for part in relative.parts):
+        return "not inside the agent's folder"
+    if any(part in HARNESS_NAMES or TRIAL_NAME.fullmatch(part) for part in relative.parts):
+        return "a name of the harness's"
+    return None
+
+
+def _not_a_folder(name: str, dir_fd: int) -> str | None:
+    """Why a sub-folder the agent left is not walked into (None: it is a folder)."""
+    try:
+        mode = os.stat(name, dir_fd=dir_fd, follow_symlinks=False).st_mode
+    except OSError:
+        return "unreadable"
+    return None if stat.S_ISDIR(mode) else "a symbolic link"
 
 
 class AgentWorkspace:
     """A fresh temporary folder for one agent; what the agent leaves there (its costs.json,
-    transcript, screenshots) is copied into the task's result folder afterwards, except files
-    named like the harness's own, and never through a symbolic link."""
+    transcript, screenshots) is copied afterwards into `agent/` in the trial's result folder.
+
+    Why a folder of its own rather than the trial's folder itself: that folder is the
+    harness's — results.json, error.txt, output.txt, events.jsonl, prompt.txt, and (trial 1's)
+    the folders of the task's other trials, trial-2/… An agent once wrote `trial-2/results.json`
+    in its own folder, had it copied beside its trial's, and a later `bench run --trials 2`
+    took it for trial 2's verdict. Copied under `agent/`, nothing of the agent's can land where
+    the harness reads or writes a record, whatever it names it. As well, a file is copied only
+    when it is a regular file reached without a symbolic link (opened relative to its folder,
+    O_NOFOLLOW, so a link swapped in meanwhile is refused too) and none of its path is a name
+    of the harness's (layout.HARNESS_NAMES) or of a trial's folder, at any depth: such a file
+    is a forgery or a mistake, and never what the reports read from `agent/`. What was refused
+    is listed in results.json (`agent_files_refused`)."""
 
     def __init__(self, results: Path):
         self.results = results
+        self.refused: list[str] = []
+        self.placed: set[Path] = set()  # the harness's files in the agent's folder: not copied
         # The agent's folder is `task` inside a folder of its own, beside its PATH's shims.
         self.root = Path(tempfile.mkdtemp(prefix="sentinel-agent-")).resolve()
         self.path = self.root / "task"
@@ -773,6 +844,11 @@ class AgentWorkspace:
 
     def __enter__(self) -> AgentWorkspace:
         return self
+
+    def place(self, name: str, text: str) -> None:
+        """A file of the harness's for the agent to read (its prompt.txt): never copied back."""
+        (self.path / name).write_text(text, encoding="utf-8")
+        self.placed.add(Path(name))
 
     def shims(self) -> Path:
         """A folder beside the workspace where `python` and `python3` run the project's Python
@@ -794,16 +870,53 @@ class AgentWorkspace:
         finally:
             shutil.rmtree(self.root, ignore_errors=True)
 
-    def copy_back(self) -> None:
-        for source in sorted(self.path.rglob("*")):
-            relative = source.relative_to(self.path)
-            if source.is_symlink() or not source.is_file():
-                continue
-            if len(relative.parts) == 1 and relative.name in HARNESS_FILES:
-                continue
-            target = self.results / relative
-            target.parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(source, target)
+    def _refuse(self, relative: Path, why: str) -> None:
+        if len(self.refused) < REFUSED_KEPT:
+            self.refused.append(f"{relative.as_posix()}: {why}")
+
+    def copy_back(self) -> Path:
+        """Copy the agent's files into `<trial folder>/agent/` (an earlier attempt's replaced:
+        a task run again keeps only its last agent's); returns that folder."""
+        target = self.results / AGENT
+        if target.is_symlink() or target.is_file():
+            target.unlink()
+        shutil.rmtree(target, ignore_errors=True)
+        target.mkdir(parents=True)
+        # fwalk: each folder is opened without following a link, and files are opened
+        # relative to it, so no path the agent can change is followed between check and copy.
+        for folder, dirnames, filenames, dir_fd in os.fwalk(self.path):
+            where = Path(folder).relative_to(self.path)
+            for name in sorted(dirnames):
+                why = refusal(where / name) or _not_a_folder(name, dir_fd)
+                if why is not None:
+                    dirnames.remove(name)
+                    self._refuse(where / name, why)
+            for name in sorted(filenames):
+                relative = where / name
+                if relative in self.placed:
+                    continue
+                why = refusal(relative) or self._copy(name, dir_fd, target / relative)
+                if why is not None:
+                    self._refuse(relative, why)
+        return target
+
+    @staticmethod
+    def _copy(name: str, dir_fd: int, to: Path) -> str | None:
+        """Copy one regular file, opened in its folder without following a link; None when
+        copied, else why not."""
+        try:
+            fd = os.open(name, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK, dir_fd=dir_fd)
+        except OSError:
+            return "a symbolic link or unreadable"
+        with os.fdopen(fd, "rb") as source:
+            info = os.fstat(source.fileno())
+            if not stat.S_ISREG(info.st_mode):
+                return "not a regular file"
+            to.parent.mkdir(parents=True, exist_ok=True)
+            with open(to, "xb") as copy:
+                shutil.copyfileobj(source, copy)
+        os.utime(to, ns=(info.st_atime_ns, info.st_mtime_ns))
+        return None
 
 
 def write_json_atomically(path: Path, data: Any) -> None:

@@ -4,7 +4,7 @@ are both made of.
 
 A task folder holds `events.jsonl` (a header naming the run and its scenario as played, jitter
 included, then every logged event), `results.json` (the verdict), `prompt.txt` and, for an agent
-that writes one, `transcript.jsonl`. The admin's timeline reads the same log from the database
+that writes one, `agent/transcript.jsonl`. The admin's timeline reads the same log from the database
 instead: `LogEntry.of` takes either's rows.
 
 The scenario's events are told apart here, once, for both: the *trigger* is what fires at the
@@ -21,8 +21,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from apps.bench.layout import EVENTS, RESULTS
-from apps.bench.transcripts import PROMPT, TRANSCRIPT, Step, read_transcript
+from apps.bench.layout import EVENTS, PROMPT, RESULTS, agent_files
+from apps.bench.transcripts import TRANSCRIPT, Step, read_transcript
 
 TRIGGER, DISTRACTOR, PRELOAD = "trigger", "distractor", "preload"
 SAME_MOMENT = 1e-6  # simulated seconds: a timeline entry at condition_at is the trigger
@@ -108,10 +108,11 @@ def read_log_file(path: Path) -> tuple[dict[str, Any], list[LogEntry]]:
 
 
 def transcript_steps(folder: Path | None) -> list[Step]:
-    if folder is None or not (folder / TRANSCRIPT).is_file():
+    if folder is None or not (agent_files(folder) / TRANSCRIPT).is_file():
         return []
+    path = agent_files(folder) / TRANSCRIPT
     try:
-        return [entry for entry in read_transcript(folder / TRANSCRIPT) if isinstance(entry, Step)]
+        return [entry for entry in read_transcript(path) if isinstance(entry, Step)]
     except OSError:
         return []
 

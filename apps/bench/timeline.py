@@ -50,7 +50,7 @@ class Entry:
     until: float | None = None  # a span's end (a tool call, a skip)
     seq: int | None = None  # the log position "the site at this moment" shows
     page: str = ""  # the page it shows: a path under the environment's root
-    screenshot: str | None = None  # relative to the task folder
+    screenshot: str | None = None  # relative to the agent's files (`agent/` in the task folder)
     tokens: tuple[int, int] | None = None  # (input, output)
     text: str = ""  # what the row holds when expanded
     blocks: tuple[str, ...] = ()  # a judge question's diff blocks

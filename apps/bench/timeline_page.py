@@ -17,7 +17,7 @@ from django.template.response import TemplateResponse
 from django.urls import reverse
 from django.utils.safestring import mark_safe
 
-from apps.bench.layout import trial_folder
+from apps.bench.layout import agent_files, trial_folder
 from apps.bench.models import TaskResult
 from apps.bench.task_trace import trace_of
 from apps.bench.timeline import Links, build_timeline, render_timeline
@@ -92,10 +92,11 @@ def task_timeline_view(request: HttpRequest, run: Run, admin_context: dict) -> H
 
 
 def task_file_view(request: HttpRequest, run: Run, admin_context: dict, name: str) -> HttpResponse:
-    """A file of the task's folder (a transcript screenshot), never one outside it."""
+    """A file the task's agent left (a transcript screenshot), never one outside its files."""
     folder = folder_of(task_of(run))
     if folder is None:
         raise Http404("this run has no benchmark task folder")
+    folder = agent_files(folder)
     target = (folder / name).resolve()
     if not target.is_relative_to(folder.resolve()) or not target.is_file():
         raise Http404(f"no file {name!r} in this task's folder")

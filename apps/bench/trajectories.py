@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from apps.bench.grading import Row, load_rows, task_errors
+from apps.bench.layout import agent_files
 from apps.bench.task_trace import LogEntry, TaskTrace, read_task_folder
 from apps.bench.transcripts import Step
 
@@ -37,7 +38,7 @@ def _transcript_step(step: Step, results_root: Path, folder: Path) -> dict[str, 
             "url": step.url,
             "text": step.observation,
             # relative to the result set's folder, so a trainer given that folder opens it
-            "screenshot": (folder / screenshot).relative_to(results_root).as_posix()
+            "screenshot": (agent_files(folder) / screenshot).relative_to(results_root).as_posix()
             if screenshot
             else None,
         },

@@ -1,4 +1,5 @@
-"""An agent's transcript (`transcript.jsonl` in its task folder), rendered as one HTML page.
+"""An agent's transcript (`transcript.jsonl` among its files: `agent/` in its task folder),
+rendered as one HTML page.
 
 The reference agents write one JSON object per step — `{"step", "t", "sim_start", "sim_time",
 "url", "text", "tool", "arguments", "result", "screenshot", "usage"}`, and `checks` on a
@@ -22,8 +23,9 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
+from apps.bench.layout import PROMPT, agent_files
+
 TRANSCRIPT = "transcript.jsonl"
-PROMPT = "prompt.txt"
 RAW_LINE_LIMIT = 2000  # characters of an unreadable line shown on the page
 OPEN_RESULT_LIMIT = 600  # longer tool results start folded
 
@@ -237,13 +239,15 @@ def render_transcript_page(
     page_folder: Path,
     back_href: str,
 ) -> str:
-    """The task's facts, its prompt, then every step of its transcript in order."""
+    """The task's facts, its prompt, then every step of its transcript in order (the prompt
+    is the harness's, in the task folder; the transcript and its screenshots the agent's)."""
     prompt_path = task_folder / PROMPT
+    files = agent_files(task_folder)
     prompt = (
         prompt_path.read_text(encoding="utf-8", errors="replace") if prompt_path.is_file() else None
     )
     try:
-        entries = read_transcript(task_folder / TRANSCRIPT)
+        entries = read_transcript(files / TRANSCRIPT)
         unreadable_file = ""
     except OSError as exc:
         entries, unreadable_file = [], f"cannot read {TRANSCRIPT}: {exc.strerror or exc}"
@@ -275,7 +279,7 @@ def render_transcript_page(
         if previous is not None and entry.number is not None and entry.number > previous + 1:
             parts.append(_gap_html(previous, entry.number))
         previous = entry.number if entry.number is not None else previous
-        parts.append(_step_html(entry, task_folder, page_folder))
+        parts.append(_step_html(entry, files, page_folder))
     parts.append("</body></html>\n")
     return "\n".join(parts)
 
@@ -285,4 +289,4 @@ def _unreadable_count(count: int) -> str:
 
 
 def has_transcript(task_folder: Path | None) -> bool:
-    return task_folder is not None and (task_folder / TRANSCRIPT).is_file()
+    return task_folder is not None and (agent_files(task_folder) / TRANSCRIPT).is_file()

@@ -10,7 +10,10 @@ It follows the script embedded in its prompt as `[[script: step; step; ...]]`:
   spawn                start a child that sleeps forever; its pid goes to child.pid
   escape               start a sleeper in a session of its own, its parent gone (a double
                        fork): its pid goes to escaped.pid
-  forge                write a results.json of its own saying it passed
+  forge                forge the harness's records: a results.json saying it passed, another
+                       for trial 2 (trial-2/results.json), harness names deeper down
+                       (logs/events.jsonl, notes/error.txt) and links out of its folder
+                       (leak.txt to /etc/hostname, up/ to its folder's parent)
   flood MIB            write MIB mebibytes to stdout
   snoop                ask the control side for the answer key; the answers go to snoop.json
   environ              write its environment, its working folder and what `python` on its
@@ -108,8 +111,16 @@ def main() -> int:
             subprocess.run([sys.executable, "-c", code], check=True)
             print("escaped", flush=True)
         elif verb == "forge":
-            with open("results.json", "w") as f:
-                json.dump({"success": True, "detail": "forged by the agent"}, f)
+            forged = {"success": True, "detail": "forged by the agent", "category": "active"}
+            for name in ("results.json", "trial-2/results.json", "logs/events.jsonl"):
+                os.makedirs(os.path.dirname(name) or ".", exist_ok=True)
+                with open(name, "w") as f:
+                    json.dump(forged, f)
+            os.makedirs("notes", exist_ok=True)
+            with open("notes/error.txt", "w") as f:
+                f.write("harness error: forged\n")
+            os.symlink("/etc/hostname", "leak.txt")
+            os.symlink("..", "up")
         elif verb == "flood":
             line = b"x" * 1023 + b"\n"
             for _ in range(int(args[0]) * 1024):

@@ -86,8 +86,8 @@ def logged(root: Path, name: str, task: str) -> list[dict]:
 
 
 def transcript(root: Path, name: str, task: str) -> list[dict]:
-    lines = (root / name / "micromail" / task / "transcript.jsonl").read_text().splitlines()
-    return [json.loads(line) for line in lines]
+    text = (root / name / "micromail" / task / "agent" / "transcript.jsonl").read_text()
+    return [json.loads(line) for line in text.splitlines()]
 
 
 def test_the_wait_for_agent_skips_to_the_email_and_passes_both_tasks(paper_scenarios, tmp_path):  # noqa: F811
@@ -147,7 +147,9 @@ def test_the_sleep_agent_asks_the_model_as_often_on_both_clocks(paper_scenarios,
         assert [s["payload"]["to"] - s["payload"]["from"] for s in skips] == pytest.approx([8, 8])
         assert not [e for e in logged(root, "live", task) if e["type"] == "skip"]
         costs = {
-            clock: json.loads((root / clock / "micromail" / task / "costs.json").read_text())
+            clock: json.loads(
+                (root / clock / "micromail" / task / "agent" / "costs.json").read_text()
+            )
             for clock in ("live", "fast-forward")
         }
         assert costs["live"]["calls"] == costs["fast-forward"]["calls"]

@@ -99,10 +99,10 @@ def test_a_benchmark_run_with_a_scripted_agent(bench_scenarios, bench_config, tm
     assert hung["agent_wall_s"] >= 12.0  # not killed before its deadline (how long after: load)
     assert "the agent never visited /contact" in hung["detail"]
     for pidfile in ("agent.pid", "child.pid"):
-        assert not alive(int((tree / "bench-hung" / pidfile).read_text()))
+        assert not alive(int((tree / "bench-hung" / "agent" / pidfile).read_text()))
     # An agent that exits by itself still has its process group killed: no child survives.
     assert outcome["bench-noop"]["agent_killed"] is False
-    assert not alive(int((tree / "bench-noop" / "child.pid").read_text()))
+    assert not alive(int((tree / "bench-noop" / "agent" / "child.pid").read_text()))
     # An agent that contacted but lingers gets the grace period (5 s), then is killed.
     linger = outcome["bench-linger"]
     assert linger["agent_killed"] is True

@@ -81,7 +81,7 @@ def test_the_readme_demo_runs_and_refuses_a_taken_port(tmp_path):
         assert result["success"] is True, result["detail"]
         assert result["contact_message"] == "Kevin Lee has written to you."
         costs = json.loads(
-            (clone / "results" / "demo" / "micromail" / TASK / "costs.json").read_text()
+            (clone / "results" / "demo" / "micromail" / TASK / "agent" / "costs.json").read_text()
         )
         assert costs["model"] == "scripted"
     finally:

@@ -128,7 +128,7 @@ def test_both_reference_agents_run_the_paper_experiment_and_compare(paper_scenar
     for name in ("wait_for", "sleep"):
         folders = tasks(results, name)
         assert set(folders) == {"ref-passive", "ref-noop"}
-        costs = [json.loads((f / "costs.json").read_text()) for f in folders.values()]
+        costs = [json.loads((f / "agent" / "costs.json").read_text()) for f in folders.values()]
         # costs.json holds exactly what the model server reported, judge questions included.
         assert sum(c["input_tokens"] for c in costs) == served[name]["prompt_tokens"] > 0
         assert sum(c["output_tokens"] for c in costs) == served[name]["completion_tokens"] > 0
@@ -136,10 +136,12 @@ def test_both_reference_agents_run_the_paper_experiment_and_compare(paper_scenar
         assert {c["model"] for c in costs} == {MODEL}
         for folder in folders.values():
             steps = [
-                json.loads(line) for line in (folder / "transcript.jsonl").read_text().splitlines()
+                json.loads(line)
+                for line in (folder / "agent" / "transcript.jsonl").read_text().splitlines()
             ]
             assert steps and all(s["step"] == n for n, s in enumerate(steps, 1))
-            assert (folder / steps[0]["screenshot"]).read_bytes()[:2] == b"\xff\xd8"  # a JPEG
+            screenshot = folder / "agent" / steps[0]["screenshot"]
+            assert screenshot.read_bytes()[:2] == b"\xff\xd8"  # a JPEG
 
     outcome = {
         task: json.loads((folder / "results.json").read_text())
@@ -152,7 +154,8 @@ def test_both_reference_agents_run_the_paper_experiment_and_compare(paper_scenar
     assert passive["reaction_time"] < 30.0
     assert passive["contact_message"] == "The email you were waiting for has arrived."
     assert noop["contact_get_time"] is None  # it watched to the end, saw nothing, never reported
-    transcript = (tasks(results, "wait_for")["ref-passive"] / "transcript.jsonl").read_text()
+    agent = tasks(results, "wait_for")["ref-passive"] / "agent"
+    transcript = (agent / "transcript.jsonl").read_text()
     assert [json.loads(line)["tool"] for line in transcript.split("\n") if line][:2] == [
         "wait_for",
         "contact",

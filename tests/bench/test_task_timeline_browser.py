@@ -145,7 +145,7 @@ def test_the_timeline_puts_the_trigger_between_the_models_questions(graded_task,
 
     assert x("kind-check") < x("kind-trigger") < x("kind-check", len(before)) < x("kind-contact")
 
-    # A step expands to its screenshot (served from the task's result folder).
+    # A step expands to its screenshot (served from the agent's files in the task's folder).
     step = rows.nth(model_calls[0])
     step.locator("summary").click()
     shot = step.locator("img.screenshot")
@@ -157,4 +157,4 @@ def test_the_timeline_puts_the_trigger_between_the_models_questions(graded_task,
         shown.locator("a.site-at").click()
     assert page.locator("#time-travel-banner").is_visible()
     assert SUBJECT in page.locator("body").inner_text()
-    assert Path(folder / "transcript.jsonl").is_file()
+    assert Path(folder / "agent" / "transcript.jsonl").is_file()

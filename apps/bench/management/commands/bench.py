@@ -554,6 +554,7 @@ class Command(BaseCommand):
     ):
         from apps.bench import grading, report
         from apps.bench.judge import JudgeError, model_asker
+        from apps.bench.ledger import not_written_line
         from apps.bench.timeline_links import timelines_section
 
         if config is None and Path(DEFAULT_CONFIG).exists():
@@ -563,6 +564,9 @@ class Command(BaseCommand):
         if not window > 0:  # also rejects NaN
             raise _usage(f"--timely-window must be a positive number of seconds, got {window}")
         sets = grading.load_result_sets(Path(results_dir), names, cfg, task=task, filter=filter)
+        for result_set in sets:  # a results.json the harness did not write is no verdict
+            for path in result_set.ignored:
+                self.stderr.write(not_written_line(path))
         ask = (
             model_asker(judge, judge_url, os.environ.get(judge_key_env) or "none")
             if judge

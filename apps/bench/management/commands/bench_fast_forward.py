@@ -27,6 +27,7 @@ from django.conf import settings
 from django.core.management import call_command
 from django.core.management.base import BaseCommand, CommandError
 
+from apps.bench.layout import COSTS, agent_files
 from apps.browser_agent.scripted_model import parse_script, scripted_model_server
 from apps.scenarios.library import scenario_library
 
@@ -110,7 +111,7 @@ def task_outcomes(folder: Path) -> dict[str, dict[str, Any]]:
     found = {}
     for path in folder.glob("*/*/results.json"):
         result = json.loads(path.read_text())
-        costs_path = path.with_name("costs.json")
+        costs_path = agent_files(path.parent) / COSTS
         costs = json.loads(costs_path.read_text()) if costs_path.exists() else {}
         stop, condition = result.get("contact_get_time"), result.get("condition_at")
         reaction = None
