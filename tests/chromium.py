@@ -1,21 +1,26 @@
-"""One Chromium per test process, reached over the DevTools protocol by each browser test.
+"""One Chromium and one Playwright driver per test process, lent to each browser test.
 
-Launching Chromium costs about 0.6 CPU-s, and the suite's browser tests launched one each. A test
-still starts its own Playwright (whose sync API must not outlive the test: it leaves an event
-loop marked running in the thread, which Django's database calls then refuse), but connects it
-to this process's Chromium instead of launching one. Each test works in browser contexts of its
-own, which `Browser.close()` on a connected browser discards, so no cookie, storage or page
-leaks from one test to the next.
+Launching Chromium costs about 0.6 CPU-s and starting Playwright's driver (a Node process) about
+0.4, and the suite's browser tests paid both each. Now a test connects the process's Playwright
+to the process's Chromium over the DevTools protocol (`connect_over_cdp`) and works in browser
+contexts of its own, which `Browser.close()` on a connected browser discards, so no cookie,
+storage or page leaks from one test to the next.
 """
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import os
 import signal
 import subprocess
 import tempfile
 import threading
+from collections.abc import Iterator
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from playwright.sync_api import Playwright
 
 # The switches Playwright's own `chromium.launch(headless=True)` adds (its chromiumSwitches.ts),
 # which change what a page does: no throttling of background tabs and timers (a test with two
@@ -138,3 +143,51 @@ def _await_endpoint(process: subprocess.Popen[str]) -> str:
             f"Chromium did not start within {START_TIMEOUT_S:.0f} s: {''.join(seen)[-2000:]}"
         )
     return seen[-1][len(LISTENING) :].strip()
+
+
+class KeptPlaywright:
+    """Playwright's driver, started on first use and lent to one test at a time.
+
+    Playwright's sync API runs its event loop in a greenlet of this thread and, after each of
+    its calls, marks that loop as the thread's running one (`wait_for_future`), so that the
+    next call resumes it. While so marked, Django refuses the thread's database calls (they
+    would block a running loop). A browser test does its database work before it takes the
+    browser, as before; between lends the mark is cleared, so the tests that follow use the
+    database as usual, and it is set again for the next lend — as Playwright itself does when
+    a signal interrupted its loop (`greenlet_main`).
+    """
+
+    def __init__(self) -> None:
+        self._manager = None
+        self._playwright: Playwright | None = None
+        self._loop: asyncio.AbstractEventLoop | None = None
+
+    def _alive(self) -> bool:
+        fiber = getattr(self._manager, "_dispatcher_fiber", None)
+        return self._playwright is not None and fiber is not None and not fiber.dead
+
+    @contextlib.contextmanager
+    def lent(self) -> Iterator[Playwright]:
+        if self._alive():
+            asyncio._set_running_loop(self._loop)
+        else:  # first use, or the driver went away: a new one
+            self.stop()
+            from playwright.sync_api import sync_playwright
+
+            self._manager = sync_playwright()
+            self._playwright = self._manager.start()
+            self._loop = asyncio._get_running_loop()
+        try:
+            yield self._playwright
+        finally:
+            asyncio._set_running_loop(None)
+
+    def stop(self) -> None:
+        if self._playwright is None:
+            return
+        if self._alive():
+            asyncio._set_running_loop(self._loop)
+        with contextlib.suppress(Exception):  # a driver that died has nothing left to stop
+            self._playwright.stop()
+        asyncio._set_running_loop(None)
+        self._manager = self._playwright = self._loop = None

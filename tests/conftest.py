@@ -19,7 +19,7 @@ from events import registry
 from events.projection import clear_cache
 
 if TYPE_CHECKING:  # imports Playwright when used, not when the suite starts
-    from tests.chromium import SharedChromium
+    from tests.chromium import KeptPlaywright, SharedChromium
 
 REPO = Path(__file__).resolve().parents[1]
 # The scenarios of ours the tests play and count: the session's copy of the files git tracks in
@@ -298,18 +298,30 @@ def shared_chromium() -> Iterator[SharedChromium]:
         shared.stop()
 
 
+@pytest.fixture(scope="session")
+def kept_playwright() -> Iterator[KeptPlaywright]:
+    """Playwright's driver, one per test process (tests/chromium.py), lent to each browser test."""
+    from tests.chromium import KeptPlaywright
+
+    kept = KeptPlaywright()
+    try:
+        yield kept
+    finally:
+        kept.stop()
+
+
 @pytest.fixture
-def browser(shared_chromium):
-    """The process's Chromium, driven by this test's own Playwright over the DevTools protocol;
+def browser(shared_chromium, kept_playwright):
+    """The process's Chromium, driven by the process's Playwright over the DevTools protocol;
     the contexts and pages the test opens are discarded after it."""
-    from playwright.sync_api import expect, sync_playwright
+    from playwright.sync_api import expect
 
     from tests.browser_story import TIMEOUT_MS
 
     # `expect` has a ceiling of its own (5 s), which a page on a fully loaded machine can
     # miss: the same generous one as actions. It returns as soon as its condition holds.
     expect.set_options(timeout=TIMEOUT_MS)
-    with sync_playwright() as playwright:
+    with kept_playwright.lent() as playwright:
         instance = playwright.chromium.connect_over_cdp(shared_chromium.endpoint)
         try:
             yield instance
