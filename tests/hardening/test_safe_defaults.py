@@ -192,3 +192,83 @@ def test_run_creation_is_rate_limited_per_client_unless_it_holds_the_token(api, 
     api.credentials(HTTP_AUTHORIZATION="Bearer secret")
     assert api.post("/api/runs/", body, format="json").status_code == 201
     cache.clear()
+
+
+@pytest.fixture
+def creation_rate(settings):
+    """Two runs a minute per client, counted from nothing."""
+    from django.core.cache import cache
+
+    cache.clear()  # the throttle's history: this test's alone
+    settings.SENTINEL_RUN_CREATION_RATE = "2/min"
+    yield
+    cache.clear()
+
+
+RUN_BODY = {"scenario": "micromail-inbox-relative-passive"}
+
+
+def test_a_forwarded_for_header_does_not_make_a_new_client(api, creation_rate):
+    """The audit's bypass: DRF's identity believed X-Forwarded-For, so a client that varied it
+    created runs past the 429 without end."""
+    assert [api.post("/api/runs/", RUN_BODY, format="json").status_code for _ in range(2)] == [
+        201
+    ] * 2
+    forged = [
+        api.post("/api/runs/", RUN_BODY, format="json", HTTP_X_FORWARDED_FOR=f"10.0.0.{i}")
+        for i in range(5)
+    ]
+    assert [r.status_code for r in forged] == [429] * 5
+    assert Run.objects.count() == 2
+
+
+def test_behind_a_trusted_proxy_each_forwarded_client_has_its_own_count(settings, creation_rate):
+    settings.SENTINEL_TRUSTED_PROXIES = ("10.9.0.0/16",)
+    proxy = APIClient(REMOTE_ADDR="10.9.0.1")
+
+    def create(forwarded: str) -> int:
+        return proxy.post(
+            "/api/runs/", RUN_BODY, format="json", HTTP_X_FORWARDED_FOR=forwarded
+        ).status_code
+
+    assert [create("192.0.2.7") for _ in range(3)] == [201, 201, 429]
+    assert create("192.0.2.8") == 201  # another client behind the proxy
+    # What the client itself wrote left of the proxy's entry is not believed.
+    assert create("198.51.100.1, 192.0.2.7") == 429
+    # A direct client (not a trusted proxy) cannot borrow another's address.
+    direct = APIClient(REMOTE_ADDR="192.0.2.99")
+    statuses = [
+        direct.post(
+            "/api/runs/", RUN_BODY, format="json", HTTP_X_FORWARDED_FOR=f"203.0.113.{i}"
+        ).status_code
+        for i in range(3)
+    ]
+    assert statuses == [201, 201, 429]
+
+
+def test_a_flat_reset_counts_against_the_same_limit(api, creation_rate, tally_spec):
+    """The audit's second way round: `GET /close` then `POST /init` made runs without limit."""
+    spec = tally_spec()
+    init = {k: spec[k] for k in ("environment", "event_timeline_end", "events")}
+    made = []
+    for _ in range(3):
+        api.get("/close")
+        made.append(api.post("/init", init, format="json"))
+    assert [r.status_code for r in made] == [200, 200, 429]
+    assert "SENTINEL_RUN_CREATION_RATE" in made[2].json()["detail"]
+    assert made[2].headers["Retry-After"]
+    assert Run.objects.count() == 2
+    # The API and the flat slot share one count per client.
+    assert api.post("/api/runs/", RUN_BODY, format="json").status_code == 429
+
+
+def test_trusted_proxies_are_addresses_or_networks_and_none_by_default(monkeypatch):
+    from sentinel_site.config import ConfigError, env_networks
+
+    monkeypatch.delenv("SENTINEL_TRUSTED_PROXIES", raising=False)
+    assert env_networks("SENTINEL_TRUSTED_PROXIES") == ()
+    monkeypatch.setenv("SENTINEL_TRUSTED_PROXIES", "10.0.0.5, 10.1.0.0/16,::1")
+    assert env_networks("SENTINEL_TRUSTED_PROXIES") == ("10.0.0.5", "10.1.0.0/16", "::1")
+    monkeypatch.setenv("SENTINEL_TRUSTED_PROXIES", "10.0.0.5,proxy.example")
+    with pytest.raises(ConfigError, match=r"'proxy\.example' is not an IP address"):
+        env_networks("SENTINEL_TRUSTED_PROXIES")
