@@ -1,25 +1,32 @@
-"""What the engine itself logs besides scenario events and actions — a run's lifecycle entries and
-its page views — as payload schemas, entry type by entry type.
+"""What a run's log may hold, entry by entry, as payload schemas: `logged_schema(environment,
+kind, type)`.
 
-The live doors write these entries themselves, so only two places read the schemas: the contact
-door holds an agent's message to `ContactPost` (its message is free text, bounded as every other
-free text an agent writes: apps/kit/fields.py), and an import holds every such line of a file to
-them (apps/replay/transfer.py), since a file can say anything.
+Scenario events and actions have their environment's schemas (`EventType.schema`,
+`Action.schema`); an action is logged as its `decide` returned it, which may add what it decided
+(a generated id), so its logged form takes fields beyond its schema's. What the engine itself
+logs — a run's lifecycle entries and its page views — has the schemas below.
+
+The live doors write lifecycle entries and views themselves, so only two places read these: the
+contact door holds an agent's message to `ContactPost` (free text, bounded as every other free
+text an agent writes: apps/kit/fields.py), and an import holds every line of a file to
+`logged_schema` (apps/replay/transfer.py), since a file can say anything.
 """
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import Field, StringConstraints
+from pydantic import ConfigDict, Field, StringConstraints
 
 from apps.kit.fields import Text
 from events.commands import VIEW_PATH_LIMIT
 from events.fastforward import CHANGE, KILL_AT, SKIP, SLEPT, TIMEOUT
 from events.lifecycle import CONTACT_GET, CONTACT_POST
-from events.models import ClockMode
+from events.models import ClockMode, EventKind
+from events.registry import Environment
 from events.schemas import Payload
 
 CLOCK_MODES = tuple(ClockMode.values)
@@ -73,3 +80,38 @@ class PageView(Payload):
 
 
 VIEWS: Mapping[str, type[Payload]] = MappingProxyType({"page": PageView})
+
+
+@functools.cache
+def as_logged(schema: type[Payload]) -> type[Payload]:
+    """`schema` as its action is logged: every field it declares, checked as the live door checks
+    it, and whatever its `decide` added beside them (storable, as every payload must be)."""
+    return type(
+        f"Logged{schema.__name__}",
+        (schema,),
+        {"model_config": ConfigDict(extra="allow"), "__module__": schema.__module__},
+    )
+
+
+def logged_schema(environment: Environment[Any], kind: str, type_: str) -> type[Payload] | None:
+    """The schema of an entry of `kind` and `type_` in a run of `environment`; None when no
+    door of this server logs such an entry."""
+    if kind == EventKind.SCENARIO:
+        event_type = environment.event_types.get(type_)
+        return event_type.schema if event_type else None
+    if kind == EventKind.ACTION:
+        action = environment.actions.get(type_)
+        return as_logged(action.schema) if action else None
+    return {EventKind.LIFECYCLE: LIFECYCLE, EventKind.VIEW: VIEWS}.get(kind, {}).get(type_)
+
+
+def logged_types(environment: Environment[Any], kind: str) -> list[str]:
+    """The entry types of `kind` a run of `environment` may log."""
+    return sorted(
+        {
+            EventKind.SCENARIO: environment.event_types,
+            EventKind.ACTION: environment.actions,
+            EventKind.LIFECYCLE: LIFECYCLE,
+            EventKind.VIEW: VIEWS,
+        }.get(kind, {})
+    )
