@@ -142,3 +142,15 @@ def test_a_run_with_every_kind_of_entry_imports_and_replays_as_it_was_played():
     imported, warnings = import_lines(export_lines(run))
     assert warnings == []
     assert canonical(fold_from_scratch(imported).state) == canonical(fold_from_scratch(run).state)
+
+
+def test_the_lifecycle_schemas_know_every_clock_and_every_reason_to_stop_a_skip():
+    from typing import get_args
+
+    from apps.kit.log_payloads import ClockModeName, SkipReason
+    from events import fastforward
+    from events.models import ClockMode
+
+    assert set(get_args(ClockModeName)) == set(ClockMode.values)
+    reasons = (fastforward.SLEPT, fastforward.CHANGE, fastforward.TIMEOUT, fastforward.KILL_AT)
+    assert set(get_args(SkipReason)) == set(reasons)
