@@ -76,23 +76,26 @@ VIEW_PATH_LIMIT = 2048
 
 
 def budget_spent(run: Run, folded: Folded) -> str | None:
-    """Why the agent may add nothing more to the run's log (None: it may). Its actions and page
-    views are bounded in number and in stored bytes, over and above the scenario's own timeline:
-    an agent looping on one request, or posting maximal texts, grew its run's log, its exports
-    and replays without bound."""
+    """Why the agent may add nothing more to the run's log (None: it may). Its actions, page
+    views and contacts are bounded in number and in stored bytes, over and above the scenario's
+    own timeline: an agent looping on one request, or posting maximal texts, grew its run's log,
+    its exports and replays without bound."""
     entries = settings.SENTINEL_AGENT_LOG_BUDGET
     if folded.seq >= len(run.timeline) + entries:
         return (
             f"this run's log is full: its agent has used its {entries:,} entries "
-            "(actions and page views; SENTINEL_AGENT_LOG_BUDGET)"
+            f"({AGENT_ENTRIES}; SENTINEL_AGENT_LOG_BUDGET)"
         )
     stored = settings.SENTINEL_AGENT_BYTES_BUDGET
     if folded.agent_bytes >= stored:
         return (
             f"this run's log is full: its agent has stored {folded.agent_bytes:,} of its "
-            f"{stored:,} bytes (actions and page views; SENTINEL_AGENT_BYTES_BUDGET)"
+            f"{stored:,} bytes ({AGENT_ENTRIES}; SENTINEL_AGENT_BYTES_BUDGET)"
         )
     return None
+
+
+AGENT_ENTRIES = "actions, page views and contacts"  # what the budget counts (projection.by_agent)
 
 
 def has_room(run: Run, folded: Folded) -> bool:

@@ -16,7 +16,8 @@ from django.utils import timezone
 from events import notifications, projection, scheduler
 from events.catalog import load_catalog
 from events.clock import sim_now, wall_now
-from events.models import ClockMode, Event, EventKind, Run, RunStatus
+from events.commands import budget_spent, current_folded
+from events.models import CONTACT_GET, CONTACT_POST, ClockMode, Event, EventKind, Run, RunStatus
 from events.registry import get_environment
 from events.scheduler import FireResult, fire_due
 from events.store import append_event
@@ -24,7 +25,6 @@ from events.ticker import notify_clock_started
 from events.timing import validate_speed_factor
 
 CLOCK_STARTABLE = (RunStatus.READY, RunStatus.RUNNING_MANUAL)
-CONTACT_GET, CONTACT_POST = "contact_get", "contact_post"
 
 
 class LifecycleError(Exception):
@@ -142,10 +142,15 @@ def contact(
     run: Run, *, method: str, message: str | None = None, wall: float | None = None
 ) -> Event:
     """The agent's "done / condition met" signal, at wall time `wall` (when the request arrived;
-    default now). Completes the run; every visit is logged."""
+    default now). Completes the run; every visit is logged.
+
+    A contact is the agent's entry in its run's log, counted in its budget as its actions are
+    (events/commands.py): once that is spent, a contact is refused (429) and changes nothing."""
     if run.closed_at is not None:
         raise LifecycleError("No active simulation. Call /init first.")
     wall = wall_now() if wall is None else wall
+    if spent := budget_spent(run, current_folded(run, wall=wall)):
+        raise LifecycleError(spent, 429)
     complete(run, wall=wall)  # fires what was due first: the contact sees "now", not a tick ago
     if method == "POST":
         return _log(run, CONTACT_POST, run.sim_time, {"message": message or ""})

@@ -281,6 +281,10 @@ class EventKind(models.TextChoices):
     LIFECYCLE = "lifecycle"
 
 
+# The lifecycle entries the agent writes: its contacts, by GET (a visit) and by POST (the form).
+CONTACT_GET, CONTACT_POST = "contact_get", "contact_post"
+
+
 class AppendOnlyQuerySet(models.QuerySet):
     def update(self, **kwargs):
         raise PermissionError("events are append-only: a logged event is never updated")

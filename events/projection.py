@@ -22,7 +22,7 @@ from django.db import connection, connections
 
 from events.catalog import load_catalog
 from events.lru import LRU
-from events.models import Event, EventKind, Run, column_field
+from events.models import CONTACT_GET, CONTACT_POST, Event, EventKind, Run, column_field
 from events.notifications import LIVE_KINDS
 from events.registry import EMPTY, Environment, LoggedEvent, get_environment
 
@@ -74,10 +74,19 @@ class Folded:
     seq: int  # the last event folded (0: none)
     live_seq: int  # the last scenario or action event folded (0: none)
     baselines: Mapping[str, Any] = field(default_factory=lambda: EMPTY)  # after the last preload
-    agent_bytes: int = 0  # the size of what the agent logged: its actions' and views' payloads
+    agent_bytes: int = 0  # the size of what the agent logged: its actions', views' and contacts'
 
 
 AGENT_KINDS = (EventKind.ACTION, EventKind.VIEW)
+AGENT_LIFECYCLE = (CONTACT_GET, CONTACT_POST)  # the agent's own lifecycle entries
+
+
+def by_agent(event: LoggedEvent) -> bool:
+    """Whether the agent wrote `event` (an action, a page view, a contact): what its budget
+    counts (events/commands.py)."""
+    return event.kind in AGENT_KINDS or (
+        event.kind == EventKind.LIFECYCLE and event.type in AGENT_LIFECYCLE
+    )
 
 
 def payload_bytes(payload: Mapping[str, Any]) -> int:
@@ -90,7 +99,7 @@ def _fold(environment: Environment, start: Folded, events: list[LoggedEvent]) ->
         return start
     live_seq = next((e.seq for e in reversed(events) if e.kind in LIVE_KINDS), start.live_seq)
     state, baselines = environment.fold(start.state, events, start.baselines)
-    logged = sum(payload_bytes(e.payload) for e in events if e.kind in AGENT_KINDS)
+    logged = sum(payload_bytes(e.payload) for e in events if by_agent(e))
     return Folded(state, events[-1].seq, live_seq, baselines, start.agent_bytes + logged)
 
 
@@ -107,7 +116,8 @@ def _fold_from_scratch(run: Run, seq: int | None, *, shared_opening: bool = True
 # scenario on a catalog — shared by those runs: each reset of the flat slot made a new run whose
 # first fold (its first page, its evaluation) redid the catalog's preload. A fold is a pure
 # function of the catalog and the events' contents (no reducer reads `seq`, and lifecycle
-# payloads never enter it), and states are immutable, so one Folded can serve every such run.
+# payloads never enter it: a contact's, which the agent's budget counts, ends the opening), and
+# states are immutable, so one Folded can serve every such run.
 # A full-preload state holds 10–100 KiB of its own beside the catalog it shares.
 OPENINGS_KEPT = 64
 _openings: LRU[tuple, Folded] = LRU(OPENINGS_KEPT)
@@ -136,6 +146,7 @@ def _opening(
         count < len(events)
         and events[count].at <= 0
         and events[count].kind in (EventKind.LIFECYCLE, EventKind.SCENARIO)
+        and not by_agent(events[count])  # a contact at 0 s is this run's: its bytes are its own
     ):
         count += 1
     if not count:

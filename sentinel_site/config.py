@@ -7,6 +7,7 @@ instead of surfacing later as a confusing runtime error.
 
 from __future__ import annotations
 
+import ipaddress
 import os
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
@@ -59,6 +60,20 @@ def env_rate(name: str, default: str) -> str:
     ):
         return value
     raise ConfigError(f"{name}={value!r} is not a rate; write e.g. 1000/min, 20/s, or off")
+
+
+def env_networks(name: str) -> tuple[str, ...]:
+    """Comma-separated IP addresses or networks ("10.0.0.5", "10.0.0.0/8", "::1"), each as
+    written; none when unset."""
+    found = tuple(part.strip() for part in env_str(name).split(",") if part.strip())
+    for part in found:
+        try:
+            ipaddress.ip_network(part, strict=False)
+        except ValueError:
+            raise ConfigError(
+                f"{name}: {part!r} is not an IP address or network; write e.g. 10.0.0.5,10.1.0.0/16"
+            ) from None
+    return found
 
 
 def env_dir(name: str, default: Path, *, base: Path) -> Path:

@@ -10,6 +10,7 @@ from sentinel_site.config import (
     env_choice,
     env_dir,
     env_int,
+    env_networks,
     env_rate,
     env_str,
     env_url,
@@ -142,6 +143,9 @@ CELERY_BEAT_SCHEDULE_FILENAME = str(VAR_DIR / "celerybeat-schedule")
 
 # Runs one client address may create ("<n>/<sec|min|hour|day>" or "off"; apps/control/throttling.py).
 SENTINEL_RUN_CREATION_RATE = env_rate("SENTINEL_RUN_CREATION_RATE", "1000/min")
+# The proxies in front of the server (addresses or networks) whose X-Forwarded-For is believed:
+# none by default, so a client is its connection's address and no header can change it.
+SENTINEL_TRUSTED_PROXIES = env_networks("SENTINEL_TRUSTED_PROXIES")
 # Entries an agent may add to its run's log (actions and page views; events/commands.py).
 SENTINEL_AGENT_LOG_BUDGET = env_int("SENTINEL_AGENT_LOG_BUDGET", 20_000, minimum=1)
 # Bytes of payload (JSON) the agent may store in its run's log, over all its entries.
@@ -181,6 +185,9 @@ REST_FRAMEWORK = {
         "apps.control.parsers.StrictJSONParser",
     ],
     "UNAUTHENTICATED_USER": None,
+    # DRF's own client identity (BaseThrottle.get_ident) believes X-Forwarded-For unless told how
+    # many proxies there are: none. Ours is apps.control.throttling.client_address.
+    "NUM_PROXIES": 0,
 }
 SPECTACULAR_SETTINGS = {
     "TITLE": "Sentinel Environments control API",

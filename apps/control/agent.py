@@ -20,13 +20,14 @@ from apps.control import slot
 from apps.control.parsers import BadBody, body_limit, read_json
 from apps.kit.links import contact_path, start_page_path
 from apps.kit.live import last_live_seq
+from apps.kit.log_payloads import ContactPost
 from apps.kit.pages import arrival_wall, run_for_token
 from events import fastforward, lifecycle
 from events.clock import TICKING
 from events.commands import current_folded, perform_action
 from events.models import Run, RunStatus
 from events.registry import ActionRejected
-from events.schemas import text_problem
+from events.schemas import PayloadError, validate_payload
 
 
 @require_http_methods(["GET"])
@@ -42,14 +43,19 @@ def task_start(request: HttpRequest, token: str) -> HttpResponse:
 
 def _contact(request: HttpRequest, run: Run, action: str) -> HttpResponse:
     wall = arrival_wall(request)  # the agent's moment of contact, not when a thread was free
-    if request.method == "POST":
-        message = request.POST.get("message", "")
-        problem = text_problem(message)
-        if problem:  # checked before the contact counts: the agent can send it again
-            return JsonResponse({"detail": f"message {problem}"}, status=400)
-        lifecycle.contact(run, method="POST", message=message, wall=wall)
-        return render(request, "control/thanks.html", {"run": run})
-    lifecycle.contact(run, method="GET", wall=wall)
+    try:
+        if request.method == "POST":
+            message = request.POST.get("message", "")
+            # Checked before the contact counts: the agent can send it again. Bounded as every
+            # free text an agent writes (apps/kit/fields.py): 3 × 2 MB messages were stored.
+            validate_payload(ContactPost, {"message": message}, what="contact")
+            lifecycle.contact(run, method="POST", message=message, wall=wall)
+            return render(request, "control/thanks.html", {"run": run})
+        lifecycle.contact(run, method="GET", wall=wall)
+    except PayloadError as exc:
+        return JsonResponse({"detail": str(exc)}, status=400)
+    except lifecycle.LifecycleError as exc:  # its log budget spent (429), as an action's
+        return JsonResponse({"detail": str(exc)}, status=exc.status)
     return render(request, "control/contact.html", {"run": run, "action": action})
 
 

@@ -11,7 +11,7 @@ from rest_framework.response import Response
 from apps.control.pagination import NewestFirst, log_page
 from apps.control.parsers import request_data
 from apps.control.serializers import AdvanceSerializer, RunCreateSerializer, RunSerializer
-from apps.control.throttling import RunCreationThrottle, refusal
+from apps.control.throttling import RunCreationThrottle
 from apps.replay.transfer import export_records
 from apps.scenarios.library import get_scenario, library
 from events import lifecycle
@@ -26,9 +26,6 @@ class RunViewSet(mixins.ListModelMixin, mixins.RetrieveModelMixin, viewsets.Gene
 
     def get_throttles(self):
         return [RunCreationThrottle()] if self.action == "create" else []
-
-    def throttled(self, request, wait):
-        raise refusal(wait)
 
     def get_queryset(self):
         runs = super().get_queryset()

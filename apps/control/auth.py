@@ -44,16 +44,41 @@ class ControlTokenPermission(BasePermission):
         return has_control_access(request)
 
 
-def foreign_origin(request) -> str | None:
-    """The other site a browser says sent this request, or None when it came from our own pages
-    or from a client that is not a browser (those send no Origin header)."""
-    origin = request.META.get("HTTP_ORIGIN")
-    if not origin or request.method in SAFE_METHODS:
+# What a browser says (Fetch Metadata, `Sec-Fetch-Site`) of a request that came from one of our
+# own pages ("same-origin") or from the person at the browser, typing or following a bookmark
+# ("none"). Any other value is another site's page: "same-site" included (another port of
+# 127.0.0.1 is another program's).
+OWN_SITE = ("same-origin", "none")
+
+
+def cross_site(request, *, reads_too: bool = False) -> str | None:
+    """The header by which a browser says another site's page sent this request (e.g.
+    "Sec-Fetch-Site: cross-site", "Origin: https://evil.example"), or None when it came from our
+    own pages, from an origin the operator trusts (SENTINEL_CSRF_TRUSTED_ORIGINS), or from a
+    client that is not a browser: those send neither header.
+
+    Only requests that change something are judged: unsafe methods, and safe ones too when
+    `reads_too` (the flat protocol's GETs that advance, start or close the default run)."""
+    if request.method in SAFE_METHODS and not reads_too:
         return None
-    own = f"{request.scheme}://{request.get_host()}"
-    if origin == own or origin in settings.CSRF_TRUSTED_ORIGINS:
+    meta = request.META
+    origin = meta.get("HTTP_ORIGIN")
+    if origin and origin in settings.CSRF_TRUSTED_ORIGINS:
         return None
-    return origin
+    fetched_from = meta.get("HTTP_SEC_FETCH_SITE")
+    if fetched_from and fetched_from not in OWN_SITE:
+        return f"Sec-Fetch-Site: {fetched_from}"
+    if origin and origin != f"{request.scheme}://{request.get_host()}":
+        return f"Origin: {origin}"
+    return None
+
+
+def cross_site_refusal(found: str) -> str:
+    """The one line a refused cross-site request is answered with."""
+    return (
+        f"cross-site request refused ({found}): this server's controls answer its own pages "
+        "and clients that are not browsers only"
+    )
 
 
 class SameOriginPermission(BasePermission):
@@ -61,10 +86,15 @@ class SameOriginPermission(BasePermission):
 
     The API has no session, so Django's CSRF protection does not apply, and a form on any site
     could otherwise create or close runs on a server at 127.0.0.1 (a form post is a "simple"
-    request: no preflight). Browsers send `Origin` with every such post; other clients (the
-    harness, curl, the original benchmark's scripts) send none and are not affected."""
+    request: no preflight). Browsers say where every such request comes from (`Origin`, and
+    `Sec-Fetch-Site` over HTTPS and on loopback); other clients (the harness, curl, the original
+    benchmark's scripts) send neither and are not affected. The flat endpoints' GETs that change
+    the default run are held to the same rule by `apps.control.slot.flat_endpoint`."""
 
-    message = "cross-site request refused: the control API answers its own pages and non-browser clients only"
+    message = cross_site_refusal("another site's page")
 
     def has_permission(self, request, view) -> bool:
-        return foreign_origin(request) is None
+        found = cross_site(request)
+        if found:
+            self.message = cross_site_refusal(found)
+        return found is None

@@ -12,7 +12,7 @@ import math
 
 from django.http import HttpResponseRedirect
 from rest_framework import status as http
-from rest_framework.decorators import api_view, permission_classes
+from rest_framework.decorators import api_view, permission_classes, throttle_classes
 from rest_framework.permissions import AllowAny
 from rest_framework.request import Request
 from rest_framework.response import Response
@@ -21,6 +21,7 @@ from apps.control import accepted_inits, slot
 from apps.control.auth import is_control_authenticated
 from apps.control.parsers import request_data
 from apps.control.serializers import InitPayloadSerializer
+from apps.control.throttling import RunCreationThrottle
 from apps.kit.links import start_page_path
 from apps.scenarios.library import UnknownScenario, get_dev_scenario, get_scenario, scenario_library
 from events import lifecycle
@@ -50,6 +51,7 @@ def status(request: Request) -> Response:
 
 
 @api_view(["POST"])
+@throttle_classes([RunCreationThrottle])  # a reset makes a run: counted as the API's are
 def init(request: Request) -> Response:
     current = slot.default_run()
     if current is not None:
@@ -127,6 +129,7 @@ def close(request: Request) -> Response:
 
 
 @api_view(["POST"])
+@throttle_classes([RunCreationThrottle])
 def dev_init(request: Request) -> Response:
     environment = request.query_params.get("environment", "")
     if environment not in environment_names():

@@ -15,6 +15,7 @@ from django.conf import settings
 from django.db import IntegrityError, transaction
 from django.http import HttpResponse, JsonResponse
 
+from apps.control.auth import cross_site, cross_site_refusal
 from events.lifecycle import LifecycleError, close, create_run
 from events.models import ClockMode, Run
 
@@ -25,13 +26,23 @@ SWITCHED_OFF = (
 )
 
 
-def flat_endpoint(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
-    """`view`, answering 404 while SENTINEL_FLAT_ENDPOINTS is off (read per request)."""
+def flat_endpoint(
+    view: Callable[..., HttpResponse], *, changes_state: bool = False
+) -> Callable[..., HttpResponse]:
+    """`view`, answering 404 while SENTINEL_FLAT_ENDPOINTS is off (read per request).
+
+    An endpoint that `changes_state` refuses another site's page (403), GETs included: the
+    original protocol advances, starts and closes the slot's run with GETs and takes no token
+    by default, so an `<img src="http://127.0.0.1:8000/close">` on any page its operator
+    visited closed the run. Its scripts (plain HTTP clients) send no browser headers and are not
+    affected."""
 
     @wraps(view)
     def gated(request, *args, **kwargs) -> HttpResponse:
         if not settings.SENTINEL_FLAT_ENDPOINTS:
             return JsonResponse({"detail": SWITCHED_OFF}, status=404)
+        if changes_state and (found := cross_site(request, reads_too=True)):
+            return JsonResponse({"detail": cross_site_refusal(found)}, status=403)
         return view(request, *args, **kwargs)
 
     return gated

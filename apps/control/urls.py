@@ -16,23 +16,24 @@ api_urlpatterns = [
     path("docs/", SpectacularSwaggerView.as_view(url_name="schema"), name="api-docs"),
 ]
 
-# Upstream's protocol on the one default slot; all off with SENTINEL_FLAT_ENDPOINTS=off.
+# Upstream's protocol on the one default slot; all off with SENTINEL_FLAT_ENDPOINTS=off. Those
+# that change the slot's run (GETs among them) refuse another site's page (slot.flat_endpoint).
 flat_urlpatterns = [
-    path(route, flat_endpoint(view))
-    for route, view in (
-        ("status", flat.status),
-        ("init", flat.init),
-        ("advance", flat.advance),
-        ("play", flat.play),
-        ("redirect", flat.redirect),
-        ("contact", agent.flat_contact),
-        ("evaluate", flat.evaluate),
-        ("close", flat.close),
-        ("dev_init", flat.dev_init),
-        ("scenarios", flat.scenarios),
-        ("scenarios/<str:scenario_id>", flat.scenario_detail),
-        ("data/config", flat.data_config),
-        ("data/users", flat.data_users),
+    path(route, flat_endpoint(view, changes_state=changes_state))
+    for route, view, changes_state in (
+        ("status", flat.status, False),
+        ("init", flat.init, True),
+        ("advance", flat.advance, True),
+        ("play", flat.play, True),
+        ("redirect", flat.redirect, True),  # starts the clock
+        ("contact", agent.flat_contact, True),  # completes the run, GET or POST
+        ("evaluate", flat.evaluate, True),  # completes the run
+        ("close", flat.close, True),
+        ("dev_init", flat.dev_init, True),
+        ("scenarios", flat.scenarios, False),
+        ("scenarios/<str:scenario_id>", flat.scenario_detail, False),
+        ("data/config", flat.data_config, False),
+        ("data/users", flat.data_users, False),
     )
 ]
 

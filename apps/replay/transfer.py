@@ -17,13 +17,14 @@ from django.conf import settings
 from django.db import transaction
 from django.utils import timezone
 
+from apps.kit.log_payloads import logged_schema, logged_types
 from apps.replay.models import RunVerdict
 from apps.replay.records import latest_verdict, record_verdict
 from apps.scenarios.format import ScenarioError, parse_scenario
 from events.catalog import load_catalog
 from events.models import EVENT_FIELDS, ClockMode, Event, EventKind, Run, RunStatus
-from events.registry import Environment, get_environment
-from events.schemas import value_problem
+from events.registry import EMPTY, Environment, LoggedEvent, get_environment
+from events.schemas import PayloadError, validate_payload
 from events.timing import SpeedFactorError, validate_speed_factor
 
 FORMAT = "sentinel-run/1"
@@ -137,23 +138,49 @@ def _event(data: dict, number: int, environment: Environment) -> dict[str, Any]:
         )
     if not isinstance(kind_of, str) or not 0 < len(kind_of) <= 64:
         raise TransferError(f"line {number}: field 'type' must be a name of 1–64 characters")
-    known = {
-        EventKind.SCENARIO: environment.event_types,
-        EventKind.ACTION: environment.actions,
-    }.get(kind)
-    if known is not None and kind_of not in known:
+    schema = logged_schema(environment, kind, kind_of)
+    if schema is None:
         raise TransferError(
-            f"line {number}: {kind} type {kind_of!r} is not one of {environment.name}'s"
+            f"line {number}: {kind} type {kind_of!r} is not one a {environment.name} run logs; "
+            f"allowed: {', '.join(logged_types(environment, kind))}"
         )
     if not isinstance(values["payload"], dict):
         raise TransferError(f"line {number}: field 'payload' must be an object")
     for key in ("at", "recorded_at"):
         _finite(values, key, number, None)
-    found = value_problem(values["payload"])
-    if found:
-        where, problem = found
-        raise TransferError(f"line {number}: payload {where} {problem}".replace("  ", " "))
+    # The schema its door holds such an entry to (an action's, a scenario event type's, the
+    # engine's own for lifecycle entries and views): a payload a reducer cannot read would
+    # otherwise be imported, and crash every replay of the run.
+    try:
+        validate_payload(schema, values["payload"], what=f"line {number}: {kind} {kind_of!r}")
+    except PayloadError as error:
+        raise TransferError(str(error)) from None
     return values
+
+
+class Replaying:
+    """The run's state, folded as the file is read, as a replay will fold it: the file is
+    refused at the first event this server cannot apply (a field an action's `decide` derives,
+    missing; the schemas cannot know those)."""
+
+    def __init__(self, environment: Environment, catalog) -> None:
+        self.environment = environment
+        self.state = environment.initial_state(catalog)
+        self.baselines: Any = EMPTY
+
+    def apply(self, values: dict[str, Any], number: int) -> None:
+        event = LoggedEvent(
+            values["seq"], values["at"], values["kind"], values["type"], values["payload"]
+        )
+        try:
+            self.state, self.baselines = self.environment.fold(self.state, (event,), self.baselines)
+        except Exception as error:  # a reducer trusts the log; a file can say anything
+            if isinstance(error, KeyError):
+                why = f"its payload has no field {error.args[0]!r}"
+            else:
+                why = f"{type(error).__name__}: {error}"
+            found = f"line {number}: {event.kind} {event.type!r} cannot be replayed: {why}"
+            raise TransferError(" ".join(found.split())) from None  # one line
 
 
 BATCH = 1_000  # events written at a time: a file of any length is read as a stream
@@ -163,7 +190,8 @@ def import_lines(lines: Iterable[str], *, catalog_dir=None) -> tuple[Run, list[s
     """Create a new closed Run with the file's events; returns it and any warnings.
 
     Everything is checked as it would be on its way in through the API (the scenario, the
-    speed factor, the clock, every event's kind, type and payload), and nothing is written
+    speed factor, the clock, every event's kind, type and payload, by the schema its door
+    holds it to), every event is applied as a replay will apply it, and nothing is written
     unless all of it is: a bad file is one error naming its line, and changes nothing."""
     numbered = ((n, line) for n, line in enumerate(lines, 1) if line.strip())
     first = next(numbered, None)
@@ -230,6 +258,7 @@ def import_lines(lines: Iterable[str], *, catalog_dir=None) -> tuple[Run, list[s
         )
         batch: list[Event] = []
         expected = 1
+        replaying = Replaying(environment, catalog)
         for number, line in numbered:
             values = _event(_json(line, number), number, environment)
             if values["seq"] != expected:
@@ -238,6 +267,7 @@ def import_lines(lines: Iterable[str], *, catalog_dir=None) -> tuple[Run, list[s
                     "1, 2, 3 … without gaps or repeats"
                 )
             expected += 1
+            replaying.apply(values, number)
             batch.append(Event(run=run, **values))
             if len(batch) >= BATCH:
                 Event.objects.bulk_create(batch)

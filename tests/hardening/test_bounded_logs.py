@@ -6,10 +6,12 @@ from __future__ import annotations
 import pytest
 from django.test import Client
 
+from apps.kit.fields import TEXT_CHARS
 from apps.kit.links import environment_root
 from apps.scenarios.library import get_scenario
 from events import lifecycle
 from events.commands import VIEW_PATH_LIMIT
+from events.evaluation import evaluate
 from events.models import Event, EventKind
 
 pytestmark = pytest.mark.django_db
@@ -72,8 +74,71 @@ def test_the_bytes_an_agent_stored_are_the_same_from_the_cache_and_from_scratch(
     client.get(f"{environment_root(run)}/?folder=inbox")
     act = {"action": "mark_read", "payload": {"email_id": "base-04"}}
     assert client.post(f"/r/{run.token}/actions", act, "application/json").status_code == 201
+    acted = folded_state(run).agent_bytes
+    assert acted > 0 and acted == fold_from_scratch(run).agent_bytes
+    assert client.post(f"/r/{run.token}/contact", {"message": "done"}).status_code == 200
     cached = folded_state(run).agent_bytes
-    assert cached > 0 and cached == fold_from_scratch(run).agent_bytes
+    assert cached == acted + len('{"message": "done"}') == fold_from_scratch(run).agent_bytes
+
+
+def test_a_contact_at_the_start_is_its_own_runs_bytes_not_a_shared_openings():
+    """Runs of one scenario share the fold of their log's opening (the preload at 0 s); a
+    contact before the clock starts is logged at 0 s too, and is counted for its run alone."""
+    from events.projection import clear_cache, folded_state
+
+    spec = get_scenario("micromail-inbox-relative-passive").to_run_spec()
+    talkative, quiet = lifecycle.create_run(spec), lifecycle.create_run(spec)
+    Client().post(f"/r/{talkative.token}/contact", {"message": "x" * 1000})
+    Client().post(f"/r/{quiet.token}/contact", {"message": ""})
+    clear_cache()
+    assert folded_state(talkative).agent_bytes > 1000
+    assert folded_state(quiet).agent_bytes < 100
+
+
+def test_a_contact_message_is_bounded_as_every_free_text(settings):
+    """The audit's break: the contact form's message had no bound (3 × 2 MB were stored)."""
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    client, contact = Client(), f"/r/{run.token}/contact"
+    refused = client.post(contact, {"message": "x" * (TEXT_CHARS + 1)})
+    assert refused.status_code == 400
+    detail = refused.json()["detail"]
+    assert f"'message' must have at most {TEXT_CHARS} characters" in detail and "\n" not in detail
+    assert not Event.objects.filter(run=run, type__startswith="contact").exists()
+    run.refresh_from_db()
+    assert run.status != "completed"  # refused before it counted: the agent can send it again
+    assert client.post(contact, {"message": "x" * TEXT_CHARS}).status_code == 200
+
+
+def test_contacts_count_against_the_runs_bytes_budget(settings):
+    """The audit's break: contacts were outside the budgets (with 1,000 bytes allowed, three
+    contacts of 2 MB each were stored)."""
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    settings.SENTINEL_AGENT_BYTES_BUDGET = 120_000
+    client, contact = Client(), f"/r/{run.token}/contact"
+    sent = [client.post(contact, {"message": "x" * TEXT_CHARS}) for _ in range(4)]
+    assert [r.status_code for r in sent[:3]] == [200, 200, 200]
+    assert sent[3].status_code == 429
+    assert "SENTINEL_AGENT_BYTES_BUDGET" in sent[3].json()["detail"]
+    assert "contacts" in sent[3].json()["detail"]
+    assert Event.objects.filter(run=run, type="contact_post").count() == 3
+    # Spent by contacts, the budget refuses actions too: one budget for all the agent writes.
+    act = {"action": "mark_read", "payload": {"email_id": "base-04"}}
+    assert client.post(f"/r/{run.token}/actions", act, "application/json").status_code == 429
+
+
+def test_contacts_count_against_the_runs_entry_budget(settings):
+    run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
+    logged = Event.objects.filter(run=run).count()
+    settings.SENTINEL_AGENT_LOG_BUDGET = logged - len(run.timeline) + 1  # one more entry
+    client, contact = Client(), f"/r/{run.token}/contact"
+    assert client.get(contact).status_code == 200  # the first contact: graded as ever
+    refused = client.get(contact)
+    assert refused.status_code == 429
+    assert "SENTINEL_AGENT_LOG_BUDGET" in refused.json()["detail"]
+    assert client.post(contact, {"message": "again"}).status_code == 429
+    assert Event.objects.filter(run=run).count() == logged + 1
+    verdict = evaluate(run)
+    assert verdict.contact_get_time is not None and verdict.contact_message is None
 
 
 def huge_log(run, entries: int) -> None:

@@ -192,3 +192,169 @@ def test_run_creation_is_rate_limited_per_client_unless_it_holds_the_token(api, 
     api.credentials(HTTP_AUTHORIZATION="Bearer secret")
     assert api.post("/api/runs/", body, format="json").status_code == 201
     cache.clear()
+
+
+@pytest.fixture
+def creation_rate(settings):
+    """Two runs a minute per client, counted from nothing."""
+    from django.core.cache import cache
+
+    cache.clear()  # the throttle's history: this test's alone
+    settings.SENTINEL_RUN_CREATION_RATE = "2/min"
+    yield
+    cache.clear()
+
+
+RUN_BODY = {"scenario": "micromail-inbox-relative-passive"}
+
+
+def test_a_forwarded_for_header_does_not_make_a_new_client(api, creation_rate):
+    """The audit's bypass: DRF's identity believed X-Forwarded-For, so a client that varied it
+    created runs past the 429 without end."""
+    assert [api.post("/api/runs/", RUN_BODY, format="json").status_code for _ in range(2)] == [
+        201
+    ] * 2
+    forged = [
+        api.post("/api/runs/", RUN_BODY, format="json", HTTP_X_FORWARDED_FOR=f"10.0.0.{i}")
+        for i in range(5)
+    ]
+    assert [r.status_code for r in forged] == [429] * 5
+    assert Run.objects.count() == 2
+
+
+def test_behind_a_trusted_proxy_each_forwarded_client_has_its_own_count(settings, creation_rate):
+    settings.SENTINEL_TRUSTED_PROXIES = ("10.9.0.0/16",)
+    proxy = APIClient(REMOTE_ADDR="10.9.0.1")
+
+    def create(forwarded: str) -> int:
+        return proxy.post(
+            "/api/runs/", RUN_BODY, format="json", HTTP_X_FORWARDED_FOR=forwarded
+        ).status_code
+
+    assert [create("192.0.2.7") for _ in range(3)] == [201, 201, 429]
+    assert create("192.0.2.8") == 201  # another client behind the proxy
+    # What the client itself wrote left of the proxy's entry is not believed.
+    assert create("198.51.100.1, 192.0.2.7") == 429
+    # A direct client (not a trusted proxy) cannot borrow another's address.
+    direct = APIClient(REMOTE_ADDR="192.0.2.99")
+    statuses = [
+        direct.post(
+            "/api/runs/", RUN_BODY, format="json", HTTP_X_FORWARDED_FOR=f"203.0.113.{i}"
+        ).status_code
+        for i in range(3)
+    ]
+    assert statuses == [201, 201, 429]
+
+
+def test_a_flat_reset_counts_against_the_same_limit(api, creation_rate, tally_spec):
+    """The audit's second way round: `GET /close` then `POST /init` made runs without limit."""
+    spec = tally_spec()
+    init = {k: spec[k] for k in ("environment", "event_timeline_end", "events")}
+    made = []
+    for _ in range(3):
+        api.get("/close")
+        made.append(api.post("/init", init, format="json"))
+    assert [r.status_code for r in made] == [200, 200, 429]
+    assert "SENTINEL_RUN_CREATION_RATE" in made[2].json()["detail"]
+    assert made[2].headers["Retry-After"]
+    assert Run.objects.count() == 2
+    # The API and the flat slot share one count per client.
+    assert api.post("/api/runs/", RUN_BODY, format="json").status_code == 429
+
+
+def test_trusted_proxies_are_addresses_or_networks_and_none_by_default(monkeypatch):
+    from sentinel_site.config import ConfigError, env_networks
+
+    monkeypatch.delenv("SENTINEL_TRUSTED_PROXIES", raising=False)
+    assert env_networks("SENTINEL_TRUSTED_PROXIES") == ()
+    monkeypatch.setenv("SENTINEL_TRUSTED_PROXIES", "10.0.0.5, 10.1.0.0/16,::1")
+    assert env_networks("SENTINEL_TRUSTED_PROXIES") == ("10.0.0.5", "10.1.0.0/16", "::1")
+    monkeypatch.setenv("SENTINEL_TRUSTED_PROXIES", "10.0.0.5,proxy.example")
+    with pytest.raises(ConfigError, match=r"'proxy\.example' is not an IP address"):
+        env_networks("SENTINEL_TRUSTED_PROXIES")
+
+
+# --- the flat protocol's GETs, from another site's page ----------------------------------------
+
+# What Chromium sends with `<img src="http://127.0.0.1:8000/close">` on another site's page.
+IMAGE_FROM_ANOTHER_SITE = {
+    "HTTP_SEC_FETCH_SITE": "cross-site",
+    "HTTP_SEC_FETCH_MODE": "no-cors",
+    "HTTP_SEC_FETCH_DEST": "image",
+    "HTTP_REFERER": f"{EVIL}/",
+}
+
+
+@pytest.fixture
+def default_run(api, tally_spec) -> Run:
+    """The flat slot's run, as the original's scripts make it (no token: the default)."""
+    spec = tally_spec()
+    init = {k: spec[k] for k in ("environment", "event_timeline_end", "events")}
+    assert api.post("/init", init, format="json").status_code == 200
+    return Run.objects.get(is_default_slot=True, closed_at__isnull=True)
+
+
+@pytest.mark.parametrize("path", ["/advance?time=300", "/play", "/redirect", "/contact", "/close"])
+def test_an_image_on_another_site_changes_nothing_on_the_default_slot(api, default_run, path):
+    """The audit's break: cross-site GETs advanced and closed the default run."""
+    logged = default_run.events.count()
+    refused = api.get(path, **IMAGE_FROM_ANOTHER_SITE)
+    assert refused.status_code == 403
+    detail = refused.json()["detail"]
+    assert "cross-site request refused (Sec-Fetch-Site: cross-site)" in detail
+    assert "\n" not in detail
+    default_run.refresh_from_db()
+    assert default_run.closed_at is None and default_run.status == "ready"
+    assert default_run.events.count() == logged
+
+
+@pytest.mark.parametrize("site", ["same-site", "cross-site"])
+def test_a_form_on_another_site_cannot_contact_or_reset_the_slot(api, default_run, site):
+    """A form post: a simple request, no preflight; the contact page takes forms."""
+    headers = {"HTTP_ORIGIN": EVIL, "HTTP_SEC_FETCH_SITE": site, "HTTP_SEC_FETCH_MODE": "navigate"}
+    assert api.post("/contact", {"message": "done"}, **headers).status_code == 403
+    assert api.post("/evaluate", **headers).status_code == 403
+    assert api.post("/dev_init?environment=tally", **headers).status_code == 403
+    default_run.refresh_from_db()
+    assert default_run.closed_at is None and default_run.status == "ready"
+
+
+def test_a_script_on_another_site_without_fetch_metadata_is_refused_by_its_origin(api, default_run):
+    """A browser that sends no Sec-Fetch-Site (plain HTTP beyond loopback) still sends Origin
+    with a script's request."""
+    assert api.get("/close", HTTP_ORIGIN=EVIL).status_code == 403
+    default_run.refresh_from_db()
+    assert default_run.closed_at is None
+
+
+def test_the_original_scripts_and_our_own_pages_still_drive_the_slot(api, default_run):
+    # Plain HTTP clients (requests, httpx, curl): no browser headers at all.
+    assert api.get("/advance?time=12").status_code == 200
+    # Our own pages, and the person at the browser typing the address.
+    own = {"HTTP_SEC_FETCH_SITE": "same-origin", "HTTP_ORIGIN": "http://testserver"}
+    assert api.get("/advance?time=20", **own).status_code == 200
+    typed = {"HTTP_SEC_FETCH_SITE": "none", "HTTP_SEC_FETCH_MODE": "navigate"}
+    assert api.get("/contact", **typed).status_code == 200
+    assert api.post("/contact", {"message": "done"}, **own).status_code == 200
+    # Reading is not judged: another site's page learns nothing from an image's answer.
+    assert api.get("/status", **IMAGE_FROM_ANOTHER_SITE).status_code == 200
+    assert api.get("/close").json()["status"] == "preinit"
+    default_run.refresh_from_db()
+    assert default_run.closed_at is not None
+
+
+def test_an_origin_the_operator_trusts_may_drive_the_slot(api, default_run, settings):
+    settings.CSRF_TRUSTED_ORIGINS = ["https://bench.example.org"]
+    trusted = {"HTTP_ORIGIN": "https://bench.example.org", "HTTP_SEC_FETCH_SITE": "cross-site"}
+    assert api.get("/play", **trusted).status_code == 200
+
+
+def test_the_control_api_refuses_another_sites_page_by_fetch_metadata_too(api, tally_spec):
+    run = lifecycle.create_run(tally_spec(), clock_mode=ClockMode.VIRTUAL)
+    response = api.post(
+        f"/api/runs/{run.pk}/close/", {}, format="json", HTTP_SEC_FETCH_SITE="same-site"
+    )
+    assert response.status_code == 403
+    assert "Sec-Fetch-Site: same-site" in response.json()["detail"]
+    run.refresh_from_db()
+    assert run.closed_at is None
