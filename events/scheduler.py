@@ -12,6 +12,7 @@ a page view — nothing due — costs no query. Entries are never unfired, so th
 
 from __future__ import annotations
 
+import contextlib
 from dataclasses import dataclass, field
 
 from django.db.models import Max
@@ -19,12 +20,14 @@ from django.db.models import Max
 from events.clock import CLOCK_FIELDS, sim_now, wall_due, wall_now
 from events.models import Event, EventKind, Run, RunStatus
 from events.notifications import log_grew
-from events.store import TimelineEntryAlreadyFired, append_event
+from events.store import TimelineEntryAlreadyFired, append_entries, append_event
 
 # Entries the tickers fire for one run per turn: a run with 15,000 entries due at once used to
 # fire them in one loop, holding every other run's events back by seconds. Between its batches
 # every other due run has its turn, and a run closed meanwhile is read as closed and stops.
 TICK_BATCH = 25
+# Entries due together are logged in one transaction of up to this many (store.append_entries).
+FIRE_CHUNK = 500
 
 
 @dataclass
@@ -55,6 +58,54 @@ def forget(run: Run) -> None:
 def _first_unfired(run: Run) -> int:
     known = _next_unfired.get((run.pk, run.token))
     return fired_through(run) + 1 if known is None else known
+
+
+def _lateness_ms(run: Run, entry: dict, on_time: bool, recorded: float) -> float | None:
+    # Preloads fire at init, before a live clock starts: no lateness to speak of.
+    due = wall_due(run, entry["time"]) if on_time else None
+    return None if due is None else max(0.0, (recorded - due) * 1000.0)
+
+
+def _fire_together(run: Run, timeline: list, chunk: range, on_time: bool) -> list[Event] | None:
+    """The entries of `chunk`, all due, logged in one transaction; None if another firer got
+    to any of them first (then each is fired on its own, exactly once)."""
+    recorded = wall_now()
+    return append_entries(
+        run.pk,
+        [
+            {
+                "run_id": run.pk,
+                "at": timeline[index]["time"],
+                "kind": EventKind.SCENARIO,
+                "type": timeline[index]["type"],
+                "payload": timeline[index].get("payload") or {},
+                "recorded_at": recorded,
+                "timeline_index": index,
+                "lateness_ms": _lateness_ms(run, timeline[index], on_time, recorded),
+            }
+            for index in chunk
+        ],
+    )
+
+
+def _fire_one_by_one(run: Run, timeline: list, chunk: range, on_time: bool) -> list[Event]:
+    fired = []
+    for index in chunk:
+        entry, recorded = timeline[index], wall_now()
+        with contextlib.suppress(TimelineEntryAlreadyFired):  # another firer logged it first
+            fired.append(
+                append_event(
+                    run,
+                    EventKind.SCENARIO,
+                    entry["type"],
+                    entry.get("payload") or {},
+                    at=entry["time"],
+                    timeline_index=index,
+                    lateness_ms=_lateness_ms(run, entry, on_time, recorded),
+                    recorded_at=recorded,
+                )
+            )
+    return fired
 
 
 def live_runs():
@@ -134,29 +185,19 @@ def fire_through(
     result = FireResult()
     timeline = run.timeline
     index = _first_unfired(run) if next_index is None else next_index
-    while index < len(timeline) and timeline[index]["time"] <= upto:
-        if limit is not None and len(result.fired) >= limit:
+    end = index
+    while end < len(timeline) and timeline[end]["time"] <= upto:
+        if limit is not None and end - index >= limit:
             result.more = True
             break
-        entry = timeline[index]
-        due = wall_due(run, entry["time"]) if on_time else None
-        recorded = wall_now()
-        try:
-            event = append_event(
-                run,
-                EventKind.SCENARIO,
-                entry["type"],
-                entry.get("payload") or {},
-                at=entry["time"],
-                timeline_index=index,
-                # Preloads fire at init, before a live clock starts: no lateness to speak of.
-                lateness_ms=None if due is None else max(0.0, (recorded - due) * 1000.0),
-                recorded_at=recorded,
-            )
-            result.fired.append(event)
-        except TimelineEntryAlreadyFired:
-            pass
-        index += 1
+        end += 1
+    while index < end:
+        chunk = range(index, min(end, index + FIRE_CHUNK))
+        fired = _fire_together(run, timeline, chunk, on_time) if len(chunk) > 1 else None
+        result.fired.extend(
+            fired if fired is not None else _fire_one_by_one(run, timeline, chunk, on_time)
+        )
+        index = chunk.stop
     result.next_index = index
     _remember_next_unfired(run, index)
     if result.fired:

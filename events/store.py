@@ -110,4 +110,55 @@ def append_event(
     raise AppendConflict(f"could not append to run {run_id} after {MAX_ATTEMPTS} attempts")
 
 
+def append_entries(run_id: int, entries: list[dict[str, Any]]) -> list[Event] | None:
+    """Append timeline entries (each a dict of Event fields) at the run's next consecutive
+    seqs in one transaction and return them — or None, writing nothing, when another writer got
+    there first (an entry already fired, a seq taken): the caller then appends them one by one.
+
+    One `append_event` per entry is a round of the database each: a moment at which thousands of
+    entries fall due (an authored burst, a skip or an advance over a long stretch) held the
+    thread that fired them — a page's, a ticker's — for seconds. Here the run's writers are
+    queued behind its row (as a writer that lost a race is), the last seq read once, and the
+    rows written in one `executemany`."""
+    names = list(entries[0])
+    fields = [column_field(Event, name) for name in names]
+    quote = connection.ops.quote_name
+    table = quote(Event._meta.db_table)
+    columns = ", ".join(quote(field.column) for field in [*fields, column_field(Event, "seq")])
+    insert = f"INSERT INTO {table} ({columns}) VALUES ({', '.join(['%s'] * (len(fields) + 1))})"
+    try:
+        with transaction.atomic():
+            if connection.features.has_select_for_update:
+                list(Run.objects.select_for_update(no_key=True).filter(pk=run_id).values_list("pk"))
+            with connection.cursor() as cursor:
+                cursor.execute(
+                    f"SELECT COALESCE(MAX({quote('seq')}), 0) FROM {table} "
+                    f"WHERE {quote('run_id')} = %s",
+                    [run_id],
+                )
+                (last,) = cursor.fetchone()
+                cursor.executemany(
+                    insert,
+                    [
+                        [
+                            *(
+                                field.get_db_prep_save(entry[name], connection)
+                                for field, name in zip(fields, names, strict=True)
+                            ),
+                            last + offset,
+                        ]
+                        for offset, entry in enumerate(entries, 1)
+                    ],
+                )
+    except IntegrityError:
+        return None
+    appended = []
+    for offset, entry in enumerate(entries, 1):
+        event = Event(seq=last + offset, **entry)
+        event._state.adding = False
+        event._state.db = connection.alias
+        appended.append(event)
+    return appended
+
+
 aappend_event = sync_to_async(append_event, thread_sensitive=False)
