@@ -177,19 +177,29 @@ def test_a_huge_run_renders_in_the_admin_a_page_at_a_time(
     assert "timeline-pages" not in only_actions  # one page: no pager
 
 
-def test_a_runs_log_comes_a_page_at_a_time_in_order():
+def test_a_runs_log_comes_a_page_at_a_time_in_order(monkeypatch):
     from rest_framework.test import APIClient
+
+    from apps.control import pagination
 
     run = lifecycle.create_run(get_scenario("micromail-inbox-relative-passive").to_run_spec())
     huge_log(run, 25)
     total = Event.objects.filter(run=run).count()
-    api, seqs = APIClient(), []
+    api, seqs, sizes = APIClient(), [], []
     url = f"/api/runs/{run.pk}/events/?limit=10"
     while url:
         page = api.get(url)
         assert page.status_code == 200
+        sizes.append(len(page.json()))
         seqs += [row["seq"] for row in page.json()]
         url = page.get("Link", "").split(">")[0].strip("<")
     assert seqs == list(range(1, total + 1))
+    assert max(sizes) == 10 and all(size == 10 for size in sizes[:-1])  # never more than asked
     assert "Link" not in api.get(f"/api/runs/{run.pk}/events/").headers  # all in one page
     assert api.get(f"/api/runs/{run.pk}/events/?after=x").status_code == 400
+    # Unasked, a page holds LOG_PAGE entries, and no one may ask for more than LOG_MOST.
+    monkeypatch.setattr(pagination, "LOG_PAGE", 7)
+    monkeypatch.setattr(pagination, "LOG_MOST", 12)
+    first = api.get(f"/api/runs/{run.pk}/events/")
+    assert len(first.json()) == 7 and "after=7" in first["Link"]
+    assert api.get(f"/api/runs/{run.pk}/events/?limit=13").status_code == 400
