@@ -794,6 +794,11 @@ def agent_environment(environ: Mapping[str, str], project: tuple[Path, ...]) -> 
 
 
 REFUSED_KEPT = 50  # refused files named in results.json (`agent_files_refused`), at most
+# What one trial's agent may leave to be copied back: a long run's screenshots and transcript
+# are tens of MiB, so these only stop an agent (or a runaway loop) from filling the results'
+# disk. Folders are walked top-down, so the top-level files the reports read come first.
+AGENT_FILES_MAX_BYTES = 512 * 1024 * 1024
+AGENT_FILES_MAX_COUNT = 20_000
 TRIAL_NAME = re.compile(re.escape(TRIAL_PREFIX) + r"[0-9]+")
 
 
@@ -837,6 +842,7 @@ class AgentWorkspace:
         self.results = results
         self.refused: list[str] = []
         self.placed: set[Path] = set()  # the harness's files in the agent's folder: not copied
+        self.room = Allowance(AGENT_FILES_MAX_BYTES, AGENT_FILES_MAX_COUNT)
         # The agent's folder is `task` inside a folder of its own, beside its PATH's shims.
         self.root = Path(tempfile.mkdtemp(prefix="sentinel-agent-")).resolve()
         self.path = self.root / "task"
@@ -900,10 +906,9 @@ class AgentWorkspace:
                     self._refuse(relative, why)
         return target
 
-    @staticmethod
-    def _copy(name: str, dir_fd: int, to: Path) -> str | None:
-        """Copy one regular file, opened in its folder without following a link; None when
-        copied, else why not."""
+    def _copy(self, name: str, dir_fd: int, to: Path) -> str | None:
+        """Copy one regular file, opened in its folder without following a link, if the trial's
+        allowance has room for it; None when copied, else why not."""
         try:
             fd = os.open(name, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK, dir_fd=dir_fd)
         except OSError:
@@ -912,10 +917,35 @@ class AgentWorkspace:
             info = os.fstat(source.fileno())
             if not stat.S_ISREG(info.st_mode):
                 return "not a regular file"
+            why = self.room.take(info.st_size)
+            if why is not None:
+                return why
             to.parent.mkdir(parents=True, exist_ok=True)
             with open(to, "xb") as copy:
-                shutil.copyfileobj(source, copy)
+                # The size taken, not more: a file that grows meanwhile is cut where it was seen.
+                left = info.st_size
+                while left and (chunk := source.read(min(left, 1 << 20))):
+                    copy.write(chunk)
+                    left -= len(chunk)
         os.utime(to, ns=(info.st_atime_ns, info.st_mtime_ns))
+        return None
+
+
+class Allowance:
+    """How many bytes and files one trial's agent may still have copied back."""
+
+    def __init__(self, max_bytes: int, max_count: int):
+        self.max_bytes, self.max_count = max_bytes, max_count
+        self.bytes = self.count = 0
+
+    def take(self, size: int) -> str | None:
+        """Room for one more file of `size` bytes (None), or why there is none."""
+        if self.count >= self.max_count:
+            return f"over the {self.max_count:,} files copied back per trial"
+        if self.bytes + size > self.max_bytes:
+            return f"over the {self.max_bytes // 2**20:,} MiB copied back per trial"
+        self.bytes += size
+        self.count += 1
         return None
 
 

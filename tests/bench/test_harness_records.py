@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 from django.core.management import call_command
 
-from apps.bench import ledger
+from apps.bench import ledger, runner
 from apps.bench.config import parse_config
 from apps.bench.grading import load_rows, task_errors
 from apps.bench.judge import JUDGEMENT
@@ -81,6 +81,31 @@ def test_a_task_run_again_keeps_only_its_last_agents_files(tmp_path):
     with AgentWorkspace(tmp_path) as workspace:
         (workspace.path / "new.txt").write_text("second attempt")
     assert [p.name for p in (tmp_path / "agent").iterdir()] == ["new.txt"]
+
+
+def test_an_agent_cannot_fill_the_results_disk(tmp_path, monkeypatch):
+    """What an agent leaves is copied back up to a byte and a file allowance per trial: the
+    top-level files the reports read first, then what fits; the rest is named as refused."""
+    monkeypatch.setattr(runner, "AGENT_FILES_MAX_COUNT", 4)
+    with AgentWorkspace(tmp_path) as workspace:
+        (workspace.path / "costs.json").write_text('{"input_tokens": 7}')
+        with open(workspace.path / "huge.bin", "wb") as huge:  # sparse: no disk used here
+            huge.truncate(runner.AGENT_FILES_MAX_BYTES + 1)
+        (workspace.path / "screens").mkdir()
+        for step in range(5):
+            (workspace.path / "screens" / f"step-{step}.png").write_bytes(b"png")
+    kept = sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file())
+    assert kept == [
+        "agent/costs.json",
+        "agent/screens/step-0.png",
+        "agent/screens/step-1.png",
+        "agent/screens/step-2.png",
+    ]
+    assert workspace.refused == [
+        "huge.bin: over the 512 MiB copied back per trial",
+        "screens/step-3.png: over the 4 files copied back per trial",
+        "screens/step-4.png: over the 4 files copied back per trial",
+    ]
 
 
 def test_every_name_the_harness_writes_is_refused():
