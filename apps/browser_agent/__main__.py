@@ -26,7 +26,13 @@ from apps.browser_agent.browser import CHROMIUM, Browser, first_line
 from apps.browser_agent.chat_api import ModelAPIError
 from apps.browser_agent.fast_forward import RunClock, post_json
 from apps.browser_agent.loop import DEFAULT_MAX_STEPS, AgentLoop, Task, WallBudget
-from apps.browser_agent.model import COSTS_FILE, ChatModel, CostLedger, make_client
+from apps.browser_agent.model import (
+    COSTS_FILE,
+    DEFAULT_MAX_RETRIES,
+    ChatModel,
+    CostLedger,
+    make_client,
+)
 from apps.browser_agent.sim_clock import sim_time_now
 from apps.browser_agent.tools import WAIT_KINDS, TaskClock, Toolbox
 from apps.browser_agent.transcript import Transcript
@@ -43,15 +49,16 @@ class OneLineParser(argparse.ArgumentParser):
         self.exit(2, f"{PROGRAM}: error: {message}\n")
 
 
-def _positive(kind: type[int] | type[float]) -> Callable[[str], float]:
+def _positive(kind: type[int] | type[float], *, zero: bool = False) -> Callable[[str], float]:
     def parse(text: str) -> float:
         try:
             value = kind(text)
         except ValueError:
             value = math.nan
-        if not (math.isfinite(value) and value > 0):
+        if not (math.isfinite(value) and (value > 0 or (zero and value == 0))):
             whole = " whole" if kind is int else ""
-            raise argparse.ArgumentTypeError(f"must be a positive{whole} number, got {text!r}")
+            least = "non-negative" if zero else "positive"
+            raise argparse.ArgumentTypeError(f"must be a {least}{whole} number, got {text!r}")
         return value
 
     return parse
@@ -94,6 +101,13 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--max-tokens-total", type=_positive(int))
     p.add_argument("--max-wall", type=_positive(float), help="wall seconds")
     p.add_argument(
+        "--max-retries",
+        type=_positive(int, zero=True),
+        default=DEFAULT_MAX_RETRIES,
+        help=f"how often a failed model request is tried again, with growing pauses (default "
+        f"{DEFAULT_MAX_RETRIES}: about 20 s before an unreachable endpoint stops the agent)",
+    )
+    p.add_argument(
         "--speed-factor",
         type=_positive(float),
         default=1.0,
@@ -125,7 +139,7 @@ def main(argv: list[str] | None = None) -> int:
     ledger = CostLedger(args.model, args.task_dir / COSTS_FILE)
     ledger.write()  # an agent killed before its first answer still reports zero tokens
     model = ChatModel(
-        make_client(base_url=args.base_url, api_key=api_key),
+        make_client(base_url=args.base_url, api_key=api_key, max_retries=args.max_retries),
         args.model,
         ledger,
         max_tokens_total=args.max_tokens_total,

@@ -28,7 +28,7 @@ class Nowhere:
 def test_an_unreachable_model_endpoint_is_the_environment_failing(static_site, tmp_path):
     done = run_agent(
         tmp_path, Nowhere(), task_url=static_site.url + "/", contact_url=static_site.contact_url,
-        kind="sleep",
+        kind="sleep", max_retries=1,  # not the default six: their pauses add up to 20 s
     )  # fmt: skip
     assert done.returncode == SETUP_FAILED, done.stdout + done.stderr
     assert done.stdout.splitlines()[-1].startswith("stopped: the model failed: Connection error")
