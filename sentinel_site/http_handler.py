@@ -19,7 +19,8 @@ every middleware and view synchronous — that generality was most of the cost o
 Django's guarantees are kept: a request's synchronous work all runs on one thread, no two
 requests share a thread at once, request signals fire as before. When every thread is busy,
 further requests wait on the event loop (no thread held) rather than spawning more, in one line
-per run, served in turn (`Turns`): no run's flood of requests delays another run's pages.
+per run, served in turn (`Turns`): no run's flood of requests delays another run's pages, and
+made-up run tokens share one line (`Tenants`).
 
 Agents' pages have threads of their own (`Lanes`): an `/evaluate` (up to 2 s of eval_sql), an
 admin dry run or a slow API call never holds a thread that an agent's page or contact waits for.
@@ -147,13 +148,49 @@ class Turns:
         self.idle.append(executor)
 
 
-def tenant_of(scope) -> object:
-    """Whose turn a request takes: its run's token for a run's pages, else its client address."""
+PROVEN_TOKENS = 4096  # tokens of runs this process has answered pages of, the latest kept
+
+
+class Tenants:
+    """Whose turn a request takes: a run's pages their run's, anything else its client's.
+
+    A token takes a turn of its own once a request under it has been answered with a page, not
+    an error: a made-up token is no run, and a client that sprayed made-up tokens got a turn per
+    token (a thousand connections, a thousand turns against each real run's one), so a real run's
+    page waited for all of them. Until a token is proven, its requests share one line with every
+    other unproven token from the same client address: a run's first page may wait there, its
+    later ones take their own turns. Used on the event loop only."""
+
+    def __init__(self, size: int = PROVEN_TOKENS):
+        self.size = size
+        self.proven: OrderedDict[str, None] = OrderedDict()
+
+    def of(self, scope) -> object:
+        client = (scope.get("client") or ("", 0))[0]
+        token = run_token(scope)
+        if token is None:
+            return client
+        if token in self.proven:
+            self.proven.move_to_end(token)
+            return token
+        return ("unproven tokens from", client)
+
+    def answered(self, scope, status: int) -> None:
+        """A request was answered with `status`: a page proves its run's token."""
+        token = run_token(scope)
+        if token is None or status >= 400 or token in self.proven:
+            return
+        self.proven[token] = None
+        if len(self.proven) > self.size:
+            self.proven.popitem(last=False)
+
+
+def run_token(scope) -> str | None:
+    """The run token a request's path is under, if any."""
     path = scope.get("path", "")
-    if path.startswith(AGENT_PATHS):
-        return path[len(AGENT_PATHS) :].split("/", 1)[0]
-    client = scope.get("client") or ("", 0)
-    return client[0]
+    if not path.startswith(AGENT_PATHS):
+        return None
+    return path[len(AGENT_PATHS) :].split("/", 1)[0] or None
 
 
 class RequestThreads:
@@ -167,6 +204,7 @@ class RequestThreads:
         self.name = name
         # Created on first use: the waiting lines' futures belong to the serving event loop.
         self._turns: Turns | None = None
+        self.tenants = Tenants()
 
     def turns(self) -> Turns:
         if self._turns is None:
@@ -189,10 +227,16 @@ class RequestThreads:
 
     async def __call__(self, scope, receive, send):
         turns = self.turns()
-        executor = await turns.take(tenant_of(scope))
+        executor = await turns.take(self.tenants.of(scope))
+
+        async def answer(message):
+            if message["type"] == "http.response.start":
+                self.tenants.answered(scope, message["status"])
+            await send(message)
+
         try:
             async with ThreadSensitiveContext(executor=executor):
-                await self.app(scope, receive, send)
+                await self.app(scope, receive, answer)
         finally:
             turns.give_back(executor)
 

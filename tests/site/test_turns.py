@@ -7,7 +7,7 @@ from __future__ import annotations
 import asyncio
 from concurrent.futures import ThreadPoolExecutor
 
-from sentinel_site.http_handler import Turns, tenant_of
+from sentinel_site.http_handler import RequestThreads, Tenants, Turns
 
 
 def served_order(requests: list[str], threads: int = 1) -> list[str]:
@@ -78,6 +78,56 @@ def test_a_request_that_gives_up_waiting_leaves_its_line_and_loses_no_thread():
     asyncio.run(play())
 
 
-def test_a_runs_pages_are_its_token_and_everything_else_its_client():
-    assert tenant_of({"path": "/r/abc123/micromail/", "client": ("10.0.0.1", 5)}) == "abc123"
-    assert tenant_of({"path": "/api/runs/", "client": ("10.0.0.1", 5)}) == "10.0.0.1"
+def scope(path: str, client: str = "10.0.0.1") -> dict:
+    return {"type": "http", "path": path, "client": (client, 5)}
+
+
+def test_a_runs_pages_take_their_runs_turn_once_a_page_proved_it_and_the_rest_their_clients():
+    tenants = Tenants()
+    page = scope("/r/abc123/micromail/")
+    assert tenants.of(page) == ("unproven tokens from", "10.0.0.1")
+    tenants.answered(page, 404)
+    assert tenants.of(page) == ("unproven tokens from", "10.0.0.1")  # an error proves nothing
+    tenants.answered(page, 200)
+    assert tenants.of(page) == "abc123"
+    assert tenants.of(scope("/api/runs/")) == "10.0.0.1"
+
+
+def test_made_up_tokens_share_one_line_and_win_no_turns_over_a_real_run():
+    """The finding: a client spraying made-up tokens got a turn per token, so a real run's
+    page waited behind one request of each."""
+    tenants = Tenants()
+    tenants.answered(scope("/r/real/micromail/"), 200)
+    flood = [tenants.of(scope(f"/r/fake{n}/micromail/", "10.6.6.6")) for n in range(20)]
+    real = tenants.of(scope("/r/real/micromail/"))
+    order = served_order([*flood, real])
+    assert order.index(real) == 1  # after the one flood request already first in turn
+
+
+def test_the_proven_tokens_kept_are_the_latest():
+    tenants = Tenants(size=2)
+    for token in ("a", "b", "c"):
+        tenants.answered(scope(f"/r/{token}/"), 200)
+    assert list(tenants.proven) == ["b", "c"]
+
+
+def test_a_page_answered_through_the_threads_proves_its_token():
+    async def app(scope, receive, send):
+        status = 404 if "/nope/" in scope["path"] else 200
+        await send({"type": "http.response.start", "status": status, "headers": []})
+        await send({"type": "http.response.body", "body": b""})
+
+    async def play() -> list[str]:
+        threads = RequestThreads(app, size=1)
+        sent: list[dict] = []
+
+        async def send(message):
+            sent.append(message)
+
+        for path in ("/r/nope/micromail/", "/r/real/micromail/"):
+            await threads(scope(path), None, send)
+        threads.shutdown()
+        assert [m.get("status") for m in sent if m["type"] == "http.response.start"] == [404, 200]
+        return list(threads.tenants.proven)
+
+    assert asyncio.run(play()) == ["real"]
