@@ -148,10 +148,7 @@ def search(music: Music, q: str) -> SearchResults:
         tracks=tuple(
             t
             for t in trending(music)
-            if needle in t.title.lower()
-            or needle in t.artist_name.lower()
-            or needle in t.album.lower()
-            or needle in t.genre.lower()
+            if any(needle in f.lower() for f in (t.title, t.artist_name, t.album, t.genre))
         ),
         artists=tuple(
             a for a in top_artists(music) if needle in a.name.lower() or needle in a.genre.lower()
