@@ -11,6 +11,7 @@ from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit import simclock
+from apps.kit.item_actions import act_on_item
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.rendering import redirect_after, redirect_to, render_screen
 from apps.microchat import screens
@@ -31,6 +32,8 @@ MESSAGE_ACTIONS = {
     "edit_message": "Message edited",
     "delete_message": "Message deleted",
 }
+# What a message action's form posts besides the message's id.
+FORMS = {"react": ("reaction",), "unreact": ("reaction",), "edit_message": ("content",)}
 
 
 def show(
@@ -172,13 +175,8 @@ def message_action(request: HttpRequest, page: Page, action: str) -> HttpRespons
     one_of(action, MESSAGE_ACTIONS, "message action")
     message_id = request.POST.get("message_id", "")
     existing_message(page.state, message_id)
-    payload = {"message_id": message_id}
-    if action in ("react", "unreact"):
-        payload["reaction"] = request.POST.get("reaction", "")
-    elif action == "edit_message":
-        payload["content"] = request.POST.get("content", "")
-    page.act(action, payload)
-    return back_to(page, request, MESSAGE_ACTIONS[action])
+    done = act_on_item(request, page, action, MESSAGE_ACTIONS, "message_id", message_id, FORMS)
+    return back_to(page, request, done)
 
 
 @require_POST
