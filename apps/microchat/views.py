@@ -169,10 +169,7 @@ def message_action(request: HttpRequest, page: Page, action: str) -> HttpRespons
 @run_page
 def send(request: HttpRequest, page: Page) -> HttpResponse:
     """`POST send` with `conversation_id`, `content` and optional `reply_to`."""
-    payload = {
-        "conversation_id": request.POST.get("conversation_id", ""),
-        "content": request.POST.get("content", ""),
-    }
+    payload = {field: request.POST.get(field, "") for field in ("conversation_id", "content")}
     if request.POST.get("reply_to"):
         payload["reply_to"] = request.POST["reply_to"]
     page.act("send_message", payload)
