@@ -122,7 +122,6 @@ def reduce_create_issue(hub: Hub, event: LoggedEvent) -> Hub:
         author=hub.self_username,
         author_name=hub.self_name,
         opened_at=event.at,
-        user_created=True,
     )
     hub = with_items(hub, "user_issues", [(issue.id, issue)])
     return with_issue_state(hub, issue.id, state="open")
