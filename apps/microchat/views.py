@@ -37,7 +37,7 @@ MESSAGE_ACTIONS = {
 FORMS = {"react": ("reaction",), "unreact": ("reaction",), "edit_message": ("content",)}
 
 
-def show(page: Page, name: str, section: str = "", **context: object) -> HttpResponse:
+def show(page: Page, name: str, *, section: str = "", **context: object) -> HttpResponse:
     """The screen `microchat/<name>.html` with the chrome's context; the app rail marks
     `section` (the screen's own name unless told)."""
     chat = page.state
@@ -71,7 +71,7 @@ def chat(request: HttpRequest, page: Page) -> HttpResponse:
 def search(request: HttpRequest, page: Page) -> HttpResponse:
     q = SearchQuery.from_params(request.GET).q
     results = screens.search(page.state, q, page.root + "/")
-    return show(page, "search", "chat", search_q=q, results=results)
+    return show(page, "search", section="chat", search_q=q, results=results)
 
 
 @require_GET
@@ -91,7 +91,7 @@ def team(request: HttpRequest, page: Page, team_id: str, channel_id: str = "") -
     return show(
         page,
         "team",
-        "teams",
+        section="teams",
         cards=screens.team_cards(page.state, page.root + "/"),
         detail=screens.team_detail(page.state, found, channel_id),
         channel=channel,
