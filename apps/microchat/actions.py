@@ -116,12 +116,14 @@ def reduce_mark_unread(chat: Chat, event: LoggedEvent) -> Chat:
 # --- reactions ------------------------------------------------------------------------------------
 
 
-def reacting(on: bool) -> Callable[[Chat, LoggedEvent], Chat]:
+def reacting(on: bool, help: str) -> Action:
+    """React, or take the reaction back, from the message's own form."""
+
     def reduce(chat: Chat, event: LoggedEvent) -> Chat:
         p = event.payload
         return with_reaction(chat, p["message_id"], p["reaction"], chat.self_id, on)
 
-    return reduce
+    return Action(React, decide_on_message, reduce, help=help, page=message_form("reaction"))
 
 
 # --- writing ----------------------------------------------------------------------------------------
@@ -266,20 +268,8 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
         ),
         "mute": conversation_flag(header_form, is_muted=True),
         "unmute": conversation_flag(header_form, is_muted=False),
-        "react": Action(
-            React,
-            decide_on_message,
-            reacting(True),
-            help=f"Add your reaction ({', '.join(REACTIONS)}) to a message.",
-            page=message_form("reaction"),
-        ),
-        "unreact": Action(
-            React,
-            decide_on_message,
-            reacting(False),
-            help="Take your reaction back.",
-            page=message_form("reaction"),
-        ),
+        "react": reacting(True, f"Add your reaction ({', '.join(REACTIONS)}) to a message."),
+        "unreact": reacting(False, "Take your reaction back."),
         "send_message": Action(
             Send,
             decide_send,

@@ -13,17 +13,18 @@ from __future__ import annotations
 import json
 import re
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 from apps.kit.arrivals import Stamp
 from apps.kit.feeds import from_catalog
+from apps.kit.records import read, reader
 from apps.kit.simclock import DAY_S, DAY_START_S
 from apps.microchat.state import (
     ENVIRONMENT,
     REACTIONS,
     Attachment,
     Call,
-    Channel,
     Chat,
     Conversation,
     ConversationState,
@@ -86,15 +87,8 @@ def catalog_attachments(record: Mapping[str, Any]) -> tuple[Attachment, ...]:
     for entry in _json_list(record.get("attachments")):
         if not isinstance(entry, dict):
             continue
-        kind = str(_field(entry, "kind", "type", default="file"))
-        items.append(
-            Attachment(
-                name=str(entry.get("name") or "Attachment"),
-                kind="image" if kind.startswith("image") else "file",
-                size=str(entry.get("size") or ""),
-                subject=str(entry.get("subject") or "abstract"),
-            )
-        )
+        image = str(_field(entry, "kind", "type", default="file")).startswith("image")
+        items.append(replace(read(Attachment, entry), kind="image" if image else "file"))
     if not items and record.get("hasAttachment"):
         # The original's catalog flags attachments without describing them: show a file row.
         items.append(Attachment(name="Attachment"))
@@ -112,15 +106,14 @@ def catalog_message(
     attachments = catalog_attachments(record)
     minutes_ago = float(_field(record, "minutesAgo", default=DEFAULT_MINUTES_AGO))
     by_self = sender_id == chat.self_id
-    message = Message(
+    message = read(
+        Message,
+        record,
         id=message_id,
         conversation_id=str(_field(record, "conversation_id", "conversationId", default="")),
         sender_id=sender_id,
         sender_name=chat.user_name(sender_id, str(_field(record, "senderName", default="Unknown"))),
-        content=str(record.get("content") or ""),
         sent_at=stamp.at - 60 * minutes_ago if stamp.preloaded else stamp.at,
-        is_urgent=bool(record.get("isUrgent", False)),
-        mentions_me=bool(record.get("mentionsMe", False)),
         has_attachment=bool(record.get("hasAttachment", False)) or bool(attachments),
         attachments=attachments,
         reply_to=_field(record, "replyToId", "reply_to_id"),
@@ -148,46 +141,20 @@ def make_conversation(
     if kind == "direct":
         other = next((p for p in participants if p != chat.self_id), None)
         name = chat.user_name(other, name)
-    conversation = Conversation(
+    conversation = read(
+        Conversation,
+        record,
         id=conversation_id,
         type=kind,
         name=name or "Untitled chat",
         participant_ids=participants,
-        avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
         team_id=_field(record, "teamId", "team_id"),
-        order=int(record.get("order") or 0),
         schedule=_schedule(record),
     )
-    flags = ConversationState(
-        is_pinned=bool(record.get("isPinned", False)),
-        is_muted=bool(record.get("isMuted", False)),
-    )
-    return conversation, flags
+    return conversation, read(ConversationState, record)
 
 
-@from_catalog(ENVIRONMENT, "teams")
-def make_team(chat: Chat, team_id: str, record: Mapping[str, Any], stamp: Stamp) -> Team:
-    channels = tuple(
-        Channel(
-            id=str(c["id"]),
-            name=str(c.get("name") or ""),
-            description=str(c.get("description") or ""),
-            unread_count=int(c.get("unreadCount") or 0),
-            is_pinned=bool(c.get("isPinned", False)),
-        )
-        for c in record.get("channels") or ()
-        if isinstance(c, dict) and "id" in c
-    )
-    return Team(
-        id=team_id,
-        name=str(record.get("name") or ""),
-        description=str(record.get("description") or ""),
-        member_ids=tuple(str(m) for m in record.get("memberIds") or ()),
-        owner_id=record.get("ownerId"),
-        channels=channels,
-        avatar_color=str(record.get("avatarColor") or "#5B5FC7"),
-        order=int(record.get("order") or 0),
-    )
+make_team = reader(ENVIRONMENT, "teams", Team)
 
 
 _CLOCK = re.compile(r"^(\d{1,2}):(\d{2})$")
@@ -222,17 +189,14 @@ def make_call(chat: Chat, call_id: str, record: Mapping[str, Any], stamp: Stamp)
     """A call of the log: one delivered by a `new_call` event carries its arrival time, one
     preloaded the time the catalog's own words ("2 hours ago") stand for."""
     user_id = _field(record, "userId", "user_id")
-    return Call(
+    return read(
+        Call,
+        record,
         id=call_id,
         # The newer original handler names a person's call after the person.
         name=chat.user_name(user_id, str(record.get("name", ""))),
         # The original wrote `callerId`, which its catalog never sets (its UI read `userId`):
         # the column now names the caller whenever the catalog does either way.
         caller_id=_field(record, "callerId", "userId"),
-        type=str(record.get("type") or "incoming"),
-        missed=bool(record.get("missed", False)),
-        duration=str(record.get("duration") or ""),
-        time_text=str(record.get("time") or ""),
         at=logged_call_at(str(record.get("time") or ""), stamp.at) if stamp.preloaded else stamp.at,
-        order=int(record.get("order") or 0),
     )

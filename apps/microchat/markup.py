@@ -21,6 +21,7 @@ TOKEN = re.compile(
     r"|(?P<url>https?://[^\s<>()]+[^\s<>().,;:!?])"
     r"|(?<![\w@])@(?P<mention>you\b|[A-Z][\w'-]*(?: [A-Z][\w'-]*)?)"
 )
+TAGS = {"code": "code", "bold": "strong", "italic": "em"}  # the token → the element it becomes
 
 
 def _link(href: str, label: str) -> str:
@@ -42,12 +43,8 @@ def render_markup(text: str, self_names: tuple[str, ...] = ()) -> SafeString:
     for match in TOKEN.finditer(text):
         out.append(escape(text[position : match.start()]))
         kind = match.lastgroup
-        if kind == "code":
-            out.append(f"<code>{escape(match['code'])}</code>")
-        elif kind == "bold":
-            out.append(f"<strong>{escape(match['bold'])}</strong>")
-        elif kind == "italic":
-            out.append(f"<em>{escape(match['italic'])}</em>")
+        if kind in TAGS:
+            out.append(f"<{TAGS[kind]}>{escape(match[kind])}</{TAGS[kind]}>")
         elif kind in ("label", "href"):
             out.append(_link(match["href"], match["label"]))
         elif kind == "url":

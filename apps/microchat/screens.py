@@ -371,11 +371,7 @@ class CallsScreen:
 def newest_calls(chat: Chat) -> list[Call]:
     """Newest first: calls delivered during the run above the log they started with (dated
     from its words); a call whose words give no time last, in the catalog's order."""
-    dated = sorted(
-        (c for c in chat.calls.values() if c.at is not None), key=lambda c: (-c.at, c.order)
-    )
-    undated = sorted((c for c in chat.calls.values() if c.at is None), key=lambda c: c.order)
-    return dated + undated
+    return sorted(chat.calls.values(), key=lambda c: (c.at is None, -(c.at or 0.0), c.order))
 
 
 @per_state()

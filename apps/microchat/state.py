@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import ClassVar
 
+from apps.kit.records import flag, from_catalog, integer, read, text, text_or, texts
 from apps.kit.state import SelfUserState, with_items
 from apps.kit.streaming import counting, no_items
 
@@ -24,10 +25,11 @@ REACTIONS: tuple[str, ...] = ("like", "heart", "laugh", "celebrate", "sad", "ang
 
 @dataclass(frozen=True)
 class Attachment:
-    name: str
+    name: str = from_catalog(text_or("name", "Attachment"))
     kind: str = "file"  # "image" | "file"
-    size: str = ""
-    subject: str = "abstract"  # what an image shows (apps.media picture subject)
+    size: str = from_catalog(text_or("size"), default="")
+    # what an image shows (apps.media picture subject)
+    subject: str = from_catalog(text_or("subject", "abstract"), default="abstract")
 
 
 @dataclass(frozen=True)
@@ -38,10 +40,10 @@ class Message:
     conversation_id: str
     sender_id: str
     sender_name: str
-    content: str
+    content: str = from_catalog(text_or("content"))
     sent_at: float  # simulated seconds, authored scale
-    is_urgent: bool = False
-    mentions_me: bool = False
+    is_urgent: bool = from_catalog(flag("isUrgent"), default=False)
+    mentions_me: bool = from_catalog(flag("mentionsMe"), default=False)
     has_attachment: bool = False
     attachments: tuple[Attachment, ...] = ()
     reply_to: str | None = None
@@ -57,9 +59,9 @@ class Conversation:
     type: str  # direct | group | meeting
     name: str
     participant_ids: tuple[str, ...]
-    avatar_color: str = "#5B5FC7"
+    avatar_color: str = from_catalog(text_or("avatarColor", "#5B5FC7"), default="#5B5FC7")
     team_id: str | None = None
-    order: int = 0
+    order: int = from_catalog(integer("order"), default=0)
     # A meeting's slot on the calendar: (n-th working day from the run's start, "HH:MM",
     # minutes); None if unset.
     schedule: tuple[int, str, int] | None = None
@@ -67,29 +69,33 @@ class Conversation:
 
 @dataclass(frozen=True)
 class ConversationState:
-    is_pinned: bool = False
-    is_muted: bool = False
+    is_pinned: bool = from_catalog(flag("isPinned"), default=False)
+    is_muted: bool = from_catalog(flag("isMuted"), default=False)
 
 
 @dataclass(frozen=True)
 class Channel:
-    id: str
-    name: str
-    description: str = ""
-    unread_count: int = 0
-    is_pinned: bool = False
+    id: str = from_catalog(text("id"))
+    name: str = from_catalog(text_or("name"))
+    description: str = from_catalog(text_or("description"), default="")
+    unread_count: int = from_catalog(integer("unreadCount"), default=0)
+    is_pinned: bool = from_catalog(flag("isPinned"), default=False)
 
 
 @dataclass(frozen=True)
 class Team:
     id: str
-    name: str
-    description: str
-    member_ids: tuple[str, ...]
-    owner_id: str | None
-    channels: tuple[Channel, ...]
-    avatar_color: str = "#5B5FC7"
-    order: int = 0
+    name: str = from_catalog(text_or("name"))
+    description: str = from_catalog(text_or("description"))
+    member_ids: tuple[str, ...] = from_catalog(texts("memberIds"))
+    owner_id: str | None = from_catalog(lambda r: r.get("ownerId"))
+    channels: tuple[Channel, ...] = from_catalog(
+        lambda r: tuple(
+            read(Channel, c) for c in r.get("channels") or () if isinstance(c, dict) and "id" in c
+        )
+    )
+    avatar_color: str = from_catalog(text_or("avatarColor", "#5B5FC7"), default="#5B5FC7")
+    order: int = from_catalog(integer("order"), default=0)
 
 
 @dataclass(frozen=True)
@@ -97,12 +103,13 @@ class Call:
     id: str
     name: str
     caller_id: str | None  # the original's `callerId` column (its UI used `userId`)
-    type: str  # incoming | outgoing | group
-    missed: bool
-    duration: str
-    time_text: str  # the catalog's own "2 hours ago" for calls already in the log
+    type: str = from_catalog(text_or("type", "incoming"))  # incoming | outgoing | group
+    missed: bool = from_catalog(flag("missed"))
+    duration: str = from_catalog(text_or("duration"))
+    # the catalog's own "2 hours ago" for calls already in the log
+    time_text: str = from_catalog(text_or("time"))
     at: float | None  # simulated arrival time of a call delivered by an event
-    order: int = 0
+    order: int = from_catalog(integer("order"), default=0)
 
 
 Reactions = tuple[tuple[str, tuple[str, ...]], ...]  # ((reaction, user ids), …) in first-use order

@@ -11,8 +11,10 @@ from django.http import Http404, HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit import simclock
+from apps.kit.item_actions import act_on_item
 from apps.kit.pages import Page, one_of, run_page
 from apps.kit.rendering import redirect_after, redirect_to, render_screen
+from apps.kit.streaming import present
 from apps.microchat import screens
 from apps.microchat.actions import existing_conversation, existing_message
 from apps.microchat.calendar import calendar_grid
@@ -31,22 +33,22 @@ MESSAGE_ACTIONS = {
     "edit_message": "Message edited",
     "delete_message": "Message deleted",
 }
+# What a message action's form posts besides the message's id.
+FORMS = {"react": ("reaction",), "unreact": ("reaction",), "edit_message": ("content",)}
 
 
-def show(
-    request: HttpRequest, page: Page, screen: str, context: dict, section: str = ""
-) -> HttpResponse:
-    """The page `microchat/<screen>.html` with the chrome's context; the app rail marks
+def show(page: Page, name: str, *, section: str = "", **context: object) -> HttpResponse:
+    """The screen `microchat/<name>.html` with the chrome's context; the app rail marks
     `section` (the screen's own name unless told)."""
     chat = page.state
     first = chat.self_name.split()[0] if chat.self_name.split() else chat.self_name
     chrome = {
-        "section": section or screen,
+        "section": section or name,
         "self_name": chat.self_name,
         "self_names": (chat.self_name, first),
         "rail": screens.rail(chat),
     }
-    return render_screen(request, page, f"microchat/{screen}.html", {**chrome, **context})
+    return render_screen(page.request, page, f"microchat/{name}.html", {**chrome, **context})
 
 
 @require_GET
@@ -60,12 +62,8 @@ def chat(request: HttpRequest, page: Page) -> HttpResponse:
             raise Http404("no such conversation")
         opened = screens.open_conversation(page.state, query)
     listing = screens.chat_list(page.state, query, page.root + "/")
-    return show(
-        request,
-        page,
-        "chat",
-        {"query": query, "listing": listing, "opened": opened, "back": query.querystring()},
-    )
+    back = query.querystring()
+    return show(page, "chat", query=query, listing=listing, opened=opened, back=back)
 
 
 @require_GET
@@ -73,35 +71,30 @@ def chat(request: HttpRequest, page: Page) -> HttpResponse:
 def search(request: HttpRequest, page: Page) -> HttpResponse:
     q = SearchQuery.from_params(request.GET).q
     results = screens.search(page.state, q, page.root + "/")
-    return show(request, page, "search", {"search_q": q, "results": results}, section="chat")
+    return show(page, "search", section="chat", search_q=q, results=results)
 
 
 @require_GET
 @run_page
 def teams(request: HttpRequest, page: Page) -> HttpResponse:
-    return show(request, page, "teams", {"cards": screens.team_cards(page.state, page.root + "/")})
+    return show(page, "teams", cards=screens.team_cards(page.state, page.root + "/"))
 
 
 @require_GET
 @run_page
 def team(request: HttpRequest, page: Page, team_id: str, channel_id: str = "") -> HttpResponse:
-    found = page.state.teams.get(team_id)
-    if found is None:
-        raise Http404("no such team")
+    found = present(page.state.teams.get(team_id), "team")
     channel_id = channel_id or (found.channels[0].id if found.channels else "")
     channel = next((c for c in found.channels if c.id == channel_id), None)
     if found.channels and channel is None:
         raise Http404("no such channel")
     return show(
-        request,
         page,
         "team",
-        {
-            "cards": screens.team_cards(page.state, page.root + "/"),
-            "detail": screens.team_detail(page.state, found, channel_id),
-            "channel": channel,
-        },
         section="teams",
+        cards=screens.team_cards(page.state, page.root + "/"),
+        detail=screens.team_detail(page.state, found, channel_id),
+        channel=channel,
     )
 
 
@@ -116,12 +109,8 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
         (v, v.title(), query.but(view=v, offset="0").querystring())
         for v in ("day", "week", "month")
     ]
-    return show(
-        request,
-        page,
-        "calendar",
-        {"query": query, "grid": calendar_grid(query, today, found), "views": views},
-    )
+    grid = calendar_grid(query, today, found)
+    return show(page, "calendar", query=query, grid=grid, views=views)
 
 
 @require_GET
@@ -129,14 +118,14 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
 def calls(request: HttpRequest, page: Page) -> HttpResponse:
     query = CallsQuery.from_params(request.GET)
     calls_screen = screens.calls_screen(page.state, query)
-    return show(request, page, "calls", {"query": query, "screen": calls_screen})
+    return show(page, "calls", query=query, screen=calls_screen)
 
 
 @require_GET
 @run_page
 def activity(request: HttpRequest, page: Page) -> HttpResponse:
     items = screens.activity(page.state, page.root + "/")
-    return show(request, page, "activity", {"items": items})
+    return show(page, "activity", items=items)
 
 
 def back_to(
@@ -172,23 +161,15 @@ def message_action(request: HttpRequest, page: Page, action: str) -> HttpRespons
     one_of(action, MESSAGE_ACTIONS, "message action")
     message_id = request.POST.get("message_id", "")
     existing_message(page.state, message_id)
-    payload = {"message_id": message_id}
-    if action in ("react", "unreact"):
-        payload["reaction"] = request.POST.get("reaction", "")
-    elif action == "edit_message":
-        payload["content"] = request.POST.get("content", "")
-    page.act(action, payload)
-    return back_to(page, request, MESSAGE_ACTIONS[action])
+    done = act_on_item(request, page, action, MESSAGE_ACTIONS, "message_id", message_id, FORMS)
+    return back_to(page, request, done)
 
 
 @require_POST
 @run_page
 def send(request: HttpRequest, page: Page) -> HttpResponse:
     """`POST send` with `conversation_id`, `content` and optional `reply_to`."""
-    payload = {
-        "conversation_id": request.POST.get("conversation_id", ""),
-        "content": request.POST.get("content", ""),
-    }
+    payload = {field: request.POST.get(field, "") for field in ("conversation_id", "content")}
     if request.POST.get("reply_to"):
         payload["reply_to"] = request.POST["reply_to"]
     page.act("send_message", payload)

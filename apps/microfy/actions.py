@@ -99,7 +99,6 @@ def reduce_create_playlist(music: Music, event: LoggedEvent) -> Music:
         owner_id=music.self_id,
         owner_name=music.self_name,
         track_ids=(),
-        user_created=True,
     )
     return with_items(music, "user_playlists", [(playlist.id, playlist)])
 

@@ -13,18 +13,17 @@ its live pushes and the evaluation tables show the same number at the same simul
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping
 from types import MappingProxyType
 from typing import Any
 
 from apps.kit.arrivals import Stamp
+from apps.kit.records import reader
 from apps.kit.streaming import whole
 from apps.kit.waypoints import Waypoints
-from apps.microfy.state import ENVIRONMENT, Artist, Mood, Music, Playlist, Track
+from apps.microfy.state import ENVIRONMENT, UNKNOWN_ARTIST, Artist, Mood, Playlist, Track
 
 HORIZON_S = 720.0  # the original's event_timeline_end: drifting counts stop growing there
-UNKNOWN_ARTIST = "Unknown Artist"
 
 
 def ramp(start: float, per_second: float, *, since: float = 0.0) -> Waypoints:
@@ -40,57 +39,23 @@ def _play_rate(play_count: int) -> float:
     return 0.1 + min(play_count, 5_000_000) / 10_000_000
 
 
-def catalog_track(music: Music, track_id: str, stamp: Stamp) -> Track | None:
-    """The track `track_id` as it arrives (not liked, never played: `TrackState()`); None if the
-    catalog lacks it."""
-    record = music.catalog.table(ENVIRONMENT, "tracks").get(track_id)
-    if record is None:
-        return None
+def _plays(catalog: Any, record: Mapping[str, Any], stamp: Stamp) -> Waypoints:
+    """Everyone's plays of a track, from its catalog count when it reached the session."""
     plays = whole(record.get("playCount"))
-    return Track(
-        id=track_id,
-        title=str(record.get("title", "")),
-        artist_id=str(record.get("artistId", "")),
-        artist_name=str(record.get("artistName") or UNKNOWN_ARTIST),
-        album=str(record.get("albumName", "")),
-        duration_s=whole(record.get("durationSeconds"), 180),
-        description=str(record.get("description", "")),
-        genre=str(record.get("genre", "")),
-        lyrics=str(record.get("lyrics", "")),
-        is_new_release=bool(record.get("isNewRelease", False)),
-        plays=ramp(plays, _play_rate(plays), since=max(0.0, stamp.at)),
-        arrived_at=stamp.at,
-        preloaded=stamp.preloaded,
-    )
+    return ramp(plays, _play_rate(plays), since=max(0.0, stamp.at))
 
 
-def catalog_playlist(music: Music, playlist_id: str, stamp: Stamp) -> Playlist | None:
-    record = music.catalog.table(ENVIRONMENT, "playlists").get(playlist_id)
-    if record is None:
-        return None
-    return Playlist(
-        id=playlist_id,
-        name=str(record.get("name", "")),
-        description=str(record.get("description", "")),
-        owner_id=str(record.get("ownerId", "")),
-        owner_name=str(record.get("ownerName", "")),
-        track_ids=tuple(str(t) for t in record.get("trackIds") or ()),
-        follower_count=whole(record.get("followerCount")),
-        is_public=bool(record.get("isPublic", True)),
-        data=json.dumps(dict(record)),
-    )
-
-
-def catalog_mood(music: Music, mood_id: str, stamp: Stamp) -> Mood | None:
-    record = music.catalog.table(ENVIRONMENT, "moods").get(mood_id)
-    if record is None:
-        return None
-    return Mood(
-        id=mood_id,
-        name=str(record.get("name", "")),
-        description=str(record.get("description", "")),
-        colour=str(record.get("coverColor") or "#535353"),
-    )
+# A track as it arrives (not liked, never played: `TrackState()`); None if the catalog lacks it.
+catalog_track = reader(
+    ENVIRONMENT,
+    "tracks",
+    Track,
+    plays=_plays,
+    arrived_at=lambda catalog, record, stamp: stamp.at,
+    preloaded=lambda catalog, record, stamp: stamp.preloaded,
+)
+catalog_playlist = reader(ENVIRONMENT, "playlists", Playlist)
+catalog_mood = reader(ENVIRONMENT, "moods", Mood)
 
 
 def artists(catalog: Any) -> Mapping[str, Artist]:

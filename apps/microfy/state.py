@@ -8,18 +8,21 @@ clock as `Waypoints` series, read at the operation's one `now`.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from types import MappingProxyType
 from typing import ClassVar
 
+from apps.kit.records import flag, from_catalog, text, text_or, texts
 from apps.kit.state import SelfUserState
-from apps.kit.streaming import counting, no_items
+from apps.kit.streaming import counting, no_items, whole
 from apps.kit.waypoints import Waypoints
 
 ENVIRONMENT = "microfy"
 LIKED = "liked"  # the Liked Songs collection's id in URLs
 USER_PLAYLIST_PREFIX = "user-playlist"  # the original's ids for playlists the user creates
+UNKNOWN_ARTIST = "Unknown Artist"
 
 
 @dataclass(frozen=True)
@@ -27,15 +30,15 @@ class Track:
     """One song as the catalog describes it, stamped with when it reached the session."""
 
     id: str
-    title: str
-    artist_id: str
-    artist_name: str
-    album: str
-    duration_s: int
-    description: str
-    genre: str
-    lyrics: str
-    is_new_release: bool
+    title: str = from_catalog(text("title"))
+    artist_id: str = from_catalog(text("artistId"))
+    artist_name: str = from_catalog(text_or("artistName", UNKNOWN_ARTIST))
+    album: str = from_catalog(text("albumName"))
+    duration_s: int = from_catalog(lambda r: whole(r.get("durationSeconds"), 180))
+    description: str = from_catalog(text("description"))
+    genre: str = from_catalog(text("genre"))
+    lyrics: str = from_catalog(text("lyrics"))
+    is_new_release: bool = from_catalog(flag("isNewRelease"))
     plays: Waypoints  # all-time plays by everyone (drifts upward over the session)
     arrived_at: float = 0.0
     preloaded: bool = True
@@ -69,15 +72,15 @@ class Playlist:
     """A catalog playlist, or one the user created (`owner_id` is then the self user)."""
 
     id: str
-    name: str
-    description: str
-    owner_id: str
-    owner_name: str
-    track_ids: tuple[str, ...]
-    follower_count: int = 0
-    is_public: bool = True
-    user_created: bool = False
-    data: str = "{}"  # the catalog record as JSON: the `playlists.data` column
+    name: str = from_catalog(text("name"))
+    description: str = from_catalog(text("description"))
+    owner_id: str = from_catalog(text("ownerId"))
+    owner_name: str = from_catalog(text("ownerName"))
+    track_ids: tuple[str, ...] = from_catalog(texts("trackIds"))
+    follower_count: int = from_catalog(lambda r: whole(r.get("followerCount")), default=0)
+    is_public: bool = from_catalog(lambda r: bool(r.get("isPublic", True)), default=True)
+    # the catalog record as JSON: the `playlists.data` column
+    data: str = from_catalog(lambda r: json.dumps(dict(r)), default="{}")
 
     @property
     def cover_seed(self) -> str:
@@ -87,9 +90,9 @@ class Playlist:
 @dataclass(frozen=True)
 class Mood:
     id: str
-    name: str
-    description: str
-    colour: str
+    name: str = from_catalog(text("name"))
+    description: str = from_catalog(text("description"))
+    colour: str = from_catalog(text_or("coverColor", "#535353"))
 
 
 @dataclass(frozen=True)
@@ -108,9 +111,6 @@ class Music(SelfUserState):
     followed: tuple[str, ...] = ()  # artist ids, in the order they were followed
     moods: Mapping[str, Mood] = no_items()
     now_playing: NowPlaying | None = None
-
-    def has(self, track_id: str) -> bool:
-        return track_id in self.tracks
 
     def is_liked(self, track_id: str) -> bool:
         state = self.states.get(track_id)

@@ -122,7 +122,6 @@ def reduce_create_issue(hub: Hub, event: LoggedEvent) -> Hub:
         author=hub.self_username,
         author_name=hub.self_name,
         opened_at=event.at,
-        user_created=True,
     )
     hub = with_items(hub, "user_issues", [(issue.id, issue)])
     return with_issue_state(hub, issue.id, state="open")
@@ -231,12 +230,16 @@ def flag_action(flag: str, counter: str, wanted: bool) -> Action[Hub]:
 # --- repositories -----------------------------------------------------------------------------
 
 
-def decide_create_repository(hub: Hub, payload: dict) -> dict:
-    name = required_text(payload, "name")
+def check_repo_name(name: str) -> str:
     if not REPO_NAME.fullmatch(name):
         raise ActionRejected(
             "payload field 'name' may only contain letters, digits, '.', '-' and '_'"
         )
+    return name
+
+
+def decide_create_repository(hub: Hub, payload: dict) -> dict:
+    name = check_repo_name(required_text(payload, "name"))
     if any(r.name.lower() == name.lower() for r in hub.user_repos):
         raise ActionRejected(f"you already have a repository named {name!r}", 409)
     return {**payload, "name": name, "id": f"user-repo-{len(hub.user_repos) + 1}"}
@@ -260,10 +263,8 @@ def decide_settings(hub: Hub, payload: dict) -> dict:
     changes = {k: v for k, v in payload.items() if v is not None}
     if not changes:
         raise ActionRejected("give at least one of 'name', 'description', 'visibility'")
-    if "name" in changes and not REPO_NAME.fullmatch(changes["name"].strip()):
-        raise ActionRejected(
-            "payload field 'name' may only contain letters, digits, '.', '-' and '_'"
-        )
+    if "name" in changes:
+        check_repo_name(changes["name"].strip())
     return changes
 
 

@@ -20,6 +20,7 @@ from pydantic import Field, model_validator
 
 from apps.kit.arrivals import Deliver, Delivery, Stamp, arrival, event_types
 from apps.kit.counts import ShownCount
+from apps.kit.deciding import opening
 from apps.kit.retractions import retraction, window
 from apps.kit.state import EMPTY
 from apps.kit.tables import KEY, VALUE, Table, named, tables
@@ -37,7 +38,7 @@ from apps.microhub.state import (
     next_pr_number,
     star_count,
 )
-from events.registry import Environment, EventType, ImplicitAction, LoggedEvent, counted
+from events.registry import Environment, EventType, LoggedEvent, counted
 from events.schemas import Payload
 
 WILDCARD = ["*"]
@@ -185,16 +186,8 @@ def reduce_preload_repo(hub: Hub, event: LoggedEvent) -> Hub:
     # Rows are dated from the preload, older by the offset: delivered "at" that start.
     start = event.at - float(p.get("preload_age_offset_ms") or 0) / 1000.0
     own_states = {i: s for i, s in hub.issue_states.items() if i in hub.user_issues}
-    hub = replace(
-        hub,
-        issues=EMPTY,
-        issue_states=MappingProxyType(own_states),
-        prs=EMPTY,
-        pr_states=EMPTY,
-        commits=EMPTY,
-        runs=EMPTY,
-        files=EMPTY,
-    )
+    loaded = dict.fromkeys(("issues", "prs", "pr_states", "commits", "runs", "files"), EMPTY)
+    hub = replace(hub, **loaded, issue_states=MappingProxyType(own_states))
     for key, (table, deliver) in LOADED.items():
         hub = deliver(hub, _ids(hub, p, table, key), start, preloaded=True)
     passed: dict[str, Mapping[str, Any]] = {}
@@ -304,9 +297,7 @@ def _text(value: Any) -> str:
 def repo_flags(hub: Hub, now: float) -> dict[str, str]:
     """The user's flags on the repository and its counters; `star_count` is the live one."""
     return {
-        "starred": "1" if hub.starred else "0",
-        "watched": "1" if hub.watched else "0",
-        "forked": "1" if hub.forked else "0",
+        **{flag: str(int(getattr(hub, flag))) for flag in ("starred", "watched", "forked")},
         "star_count": str(star_count(hub, now)),
         "fork_count": str(hub.forks),
         "watch_count": str(hub.watchers),
@@ -390,9 +381,22 @@ materialize = tables(
 )
 
 
+def not_viewed(hub: Hub, issue_id: str) -> bool:
+    """A filed issue the user has not opened yet (their own are not viewed: `decide_view_issue`)."""
+    return issue_id in hub.issues and not hub.issue_states[issue_id].viewed
+
+
 def _unfiltered_list(of: str) -> Callable[[Hub, str], bool]:
     """An issue or pull-request list without a search: its "N Open" is the repository's."""
     return lambda hub, path: path.partition("?")[0] == of and "q=" not in path
+
+
+def open_issues(hub: Hub, now: float) -> int:
+    return hub_screens.counts(hub).open_issues
+
+
+def open_prs(hub: Hub, now: float) -> int:
+    return hub_screens.counts(hub).open_prs
 
 
 # The numbers shown in more than one place (apps.kit.counts): the repository header on every
@@ -402,26 +406,10 @@ SHOWN_COUNTS = (
         "stars", lambda hub, now: star_count(hub, now), ("Star {n}", "Starred {n}", "{n} stars")
     ),
     ShownCount("forks", lambda hub, now: hub.forks, ("Fork {n}",)),
-    ShownCount(
-        "open issues", lambda hub, now: hub_screens.counts(hub).open_issues, ("Issues {n}",)
-    ),
-    ShownCount(
-        "open issues listed",
-        lambda hub, now: hub_screens.counts(hub).open_issues,
-        ("{n} Open",),
-        on=_unfiltered_list("issues/"),
-    ),
-    ShownCount(
-        "open pull requests",
-        lambda hub, now: hub_screens.counts(hub).open_prs,
-        ("Pull requests {n}",),
-    ),
-    ShownCount(
-        "open pull requests listed",
-        lambda hub, now: hub_screens.counts(hub).open_prs,
-        ("{n} Open",),
-        on=_unfiltered_list("pulls/"),
-    ),
+    ShownCount("open issues", open_issues, ("Issues {n}",)),
+    ShownCount("open issues listed", open_issues, ("{n} Open",), on=_unfiltered_list("issues/")),
+    ShownCount("open pull requests", open_prs, ("Pull requests {n}",)),
+    ShownCount("open pull requests listed", open_prs, ("{n} Open",), on=_unfiltered_list("pulls/")),
 )
 
 
@@ -436,15 +424,7 @@ MICROHUB = Environment(
     urlconf="apps.microhub.urls",
     implicit_actions=(
         # Opening an issue marks it viewed, as the original's issue page did on opening.
-        ImplicitAction(
-            page="issue",
-            param="issue_id",
-            action="view_issue",
-            payload=lambda issue_id: {"issue_id": issue_id},
-            applies=lambda hub, issue_id: (
-                issue_id in hub.issues and not hub.issue_states[issue_id].viewed
-            ),
-        ),
+        opening("issue", "issue_id", "view_issue", "issue_id", applies=not_viewed),
     ),
     sample_pages=sample_pages,
     shown_counts=SHOWN_COUNTS,

@@ -75,7 +75,6 @@ class Post:
 @dataclass(frozen=True, kw_only=True)
 class Issue(Post):
     assignees: tuple[Person, ...] = ()
-    user_created: bool = False
 
 
 @dataclass(frozen=True)

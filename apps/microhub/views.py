@@ -24,6 +24,7 @@ from apps.microhub.state import MERGE_STRATEGIES, Hub, star_count, stars_change_
 REPO_ACTIONS = ("star", "unstar", "watch", "unwatch", "fork")
 ISSUE_ACTIONS = {"comment": "comment_issue", "close": "close_issue", "reopen": "reopen_issue"}
 PR_ACTIONS = {"comment": "comment_pr", "merge": "merge_pr"}
+FORM_FIELDS = {"comment": ("body", ""), "merge": ("strategy", "merge")}  # → (field, default)
 STRATEGY_LABELS = {
     "merge": "Create a merge commit",
     "squash": "Squash and merge",
@@ -142,10 +143,7 @@ def issues(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def new_issue(request: HttpRequest, page: Page) -> HttpResponse:
     if request.method == "POST":
-        event = page.act(
-            "create_issue",
-            {"title": request.POST.get("title", ""), "body": request.POST.get("body", "")},
-        )
+        event = page.act("create_issue", posted(request, "title", "body"))
         issue_id = event.payload["id"] if event else ""
         return redirect_to(page, f"issues/{issue_id}" if issue_id else "issues/")
     return show(page, "new_issue.html", "issues")
@@ -167,14 +165,28 @@ def issue(request: HttpRequest, page: Page, issue_id: str) -> HttpResponse:
     )
 
 
+def posted(request: HttpRequest, *fields: str) -> dict[str, str]:
+    """The form's `fields` as posted ("" when missing)."""
+    return {field: request.POST.get(field, "") for field in fields}
+
+
+def act_on_post(
+    page: Page, verb: str, actions: dict[str, str], what: str, key: str, item_id: str
+) -> None:
+    """Carry out the button `verb` (one of `actions`) of the issue or pull request `{key: item_id}`,
+    with the field its form posts (FORM_FIELDS)."""
+    action = actions[one_of(verb, actions, what)]
+    payload = {key: item_id}
+    if verb in FORM_FIELDS:
+        field, default = FORM_FIELDS[verb]
+        payload[field] = page.request.POST.get(field, default)
+    page.act(action, payload)
+
+
 @require_POST
 @run_page
 def issue_action(request: HttpRequest, page: Page, issue_id: str, verb: str) -> HttpResponse:
-    action = ISSUE_ACTIONS[one_of(verb, ISSUE_ACTIONS, "issue action")]
-    payload = {"issue_id": issue_id}
-    if verb == "comment":
-        payload["body"] = request.POST.get("body", "")
-    page.act(action, payload)
+    act_on_post(page, verb, ISSUE_ACTIONS, "issue action", "issue_id", issue_id)
     return redirect_to(page, f"issues/{issue_id}")
 
 
@@ -210,13 +222,7 @@ def pull(request: HttpRequest, page: Page, pr_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def pull_action(request: HttpRequest, page: Page, pr_id: str, verb: str) -> HttpResponse:
-    action = PR_ACTIONS[one_of(verb, PR_ACTIONS, "pull request action")]
-    payload = {"pr_id": pr_id}
-    if verb == "comment":
-        payload["body"] = request.POST.get("body", "")
-    else:
-        payload["strategy"] = request.POST.get("strategy", "merge")
-    page.act(action, payload)
+    act_on_post(page, verb, PR_ACTIONS, "pull request action", "pr_id", pr_id)
     return redirect_after(
         request,
         page,
@@ -281,16 +287,10 @@ def settings(request: HttpRequest, page: Page) -> HttpResponse:
 @run_page
 def new_repository(request: HttpRequest, page: Page) -> HttpResponse:
     if request.method == "POST":
-        page.act(
-            "create_repository",
-            {
-                "name": request.POST.get("name", ""),
-                "description": request.POST.get("description", ""),
-                "visibility": request.POST.get("visibility", "public"),
-                "add_readme": "add_readme" in request.POST,
-                "add_gitignore": "add_gitignore" in request.POST,
-            },
-        )
+        form = posted(request, "name", "description")
+        form["visibility"] = request.POST.get("visibility", "public")
+        boxes = {box: box in request.POST for box in ("add_readme", "add_gitignore")}
+        page.act("create_repository", {**form, **boxes})
         return redirect_after(request, page, "repositories/", "Repository created")
     return show(page, "new_repository.html", "")
 
