@@ -32,29 +32,16 @@ from apps.microtube.state import (
 HOUR, DAY = 3600.0, 86400.0
 # The original's categories (and ours) → the apps.media picture subject of the thumbnail.
 SUBJECT_BY_CATEGORY: Mapping[str, str] = {
-    "tech": "screenshot",
-    "education": "screenshot",
-    "gaming": "screenshot",
-    "news": "office",
+    **dict.fromkeys(("tech", "education", "gaming"), "screenshot"),
+    **dict.fromkeys(("news", "diy"), "office"),
     "science": "abstract",
-    "cooking": "food",
-    "food": "food",
-    "fitness": "people",
-    "travel": "landscape",
-    "diy": "office",
-    "auto": "city",
-    "autos": "city",
-    "history": "landscape",
-    "comedy": "people",
-    "fashion": "people",
+    **dict.fromkeys(("cooking", "food"), "food"),
+    **dict.fromkeys(("fitness", "comedy", "fashion", "sports", "lifestyle"), "people"),
+    **dict.fromkeys(("travel", "history"), "landscape"),
+    **dict.fromkeys(("auto", "autos", "movies", "film", "language"), "city"),
     "pets": "pet",
     "finance": "chart",
-    "movies": "city",
-    "film": "city",
-    "sports": "people",
     "music": "product",
-    "lifestyle": "people",
-    "language": "city",
 }
 
 

@@ -214,15 +214,14 @@ def channel(request: HttpRequest, page: Page, channel_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def channel_action(request: HttpRequest, page: Page, channel_id: str, action: str) -> HttpResponse:
-    one_of(action, CHANNEL_ACTIONS, "channel action")
-    page.act(action, {"channel_id": channel_id})
+    done = act_on_item(request, page, action, CHANNEL_ACTIONS, "channel_id", channel_id)
     # Back to the video the button was under, or to the channel page.
     video_id = request.POST.get("video_id", "")
     back = f"channel/{quote(channel_id)}"
     if video_id in page.state.videos:
         on_shorts = request.POST.get("back") == "shorts"
         back = f"shorts/{quote(video_id)}" if on_shorts else watch_path(video_id)
-    return redirect_after(request, page, back, CHANNEL_ACTIONS[action])
+    return redirect_after(request, page, back, done)
 
 
 # --- notifications --------------------------------------------------------------------------
