@@ -14,19 +14,10 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
+from apps.kit.records import read
 from apps.kit.streaming import whole
-from apps.kit.waypoints import Waypoints
+from apps.kit.waypoints import growing
 from apps.microscholar.state import ENVIRONMENT, Alert, Paper
-
-
-def citation_series(record: Mapping[str, Any], indexed_at: float) -> Waypoints:
-    """The catalogued count, flat until the paper is indexed, then along its growth points."""
-    start = float(whole(record.get("citedBy")))
-    growth = record.get("citationGrowth") or ()
-    if not growth:
-        return Waypoints(start)
-    points = [(indexed_at, start)] + [(indexed_at + float(dt), float(v)) for dt, v in growth]
-    return Waypoints(start).with_points(points)
 
 
 def catalog_paper(catalog: Any, paper_id: str, *, indexed_at: float) -> Paper | None:
@@ -34,22 +25,11 @@ def catalog_paper(catalog: Any, paper_id: str, *, indexed_at: float) -> Paper | 
     record = catalog.table(ENVIRONMENT, "papers").get(paper_id)
     if record is None:
         return None
-    return Paper(
-        id=paper_id,
-        title=str(record.get("title", "")),
-        author_ids=tuple(str(a) for a in record.get("authorIds") or ()),
-        authors=str(record.get("authors", "")),
-        source=str(record.get("source", "")),
-        year=whole(record.get("year")),
-        snippet=str(record.get("snippet", "")),
-        citations=citation_series(record, indexed_at),
-        pdf_source=str(record.get("pdfSource") or ""),
-        is_book=bool(record.get("isBook", False)),
-        is_target=bool(record.get("isTargetPaper", False)),
-        task_type=str(record.get("taskType") or "noise"),
-        versions=whole(record.get("versions"), 1),
-        indexed_at=float(indexed_at),
+    # The catalogued count, flat until the paper is indexed, then along its growth points.
+    citations = growing(
+        float(whole(record.get("citedBy"))), record.get("citationGrowth"), indexed_at
     )
+    return read(Paper, record, id=paper_id, citations=citations, indexed_at=float(indexed_at))
 
 
 def catalog_alert(
@@ -59,14 +39,7 @@ def catalog_alert(
     record = catalog.table(ENVIRONMENT, "alerts").get(alert_id)
     if record is None:
         return None
-    alert = Alert(
-        id=alert_id,
-        type=str(record.get("type") or "keyword"),
-        title=str(record.get("title", "")),
-        description=str(record.get("description", "")),
-        related_paper_id=str(record.get("relatedPaperId") or ""),
-        arrived_at=float(arrived_at),
-    )
+    alert = read(Alert, record, id=alert_id, arrived_at=float(arrived_at))
     return alert, keep_read and bool(record.get("isRead", False))
 
 
