@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from apps.kit.records import read
 from apps.micromail.state import ENVIRONMENT, Attachment, Email, EmailState
 
 UNKNOWN_SENDER = "Unknown Sender"
@@ -24,13 +25,8 @@ def _addresses(value: Any) -> tuple[str, ...]:
 def attachments_by_email(catalog: Any) -> Mapping[str, tuple[Attachment, ...]]:
     grouped: dict[str, list[Attachment]] = {}
     for record in catalog.table(ENVIRONMENT, "attachments").values():
-        grouped.setdefault(str(record.get("email_id")), []).append(
-            Attachment(
-                id=str(record["id"]),
-                name=str(record.get("name", "")),
-                size=str(record.get("size", "")),
-            )
-        )
+        attachment = read(Attachment, record, id=str(record["id"]))
+        grouped.setdefault(str(record.get("email_id")), []).append(attachment)
     return {email_id: tuple(items) for email_id, items in grouped.items()}
 
 
@@ -44,19 +40,15 @@ def catalog_email(
     sender = catalog.users.get(record.get("sender_id")) or {}
     attachments = catalog.index(attachments_by_email).get(email_id, ())
     has_attachment = record.get("hasAttachment")
-    return Email(
+    return read(
+        Email,
+        record,
         id=email_id,
-        subject=str(record.get("subject", "")),
-        body=str(record.get("body", "")),
         sender_name=str(sender.get("name") or UNKNOWN_SENDER),
         sender_email=str(sender.get("email") or ""),
         to=_addresses(record.get("recipients") or record.get("to")) or (self_email,),
         cc=_addresses(record.get("cc")),
-        is_cc=bool(record.get("isCC", False)),
         has_attachment=bool(attachments) if has_attachment is None else bool(has_attachment),
-        is_external=bool(record.get("isExternal", False)),
-        importance=str(record.get("importance") or "normal"),
-        mentions_me=bool(record.get("mentionsMe", False)),
         attachments=attachments,
         arrived_at=float(arrived_at),
     )
@@ -71,9 +63,5 @@ def catalog_state(catalog: Any, email_id: str, *, keep_read: bool) -> EmailState
     folder = record.get("folder") or (
         "junk" if record.get("junk") or record.get("isJunk") else "inbox"
     )
-    return EmailState(
-        folder=str(folder),
-        is_read=bool(record.get("isRead", False)) if keep_read else False,
-        is_flagged=bool(record.get("isFlagged", False)),
-        is_pinned=bool(record.get("isPinned", False)),
-    )
+    is_read = bool(record.get("isRead", False)) if keep_read else False
+    return read(EmailState, record, folder=str(folder), is_read=is_read)
