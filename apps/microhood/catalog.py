@@ -7,6 +7,7 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
+from apps.kit.records import read
 from apps.microhood.state import ENVIRONMENT, NewsItem, Stock
 
 TRACES = "price_traces"
@@ -17,14 +18,11 @@ def _number(value: Any) -> float | None:
 
 
 def listing(record: Mapping[str, Any]) -> Stock:
-    return Stock(
+    return read(
+        Stock,
+        record,
         symbol=str(record["symbol"]),
         name=str(record.get("name") or record["symbol"]),
-        color=str(record.get("color") or "#333"),
-        org_id=record.get("orgId"),
-        asset_class=str(record.get("assetClass") or "stock"),
-        sector=str(record.get("sector") or ""),
-        description=str(record.get("description") or ""),
         catalog_avg_cost=_number(record.get("avgCost")) or 0.0,
         market_cap=_number(record.get("marketCap")),
         pe_ratio=_number(record.get("peRatio")),
@@ -56,15 +54,8 @@ def news_item(
     if record is None:
         return None
     age = (_number(record.get("ageMinutes")) or 0.0) * 60 if preloaded else 0.0
-    return NewsItem(
-        id=news_id,
-        source=str(record.get("source") or ""),
-        title=str(record.get("title") or ""),
-        summary=str(record.get("summary") or ""),
-        symbols=tuple(str(s) for s in record.get("symbols") or ()),
-        published_at=arrived_at - age,
-        data=json.dumps(dict(record)),
-    )
+    data = json.dumps(dict(record))
+    return read(NewsItem, record, id=news_id, published_at=arrived_at - age, data=data)
 
 
 def watch_row(catalog: Any, symbol: str) -> Mapping[str, Any] | None:
