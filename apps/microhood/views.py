@@ -11,7 +11,7 @@ from collections.abc import Iterable
 from django.http import HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.kit.pages import Page, run_page
+from apps.kit.pages import Page, chosen, run_page
 from apps.kit.rendering import back_field, redirect_after, render_screen
 from apps.kit.streaming import present
 from apps.microhood import screens
@@ -138,9 +138,7 @@ def place_order(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
 @run_page
 def watch_stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     listed(page, symbol)
-    intent = request.POST.get("intent", "add")
-    if intent not in ("add", "remove"):
-        raise ActionRejected(f"intent={intent!r} is not valid; allowed: add, remove")
+    intent = chosen("intent", request.POST.get("intent", "add"), ("add", "remove"))
     action = "add_to_watchlist" if intent == "add" else "remove_from_watchlist"
     page.act(action, {"symbol": symbol})
     done = f"{symbol} {'added to' if intent == 'add' else 'removed from'} your watchlist"
