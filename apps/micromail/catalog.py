@@ -10,8 +10,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from apps.kit.records import read
-from apps.micromail.state import ENVIRONMENT, Attachment, Email, EmailState
+from apps.kit.records import Record, read
+from apps.micromail.state import ENVIRONMENT, Attachment, Email, EmailState, Mail
 
 UNKNOWN_SENDER = "Unknown Sender"
 
@@ -30,13 +30,9 @@ def attachments_by_email(catalog: Any) -> Mapping[str, tuple[Attachment, ...]]:
     return {email_id: tuple(items) for email_id, items in grouped.items()}
 
 
-def catalog_email(
-    catalog: Any, email_id: str, *, arrived_at: float, self_email: str
-) -> Email | None:
-    """The message `email_id` as it arrives at `arrived_at`; None if the catalog lacks it."""
-    record = catalog.table(ENVIRONMENT, "emails").get(email_id)
-    if record is None:
-        return None
+def catalog_email(mail: Mail, email_id: str, record: Record, *, arrived_at: float) -> Email:
+    """The message `email_id` (its catalog `record`) as it arrives at `arrived_at`."""
+    catalog = mail.catalog
     sender = catalog.users.get(record.get("sender_id")) or {}
     attachments = catalog.index(attachments_by_email).get(email_id, ())
     has_attachment = record.get("hasAttachment")
@@ -46,7 +42,7 @@ def catalog_email(
         id=email_id,
         sender_name=str(sender.get("name") or UNKNOWN_SENDER),
         sender_email=str(sender.get("email") or ""),
-        to=_addresses(record.get("recipients") or record.get("to")) or (self_email,),
+        to=_addresses(record.get("recipients") or record.get("to")) or (mail.self_email,),
         cc=_addresses(record.get("cc")),
         has_attachment=bool(attachments) if has_attachment is None else bool(has_attachment),
         attachments=attachments,
@@ -54,12 +50,11 @@ def catalog_email(
     )
 
 
-def catalog_state(catalog: Any, email_id: str, *, keep_read: bool) -> EmailState:
+def catalog_state(record: Record, *, keep_read: bool) -> EmailState:
     """Initial flags and folder: folder from the catalog, else junk if marked junk, else inbox.
 
     `keep_read` keeps the catalog's isRead (preloaded history); newly delivered mail is unread.
     """
-    record = catalog.table(ENVIRONMENT, "emails").get(email_id) or {}
     folder = record.get("folder") or (
         "junk" if record.get("junk") or record.get("isJunk") else "inbox"
     )

@@ -12,10 +12,10 @@ record without growth points keeps its catalogued count, which is the original's
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
 
 from apps.kit.arrivals import Stamp
-from apps.kit.records import read
+from apps.kit.feeds import from_catalog
+from apps.kit.records import Record, read
 from apps.kit.streaming import whole
 from apps.kit.waypoints import growing
 from apps.microtube.state import (
@@ -45,13 +45,11 @@ SUBJECT_BY_CATEGORY: Mapping[str, str] = {
 }
 
 
-def catalog_channel(tube: Tube, channel_id: str, stamp: Stamp) -> Channel | None:
+@from_catalog(ENVIRONMENT, "channels")
+def catalog_channel(tube: Tube, channel_id: str, record: Record, stamp: Stamp) -> Channel:
     """The channel as loaded now. The channel marked isSelf shows the self user's name and
     handle, as the original substitutes them."""
     catalog = tube.catalog
-    record = catalog.table(ENVIRONMENT, "channels").get(channel_id)
-    if record is None:
-        return None
     is_self = bool(record.get("isSelf")) or channel_id == SELF_CHANNEL
     me = getattr(catalog, "self_user", None) or {}
     name, handle = str(record.get("name", "")), str(record.get("handle", ""))
@@ -71,7 +69,7 @@ def catalog_channel(tube: Tube, channel_id: str, stamp: Stamp) -> Channel | None
     )
 
 
-def _published_at(record: Mapping[str, Any], stamp: Stamp) -> float:
+def _published_at(record: Record, stamp: Stamp) -> float:
     """A new upload is published when it arrives; a preloaded one `publishedAgo` before the
     run (or, for a record without it, an age cycling with its catalog order, as the original's
     labels do)."""
@@ -83,10 +81,8 @@ def _published_at(record: Mapping[str, Any], stamp: Stamp) -> float:
     return stamp.at - float(ago)
 
 
-def catalog_video(tube: Tube, video_id: str, stamp: Stamp) -> Video | None:
-    record = tube.catalog.table(ENVIRONMENT, "videos").get(video_id)
-    if record is None:
-        return None
+@from_catalog(ENVIRONMENT, "videos")
+def catalog_video(tube: Tube, video_id: str, record: Record, stamp: Stamp) -> Video:
     category = str(record.get("category") or "")
     subject = str(record.get("thumbnailSubject") or SUBJECT_BY_CATEGORY.get(category, "abstract"))
     return read(
@@ -102,12 +98,10 @@ def catalog_video(tube: Tube, video_id: str, stamp: Stamp) -> Video | None:
     )
 
 
-def catalog_comment(tube: Tube, comment_id: str, stamp: Stamp) -> Comment | None:
+@from_catalog(ENVIRONMENT, "comments")
+def catalog_comment(tube: Tube, comment_id: str, record: Record, stamp: Stamp) -> Comment:
     """A scenario comment; preloaded ones were written a few hours before the run."""
     catalog = tube.catalog
-    record = catalog.table(ENVIRONMENT, "comments").get(comment_id)
-    if record is None:
-        return None
     user_id = str(record.get("user_id", ""))
     person = catalog.users.get(user_id) or {}
     me = getattr(catalog, "self_user", None) or {}
@@ -122,14 +116,12 @@ def catalog_comment(tube: Tube, comment_id: str, stamp: Stamp) -> Comment | None
     )
 
 
+@from_catalog(ENVIRONMENT, "notifications")
 def catalog_notification(
-    tube: Tube, notification_id: str, stamp: Stamp
-) -> tuple[Notification, NotificationState] | None:
+    tube: Tube, notification_id: str, record: Record, stamp: Stamp
+) -> tuple[Notification, NotificationState]:
     """A notification and its state: a new one arrives unread; preloaded ones came in hours
     before the run, read as the catalog says."""
-    record = tube.catalog.table(ENVIRONMENT, "notifications").get(notification_id)
-    if record is None:
-        return None
     arrived_at = stamp.at - (1 + stamp.order) * HOUR if stamp.preloaded else stamp.at
     channel = catalog_channel(tube, str(record.get("channel_id") or ""), stamp)
     notification = read(
