@@ -88,11 +88,7 @@ def decide_place_order(hood: Hood, payload: dict, now: float) -> dict:
         payload["limit_price"] = round(float(limit), 2)
     else:
         payload["limit_price"] = None
-    payload = {
-        "id": new_id("ord"),
-        **payload,
-        "type": payload.get("type") or "market",
-    }
+    payload = {"id": new_id("ord"), **payload, "type": payload.get("type") or "market"}
     check_affordable(hood, new_order(payload, now), now)
     return payload
 

@@ -23,14 +23,7 @@ from apps.microhood.actions import ACTIONS
 from apps.microhood.bench import sample_pages
 from apps.microhood.catalog import listing, news_item, starting_price, stock_record, trace
 from apps.microhood.orders import settle
-from apps.microhood.state import (
-    DEFAULT_BUYING_POWER,
-    ENVIRONMENT,
-    Holding,
-    Hood,
-    Stock,
-    WatchRow,
-)
+from apps.microhood.state import DEFAULT_BUYING_POWER, ENVIRONMENT, Holding, Hood, Stock, WatchRow
 from events.registry import Environment, EventType, LoggedEvent, Reducer, counted
 from events.schemas import Payload
 
@@ -229,11 +222,7 @@ SHOWN_COUNTS = (
         (r"\b{key} {n} shares?",),
         value_of=lambda hood, now, symbol: hood.holding(symbol).shares,
     ),
-    ShownCount(
-        "buying power",
-        lambda hood, now: int(hood.buying_power),
-        (r"Buying power \${n}",),
-    ),
+    ShownCount("buying power", lambda hood, now: int(hood.buying_power), (r"Buying power \${n}",)),
 )
 
 
