@@ -168,16 +168,8 @@ def matches_search(email: Email, query: str) -> bool:
     needle = query.strip().casefold()
     if not needle:
         return True
-    haystack = (
-        email.subject,
-        email.body,
-        email.sender_name,
-        email.sender_email,
-        *email.to,
-        *email.cc,
-        *email.bcc,
-    )
-    return any(needle in text.casefold() for text in haystack)
+    fields = (email.subject, email.body, email.sender_name, email.sender_email)
+    return any(needle in text.casefold() for text in (*fields, *email.to, *email.cc, *email.bcc))
 
 
 def in_folder(mail: Mail, folder: str | None) -> list[str]:

@@ -23,11 +23,8 @@ from apps.microtube import screens
 from apps.microtube.query import ChannelQuery, PlaylistQuery, ResultsQuery, WatchQuery
 from apps.microtube.state import SELF_CHANNEL, Tube, Video, unread_notification_count
 
-VIDEO_ACTIONS = {
-    "like_video": "",
-    "unlike_video": "",
-    "dislike_video": "",
-    "undislike_video": "",
+VIDEO_ACTIONS = {  # action → the toast it shows ("" for none)
+    **dict.fromkeys(("like_video", "unlike_video", "dislike_video", "undislike_video"), ""),
     "save_video": "Saved to Watch later",
     "unsave_video": "Removed from Watch later",
     "post_comment": "Comment added",
