@@ -78,7 +78,6 @@ def stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     query = StockQuery.from_params(request.GET)
     listed(page, symbol)
     watch(page, [symbol, *page.state.holdings, *account.watchlist_symbols(page.state)])
-    hood = screens.settled(page.state, page.now)
     return investing(
         request,
         page,
@@ -86,8 +85,6 @@ def stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
         query=query,
         screen=screens.stock_screen(page.state, symbol, page.now, query.range, span(page)),
         resting=screens.resting_orders(page.state, symbol, page.now),
-        buying_power_value=hood.buying_power,
-        self_url=f"{page.root}/stocks/{symbol}?{query.querystring()}".rstrip("?"),
     )
 
 

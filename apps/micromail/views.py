@@ -60,7 +60,6 @@ def base_context(page: Page, current_folder: str | None, back: str = "") -> dict
         "folders": folder_links(mail, current_folder, root),
         "favorites": favorite_links(mail, current_folder, root),
         "folders_back": back,
-        "current_folder": current_folder,
         "compose_url": compose_url(root, "new"),
         "all_folders": [(f, FOLDER_TITLES[f]) for f in FOLDERS],
     }
@@ -72,7 +71,6 @@ def render_mailbox(request: HttpRequest, page: Page, query: MailboxQuery) -> Htt
         **base_context(page, query.folder, screen.back),
         "screen": screen,
         "query": query,
-        "self_url": page.root + "/" + query.querystring(),
     }
     return render_screen(request, page, "micromail/mailbox.html", context)
 

@@ -160,7 +160,6 @@ def watch(request: HttpRequest, page: Page) -> HttpResponse:
         **playing(tube, video),
         related=screens.related(tube, video.id),
         lists=[p for p in screens.playlists(tube) if not p.built_in],
-        watched=video.id in tube.watched,
     )
 
 
