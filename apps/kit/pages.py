@@ -11,7 +11,7 @@ so implicit effects (opening marks read) never happen behind the user's back.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cached_property, wraps
 from typing import Any
@@ -280,3 +280,11 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             return rejected(request, page, reason, missing=True)
 
     return renderable(wrapper)  # the only views the live protocol renders
+
+
+def chosen(name: str, value: str, allowed: Sequence[str]) -> str:
+    """`value` of the form field or URL parameter `name` when it is one of `allowed`, else a 400
+    page naming them (the message `QueryState` gives a URL's choices)."""
+    if value not in allowed:
+        raise ActionRejected(f"{name}={value!r} is not valid; allowed: {', '.join(allowed)}")
+    return value

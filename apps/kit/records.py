@@ -22,6 +22,7 @@ from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
 
 from apps.kit.arrivals import Stamp
+from apps.kit.streaming import whole
 
 T = TypeVar("T")
 Record = Mapping[str, Any]
@@ -97,3 +98,9 @@ def reader(
         return read(kind, record, id=record_id, **computed)
 
     return make
+
+
+def whole_number(key: str, default: int = 0) -> Field:
+    """A catalog number as an int, forgiving (`streaming.whole`): `"1200"` or `1200`; `default`
+    when it is missing or garbled."""
+    return lambda record: whole(record.get(key), default)

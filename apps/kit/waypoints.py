@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import bisect
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -114,3 +115,13 @@ class Waypoints:
             if reached(value):
                 return at
         return None
+
+
+def growing(start: float, growth: Iterable[Sequence[float]] | None, since: float) -> Waypoints:
+    """A catalogued count that climbs while a run lasts: `start` until `since` (when its item
+    arrived), then along `growth`, the catalog's `[[seconds after since, value], …]`; without
+    growth points, flat at `start` (the original's behaviour)."""
+    if not growth:
+        return Waypoints(start)
+    points = [(since, start), *((since + float(dt), float(value)) for dt, value in growth)]
+    return Waypoints(start).with_points(points)

@@ -88,11 +88,7 @@ def decide_place_order(hood: Hood, payload: dict, now: float) -> dict:
         payload["limit_price"] = round(float(limit), 2)
     else:
         payload["limit_price"] = None
-    payload = {
-        "id": new_id("ord"),
-        **payload,
-        "type": payload.get("type") or "market",
-    }
+    payload = {"id": new_id("ord"), **payload, "type": payload.get("type") or "market"}
     check_affordable(hood, new_order(payload, now), now)
     return payload
 
@@ -136,9 +132,9 @@ def reduce_cancel_order(hood: Hood, event: LoggedEvent) -> Hood:
 decide_watch = checking("stocks", "symbol", "stock", "is listed")
 
 
-def watching(on: bool):
-    """A reducer putting the symbol on (or taking it off) the watchlist; the original keeps the
-    stored row when it is taken off and flips the flag back when it is added again."""
+def watching(on: bool, help: str) -> Action:
+    """Putting the symbol on (or taking it off) the watchlist, by its star; the original keeps
+    the stored row when it is taken off and flips the flag back when it is added again."""
 
     def reduce(hood: Hood, event: LoggedEvent) -> Hood:
         symbol = event.payload["symbol"]
@@ -150,7 +146,7 @@ def watching(on: bool):
             return hood
         return with_items(hood, "watchlist", [(symbol, replace(row, on=on))])
 
-    return reduce
+    return Action(Symbol, decide_watch, reduce, help=help, page=star_button)
 
 
 # --- where a person does it (Action.page): forms marked data-action="<name>" ------------------
@@ -194,19 +190,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             page=cancel_button,
             timed=True,
         ),
-        "add_to_watchlist": Action(
-            Symbol,
-            decide_watch,
-            watching(True),
-            help="Put a stock on the watchlist.",
-            page=star_button,
-        ),
-        "remove_from_watchlist": Action(
-            Symbol,
-            decide_watch,
-            watching(False),
-            help="Take a stock off the watchlist.",
-            page=star_button,
-        ),
+        "add_to_watchlist": watching(True, "Put a stock on the watchlist."),
+        "remove_from_watchlist": watching(False, "Take a stock off the watchlist."),
     }
 )

@@ -7,7 +7,10 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
-from apps.microhood.state import ENVIRONMENT, NewsItem, Stock
+from apps.kit.arrivals import Stamp
+from apps.kit.feeds import from_catalog
+from apps.kit.records import Record, read
+from apps.microhood.state import ENVIRONMENT, Hood, NewsItem, Stock
 
 TRACES = "price_traces"
 
@@ -17,14 +20,11 @@ def _number(value: Any) -> float | None:
 
 
 def listing(record: Mapping[str, Any]) -> Stock:
-    return Stock(
+    return read(
+        Stock,
+        record,
         symbol=str(record["symbol"]),
         name=str(record.get("name") or record["symbol"]),
-        color=str(record.get("color") or "#333"),
-        org_id=record.get("orgId"),
-        asset_class=str(record.get("assetClass") or "stock"),
-        sector=str(record.get("sector") or ""),
-        description=str(record.get("description") or ""),
         catalog_avg_cost=_number(record.get("avgCost")) or 0.0,
         market_cap=_number(record.get("marketCap")),
         pe_ratio=_number(record.get("peRatio")),
@@ -47,24 +47,13 @@ def trace(catalog: Any, symbol: str) -> list[tuple[float, float]]:
     return [(float(t), float(p)) for t, p in points or ()]
 
 
-def news_item(
-    catalog: Any, news_id: str, *, arrived_at: float, preloaded: bool = False
-) -> NewsItem | None:
+@from_catalog(ENVIRONMENT, "news")
+def news_item(hood: Hood, news_id: str, record: Record, stamp: Stamp) -> NewsItem:
     """The catalog story; a preloaded one is dated `ageMinutes` before its arrival, one that
     arrives during the task is dated then."""
-    record = catalog.table(ENVIRONMENT, "news").get(news_id)
-    if record is None:
-        return None
-    age = (_number(record.get("ageMinutes")) or 0.0) * 60 if preloaded else 0.0
-    return NewsItem(
-        id=news_id,
-        source=str(record.get("source") or ""),
-        title=str(record.get("title") or ""),
-        summary=str(record.get("summary") or ""),
-        symbols=tuple(str(s) for s in record.get("symbols") or ()),
-        published_at=arrived_at - age,
-        data=json.dumps(dict(record)),
-    )
+    age = (_number(record.get("ageMinutes")) or 0.0) * 60 if stamp.preloaded else 0.0
+    data = json.dumps(dict(record))
+    return read(NewsItem, record, id=news_id, published_at=stamp.at - age, data=data)
 
 
 def watch_row(catalog: Any, symbol: str) -> Mapping[str, Any] | None:

@@ -23,15 +23,7 @@ from apps.microhood.actions import ACTIONS
 from apps.microhood.bench import sample_pages
 from apps.microhood.catalog import listing, news_item, starting_price, stock_record, trace
 from apps.microhood.orders import settle
-from apps.microhood.state import (
-    DEFAULT_BUYING_POWER,
-    ENVIRONMENT,
-    Holding,
-    Hood,
-    NewsItem,
-    Stock,
-    WatchRow,
-)
+from apps.microhood.state import DEFAULT_BUYING_POWER, ENVIRONMENT, Holding, Hood, Stock, WatchRow
 from events.registry import Environment, EventType, LoggedEvent, Reducer, counted
 from events.schemas import Payload
 
@@ -51,11 +43,7 @@ def make_watch_row(hood: Hood, symbol: str, stamp: Stamp) -> WatchRow | None:
     return None if row is None else WatchRow(symbol, MappingProxyType(dict(row)))
 
 
-def make_story(hood: Hood, news_id: str, stamp: Stamp) -> NewsItem | None:
-    return news_item(hood.catalog, news_id, arrived_at=stamp.at, preloaded=stamp.preloaded)
-
-
-deliver_news = Delivery("news", make_story)
+deliver_news = Delivery("news", news_item)
 
 # A waypoint as the original writes it: [time, price].
 TimePrice = Annotated[list[float], Field(min_length=2, max_length=2)]
@@ -219,10 +207,6 @@ def materialize(hood: Hood, now: float, conn: sqlite3.Connection) -> None:
     write_tables(hood, now, conn)
 
 
-def _stock_on_screen(path: str) -> str:
-    return item_on_screen(path, "stocks/")
-
-
 # The numbers shown in more than one place (apps.kit.counts): a position's shares in the home
 # page's list and on its stock page; the buying power on the home page and the trade ticket.
 SHOWN_COUNTS = (
@@ -230,7 +214,7 @@ SHOWN_COUNTS = (
         "shares of the stock on screen",
         lambda hood, now: 0,
         ("Your position Shares {n}",),
-        value_on=lambda hood, now, path: hood.holding(_stock_on_screen(path)).shares,
+        value_on=lambda hood, now, path: hood.holding(item_on_screen(path, "stocks/")).shares,
     ),
     ShownCount(
         "shares listed",
@@ -238,11 +222,7 @@ SHOWN_COUNTS = (
         (r"\b{key} {n} shares?",),
         value_of=lambda hood, now, symbol: hood.holding(symbol).shares,
     ),
-    ShownCount(
-        "buying power",
-        lambda hood, now: int(hood.buying_power),
-        (r"Buying power \${n}",),
-    ),
+    ShownCount("buying power", lambda hood, now: int(hood.buying_power), (r"Buying power \${n}",)),
 )
 
 

@@ -132,7 +132,6 @@ class Portfolio:
     percent: str
     up: bool
     buying_power: str
-    cash: str
     chart: Chart
 
 
@@ -151,7 +150,6 @@ def portfolio(hood: Hood, now: float, range_name: str, span: float) -> Portfolio
         percent=shown.percent,
         up=shown.up,
         buying_power=money(hood.buying_power),
-        cash=money(account.total_cash(hood)),
         chart=line,
     )
 

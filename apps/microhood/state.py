@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any, ClassVar
 
+from apps.kit.records import from_catalog, text_or, texts
 from apps.kit.state import EMPTY, SelfUserState
 from apps.kit.waypoints import Waypoints
 
@@ -24,11 +25,11 @@ class Stock:
 
     symbol: str
     name: str
-    color: str = "#333"
-    org_id: str | None = None
-    asset_class: str = "stock"  # "stock" | "crypto"
-    sector: str = ""
-    description: str = ""
+    color: str = from_catalog(text_or("color", "#333"), default="#333")
+    # "stock" | "crypto"
+    asset_class: str = from_catalog(text_or("assetClass", "stock"), default="stock")
+    sector: str = from_catalog(text_or("sector"), default="")
+    description: str = from_catalog(text_or("description"), default="")
     catalog_avg_cost: float = 0.0  # the `stocks.avgCost` column: the catalog's, not the live one
     market_cap: float | None = None
     pe_ratio: float | None = None
@@ -48,10 +49,10 @@ class Holding:
 @dataclass(frozen=True)
 class NewsItem:
     id: str
-    source: str
-    title: str
-    summary: str = ""
-    symbols: tuple[str, ...] = ()
+    source: str = from_catalog(text_or("source"))
+    title: str = from_catalog(text_or("title"))
+    summary: str = from_catalog(text_or("summary"), default="")
+    symbols: tuple[str, ...] = from_catalog(texts("symbols"), default=())
     published_at: float = 0.0  # simulated seconds (negative: before the task started)
     data: str = "{}"  # the catalog row as JSON: the `news.data` column
 

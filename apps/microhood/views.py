@@ -8,11 +8,12 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from django.http import Http404, HttpRequest, HttpResponse
+from django.http import HttpRequest, HttpResponse
 from django.views.decorators.http import require_GET, require_POST
 
-from apps.kit.pages import Page, run_page
+from apps.kit.pages import Page, chosen, run_page
 from apps.kit.rendering import back_field, redirect_after, render_screen
+from apps.kit.streaming import present
 from apps.microhood import screens
 from apps.microhood import state as account
 from apps.microhood.query import RANGES, ChartQuery, SearchQuery, StockQuery
@@ -29,24 +30,26 @@ def watch(page: Page, symbols: Iterable[str]) -> None:
     page.changes_at(screens.next_shown_change(page.state, symbols, page.now, span(page)))
 
 
-def base_context(page: Page, tab: str) -> dict:
+def show(request: HttpRequest, page: Page, template: str, tab: str, **context) -> HttpResponse:
+    """`microhood/<template>.html` under the `tab`, with what every page's chrome shows."""
     hood = screens.settled(page.state, page.now)
-    return {
+    chrome = {
         "root": page.root + "/",
         "tab": tab,
         "self_name": hood.self_name,
         "buying_power": screens.money(hood.buying_power),
         "ranges": RANGES,
     }
+    return render_screen(request, page, f"microhood/{template}.html", {**chrome, **context})
 
 
-def investing(page: Page) -> dict:
-    """The Investing tab's context, with the Stocks / Lists sidebar."""
-    return {
-        **base_context(page, "investing"),
-        "holdings": screens.holding_rows(page.state, page.now),
-        "watchlist": screens.watch_rows(page.state, page.now),
-    }
+def investing(request: HttpRequest, page: Page, template: str, **context) -> HttpResponse:
+    """A page of the Investing tab, with its Stocks / Lists sidebar."""
+    holdings = screens.holding_rows(page.state, page.now)
+    watchlist = screens.watch_rows(page.state, page.now)
+    return show(
+        request, page, template, "investing", holdings=holdings, watchlist=watchlist, **context
+    )
 
 
 @require_GET
@@ -55,19 +58,18 @@ def home(request: HttpRequest, page: Page) -> HttpResponse:
     query = ChartQuery.from_params(request.GET)
     hood = page.state
     watch(page, [*hood.holdings, *account.watchlist_symbols(hood)])
-    context = {
-        **investing(page),
-        "query": query,
-        "portfolio": screens.portfolio(hood, page.now, query.range, span(page)),
-        "news": screens.newest_first(hood.news.values())[:8],
-    }
-    return render_screen(request, page, "microhood/home.html", context)
+    return investing(
+        request,
+        page,
+        "home",
+        query=query,
+        portfolio=screens.portfolio(hood, page.now, query.range, span(page)),
+        news=screens.newest_first(hood.news.values())[:8],
+    )
 
 
-def listed(page: Page, symbol: str) -> str:
-    if symbol not in page.state.stocks:
-        raise Http404("no such stock")  # unknown, or not loaded: alike
-    return symbol
+def listed(page: Page, symbol: str) -> None:
+    present(page.state.stocks.get(symbol), "stock")  # unknown, or not loaded: alike
 
 
 @require_GET
@@ -76,16 +78,14 @@ def stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     query = StockQuery.from_params(request.GET)
     listed(page, symbol)
     watch(page, [symbol, *page.state.holdings, *account.watchlist_symbols(page.state)])
-    hood = screens.settled(page.state, page.now)
-    context = {
-        **investing(page),
-        "query": query,
-        "screen": screens.stock_screen(page.state, symbol, page.now, query.range, span(page)),
-        "resting": screens.resting_orders(page.state, symbol, page.now),
-        "buying_power_value": hood.buying_power,
-        "self_url": f"{page.root}/stocks/{symbol}?{query.querystring()}".rstrip("?"),
-    }
-    return render_screen(request, page, "microhood/stock.html", context)
+    return investing(
+        request,
+        page,
+        "stock",
+        query=query,
+        screen=screens.stock_screen(page.state, symbol, page.now, query.range, span(page)),
+        resting=screens.resting_orders(page.state, symbol, page.now),
+    )
 
 
 def _quantity(text: str) -> int:
@@ -135,9 +135,7 @@ def place_order(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
 @run_page
 def watch_stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     listed(page, symbol)
-    intent = request.POST.get("intent", "add")
-    if intent not in ("add", "remove"):
-        raise ActionRejected(f"intent={intent!r} is not valid; allowed: add, remove")
+    intent = chosen("intent", request.POST.get("intent", "add"), ("add", "remove"))
     action = "add_to_watchlist" if intent == "add" else "remove_from_watchlist"
     page.act(action, {"symbol": symbol})
     done = f"{symbol} {'added to' if intent == 'add' else 'removed from'} your watchlist"
@@ -150,31 +148,27 @@ def market(request: HttpRequest, page: Page) -> HttpResponse:
     hood = page.state
     watch(page, hood.stocks)
     equities, coins = screens.market(hood, page.now)
-    context = {**base_context(page, "market"), "equities": equities, "coins": coins}
-    return render_screen(request, page, "microhood/market.html", context)
+    return show(request, page, "market", "market", equities=equities, coins=coins)
 
 
 @require_GET
 @run_page
 def watchlist(request: HttpRequest, page: Page) -> HttpResponse:
     watch(page, account.watchlist_symbols(page.state))
-    context = {**base_context(page, "lists"), "rows": screens.watch_rows(page.state, page.now)}
-    return render_screen(request, page, "microhood/watchlist.html", context)
+    return show(request, page, "watchlist", "lists", rows=screens.watch_rows(page.state, page.now))
 
 
 @require_GET
 @run_page
 def news(request: HttpRequest, page: Page) -> HttpResponse:
-    context = {**base_context(page, "news"), "news": screens.newest_first(page.state.news.values())}
-    return render_screen(request, page, "microhood/news.html", context)
+    return show(request, page, "news", "news", news=screens.newest_first(page.state.news.values()))
 
 
 @require_GET
 @run_page
 def orders(request: HttpRequest, page: Page) -> HttpResponse:
     watch(page, [])
-    context = {**base_context(page, "orders"), "orders": screens.order_rows(page.state, page.now)}
-    return render_screen(request, page, "microhood/orders.html", context)
+    return show(request, page, "orders", "orders", orders=screens.order_rows(page.state, page.now))
 
 
 @require_POST
@@ -190,5 +184,4 @@ def search(request: HttpRequest, page: Page) -> HttpResponse:
     query = SearchQuery.from_params(request.GET)
     results = screens.search(page.state, query.q, page.now)
     watch(page, [r.symbol for r in results])
-    context = {**base_context(page, "search"), "query": query, "results": results}
-    return render_screen(request, page, "microhood/search.html", context)
+    return show(request, page, "search", "search", query=query, results=results)

@@ -19,9 +19,9 @@ from urllib.parse import urlencode
 
 from pydantic import Field
 
-from apps.kit.deciding import checking, found, new_id
+from apps.kit.deciding import checking, found, marking, new_id
 from apps.kit.fields import ItemId, ItemIds, Line, Lines, Text
-from apps.kit.state import setting, with_changed, with_items, without
+from apps.kit.state import with_changed, with_items, without
 from apps.kit.streaming import id_payload
 from apps.micromail.query import MailboxQuery
 from apps.micromail.state import (
@@ -273,26 +273,23 @@ pane_button = reading_pane()  # the action's button in the open message's readin
 open_page = reading_pane(form=False)
 
 
-def marked(page: Callable[[Mail, dict], PageStep] = pane_button, **flags: bool) -> Action:
-    """An action that sets flags of one message (read, flagged, pinned): set, not toggled."""
-    return Action(EmailId, decide_on_email, setting("states", "email_id", **flags), page=page)
+# An action that sets flags of one message (read, flagged, pinned): set, not toggled.
+marks = marking(EmailId, decide_on_email, "states", "email_id", page=pane_button)
 
 
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
-        "open_email": Action(
-            EmailId,
-            decide_on_email,
-            setting("states", "email_id", is_read=True),
+        "open_email": marks(
+            is_read=True,
             help="Open a message; like any mail client this marks it read.",
             page=open_page,
         ),
-        "mark_read": marked(bulk_mark_read_page, is_read=True),
-        "mark_unread": marked(is_read=False),
-        "flag": marked(is_flagged=True),
-        "unflag": marked(is_flagged=False),
-        "pin": marked(is_pinned=True),
-        "unpin": marked(is_pinned=False),
+        "mark_read": marks(is_read=True, page=bulk_mark_read_page),
+        "mark_unread": marks(is_read=False),
+        "flag": marks(is_flagged=True),
+        "unflag": marks(is_flagged=False),
+        "pin": marks(is_pinned=True),
+        "unpin": marks(is_pinned=False),
         "move": Action(Move, decide_on_email, reduce_move, page=reading_pane("folder")),
         "delete": Action(
             EmailId,

@@ -10,7 +10,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from apps.micromail.state import ENVIRONMENT, Attachment, Email, EmailState
+from apps.kit.records import Record, read
+from apps.micromail.state import ENVIRONMENT, Attachment, Email, EmailState, Mail
 
 UNKNOWN_SENDER = "Unknown Sender"
 
@@ -24,56 +25,38 @@ def _addresses(value: Any) -> tuple[str, ...]:
 def attachments_by_email(catalog: Any) -> Mapping[str, tuple[Attachment, ...]]:
     grouped: dict[str, list[Attachment]] = {}
     for record in catalog.table(ENVIRONMENT, "attachments").values():
-        grouped.setdefault(str(record.get("email_id")), []).append(
-            Attachment(
-                id=str(record["id"]),
-                name=str(record.get("name", "")),
-                size=str(record.get("size", "")),
-            )
-        )
+        attachment = read(Attachment, record, id=str(record["id"]))
+        grouped.setdefault(str(record.get("email_id")), []).append(attachment)
     return {email_id: tuple(items) for email_id, items in grouped.items()}
 
 
-def catalog_email(
-    catalog: Any, email_id: str, *, arrived_at: float, self_email: str
-) -> Email | None:
-    """The message `email_id` as it arrives at `arrived_at`; None if the catalog lacks it."""
-    record = catalog.table(ENVIRONMENT, "emails").get(email_id)
-    if record is None:
-        return None
+def catalog_email(mail: Mail, email_id: str, record: Record, *, arrived_at: float) -> Email:
+    """The message `email_id` (its catalog `record`) as it arrives at `arrived_at`."""
+    catalog = mail.catalog
     sender = catalog.users.get(record.get("sender_id")) or {}
     attachments = catalog.index(attachments_by_email).get(email_id, ())
     has_attachment = record.get("hasAttachment")
-    return Email(
+    return read(
+        Email,
+        record,
         id=email_id,
-        subject=str(record.get("subject", "")),
-        body=str(record.get("body", "")),
         sender_name=str(sender.get("name") or UNKNOWN_SENDER),
         sender_email=str(sender.get("email") or ""),
-        to=_addresses(record.get("recipients") or record.get("to")) or (self_email,),
+        to=_addresses(record.get("recipients") or record.get("to")) or (mail.self_email,),
         cc=_addresses(record.get("cc")),
-        is_cc=bool(record.get("isCC", False)),
         has_attachment=bool(attachments) if has_attachment is None else bool(has_attachment),
-        is_external=bool(record.get("isExternal", False)),
-        importance=str(record.get("importance") or "normal"),
-        mentions_me=bool(record.get("mentionsMe", False)),
         attachments=attachments,
         arrived_at=float(arrived_at),
     )
 
 
-def catalog_state(catalog: Any, email_id: str, *, keep_read: bool) -> EmailState:
+def catalog_state(record: Record, *, keep_read: bool) -> EmailState:
     """Initial flags and folder: folder from the catalog, else junk if marked junk, else inbox.
 
     `keep_read` keeps the catalog's isRead (preloaded history); newly delivered mail is unread.
     """
-    record = catalog.table(ENVIRONMENT, "emails").get(email_id) or {}
     folder = record.get("folder") or (
         "junk" if record.get("junk") or record.get("isJunk") else "inbox"
     )
-    return EmailState(
-        folder=str(folder),
-        is_read=bool(record.get("isRead", False)) if keep_read else False,
-        is_flagged=bool(record.get("isFlagged", False)),
-        is_pinned=bool(record.get("isPinned", False)),
-    )
+    is_read = bool(record.get("isRead", False)) if keep_read else False
+    return read(EmailState, record, folder=str(folder), is_read=is_read)

@@ -7,6 +7,7 @@ from apps.kit import feeds
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
+from apps.kit.records import Record
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, Table, named, tables
 from apps.micromail import state as mailbox
@@ -35,16 +36,14 @@ BASELINES = counted(
 )
 
 
-def make_email(mail: Mail, email_id: str, stamp: Stamp) -> tuple[Email, EmailState] | None:
+@feeds.from_catalog(ENVIRONMENT, "emails")
+def make_email(mail: Mail, email_id: str, record: Record, stamp: Stamp) -> tuple[Email, EmailState]:
     """A catalog message as it arrives: preloaded mail keeps its catalog read flag and is dated
     its record's `ageMinutes` (else five minutes) before the start; new mail arrives unread,
     stamped with the event's time."""
-    record = mail.catalog.table(ENVIRONMENT, "emails").get(email_id) or {}
     arrived_at = feeds.arrived_at(record, stamp, default_age_s=PRELOAD_AGE_S)
-    email = catalog_email(mail.catalog, email_id, arrived_at=arrived_at, self_email=mail.self_email)
-    if email is None:
-        return None
-    return email, catalog_state(mail.catalog, email_id, keep_read=stamp.preloaded)
+    email = catalog_email(mail, email_id, record, arrived_at=arrived_at)
+    return email, catalog_state(record, keep_read=stamp.preloaded)
 
 
 deliver_emails = Delivery("emails", make_email, states="states")

@@ -9,6 +9,7 @@ from dataclasses import dataclass, replace
 from types import MappingProxyType
 from typing import ClassVar
 
+from apps.kit.records import flag, from_catalog, text, text_or
 from apps.kit.state import SelfUserState
 from apps.kit.streaming import no_items
 
@@ -35,8 +36,8 @@ PREVIEW_LENGTH = 140
 @dataclass(frozen=True)
 class Attachment:
     id: str
-    name: str
-    size: str
+    name: str = from_catalog(text("name"))
+    size: str = from_catalog(text("size"))
 
 
 @dataclass(frozen=True)
@@ -44,18 +45,19 @@ class Email:
     """The immutable content of one message (what upstream calls the email row)."""
 
     id: str
-    subject: str
-    body: str
+    subject: str = from_catalog(text("subject"))
+    body: str = from_catalog(text("body"))
     sender_name: str
     sender_email: str
     to: tuple[str, ...]
     cc: tuple[str, ...] = ()
     bcc: tuple[str, ...] = ()  # only ever set on mail the self user wrote
-    is_cc: bool = False
+    is_cc: bool = from_catalog(flag("isCC"), default=False)
     has_attachment: bool = False
-    is_external: bool = False
-    importance: str = "normal"  # "high" | "normal" | "low"
-    mentions_me: bool = False
+    is_external: bool = from_catalog(flag("isExternal"), default=False)
+    # "high" | "normal" | "low"
+    importance: str = from_catalog(text_or("importance", "normal"), default="normal")
+    mentions_me: bool = from_catalog(flag("mentionsMe"), default=False)
     attachments: tuple[Attachment, ...] = ()
     arrived_at: float = 0.0  # simulated seconds, authored scale
     gone_at: float | None = None  # recalled by its sender then (apps.kit.retractions)
@@ -77,8 +79,8 @@ class EmailState:
 
     folder: str = "inbox"
     is_read: bool = False
-    is_flagged: bool = False
-    is_pinned: bool = False
+    is_flagged: bool = from_catalog(flag("isFlagged"), default=False)
+    is_pinned: bool = from_catalog(flag("isPinned"), default=False)
 
 
 @dataclass(frozen=True)
@@ -166,16 +168,8 @@ def matches_search(email: Email, query: str) -> bool:
     needle = query.strip().casefold()
     if not needle:
         return True
-    haystack = (
-        email.subject,
-        email.body,
-        email.sender_name,
-        email.sender_email,
-        *email.to,
-        *email.cc,
-        *email.bcc,
-    )
-    return any(needle in text.casefold() for text in haystack)
+    fields = (email.subject, email.body, email.sender_name, email.sender_email)
+    return any(needle in text.casefold() for text in (*fields, *email.to, *email.cc, *email.bcc))
 
 
 def in_folder(mail: Mail, folder: str | None) -> list[str]:

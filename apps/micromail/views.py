@@ -12,7 +12,7 @@ from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse, JsonResponse
 from django.views.decorators.http import require_GET, require_http_methods, require_POST
 
-from apps.kit.pages import Page, one_of, run_page
+from apps.kit.pages import Page, chosen, one_of, run_page
 from apps.kit.rendering import is_fragment, redirect_after, redirect_to, render_screen
 from apps.micromail.actions import existing_email
 from apps.micromail.compose import COMPOSE_MODES, Composition, prefill
@@ -60,7 +60,6 @@ def base_context(page: Page, current_folder: str | None, back: str = "") -> dict
         "folders": folder_links(mail, current_folder, root),
         "favorites": favorite_links(mail, current_folder, root),
         "folders_back": back,
-        "current_folder": current_folder,
         "compose_url": compose_url(root, "new"),
         "all_folders": [(f, FOLDER_TITLES[f]) for f in FOLDERS],
     }
@@ -72,7 +71,6 @@ def render_mailbox(request: HttpRequest, page: Page, query: MailboxQuery) -> Htt
         **base_context(page, query.folder, screen.back),
         "screen": screen,
         "query": query,
-        "self_url": page.root + "/" + query.querystring(),
     }
     return render_screen(request, page, "micromail/mailbox.html", context)
 
@@ -201,15 +199,9 @@ def compose(request: HttpRequest, page: Page) -> HttpResponse:
     The compose form's own saving sends save_draft with the AUTOSAVE_HEADER: answered in JSON.
     """
     if request.method == "GET":
-        mode = request.GET.get("mode") or "new"
-        if mode not in COMPOSE_MODES:
-            raise ActionRejected(f"mode={mode!r} is not valid; allowed: {', '.join(COMPOSE_MODES)}")
+        mode = chosen("mode", request.GET.get("mode") or "new", COMPOSE_MODES)
         return render_compose(request, page, prefill(page.state, mode, request.GET.get("email")))
-    intent = request.POST.get("intent", "send")
-    if intent not in COMPOSE_INTENTS:
-        raise ActionRejected(
-            f"intent={intent!r} is not valid; allowed: {', '.join(COMPOSE_INTENTS)}"
-        )
+    intent = chosen("intent", request.POST.get("intent", "send"), COMPOSE_INTENTS)
     typed = Composition.typed(request.POST)
     if intent == "edit":  # back from the discard confirmation: the form as it was
         return render_compose(request, page, typed)

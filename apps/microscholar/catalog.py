@@ -14,60 +14,29 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
+from apps.kit.arrivals import Stamp
+from apps.kit.feeds import from_catalog
+from apps.kit.records import Record, read
 from apps.kit.streaming import whole
-from apps.kit.waypoints import Waypoints
-from apps.microscholar.state import ENVIRONMENT, Alert, Paper
+from apps.kit.waypoints import growing
+from apps.microscholar.state import ENVIRONMENT, Alert, Paper, Scholar
 
 
-def citation_series(record: Mapping[str, Any], indexed_at: float) -> Waypoints:
-    """The catalogued count, flat until the paper is indexed, then along its growth points."""
-    start = float(whole(record.get("citedBy")))
-    growth = record.get("citationGrowth") or ()
-    if not growth:
-        return Waypoints(start)
-    points = [(indexed_at, start)] + [(indexed_at + float(dt), float(v)) for dt, v in growth]
-    return Waypoints(start).with_points(points)
+@from_catalog(ENVIRONMENT, "papers")
+def catalog_paper(scholar: Scholar, paper_id: str, record: Record, stamp: Stamp) -> Paper:
+    """The paper as indexed now."""
+    # The catalogued count, flat until the paper is indexed, then along its growth points.
+    citations = growing(float(whole(record.get("citedBy"))), record.get("citationGrowth"), stamp.at)
+    return read(Paper, record, id=paper_id, citations=citations, indexed_at=float(stamp.at))
 
 
-def catalog_paper(catalog: Any, paper_id: str, *, indexed_at: float) -> Paper | None:
-    """The paper `paper_id` as indexed at `indexed_at`; None if the catalog lacks it."""
-    record = catalog.table(ENVIRONMENT, "papers").get(paper_id)
-    if record is None:
-        return None
-    return Paper(
-        id=paper_id,
-        title=str(record.get("title", "")),
-        author_ids=tuple(str(a) for a in record.get("authorIds") or ()),
-        authors=str(record.get("authors", "")),
-        source=str(record.get("source", "")),
-        year=whole(record.get("year")),
-        snippet=str(record.get("snippet", "")),
-        citations=citation_series(record, indexed_at),
-        pdf_source=str(record.get("pdfSource") or ""),
-        is_book=bool(record.get("isBook", False)),
-        is_target=bool(record.get("isTargetPaper", False)),
-        task_type=str(record.get("taskType") or "noise"),
-        versions=whole(record.get("versions"), 1),
-        indexed_at=float(indexed_at),
-    )
-
-
+@from_catalog(ENVIRONMENT, "alerts")
 def catalog_alert(
-    catalog: Any, alert_id: str, *, arrived_at: float, keep_read: bool
-) -> tuple[Alert, bool] | None:
-    """The alert and whether it is read: as catalogued when `keep_read`, else unread."""
-    record = catalog.table(ENVIRONMENT, "alerts").get(alert_id)
-    if record is None:
-        return None
-    alert = Alert(
-        id=alert_id,
-        type=str(record.get("type") or "keyword"),
-        title=str(record.get("title", "")),
-        description=str(record.get("description", "")),
-        related_paper_id=str(record.get("relatedPaperId") or ""),
-        arrived_at=float(arrived_at),
-    )
-    return alert, keep_read and bool(record.get("isRead", False))
+    scholar: Scholar, alert_id: str, record: Record, stamp: Stamp
+) -> tuple[Alert, bool]:
+    """The alert and whether it is read: a preloaded one as catalogued, a new one unread."""
+    alert = read(Alert, record, id=alert_id, arrived_at=float(stamp.at))
+    return alert, stamp.preloaded and bool(record.get("isRead", False))
 
 
 @dataclass(frozen=True)

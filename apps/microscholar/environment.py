@@ -44,20 +44,9 @@ BASELINES = counted(
     }
 )
 
-deliver_papers = Delivery(
-    "papers",
-    lambda scholar, paper_id, stamp: catalog_paper(scholar.catalog, paper_id, indexed_at=stamp.at),
-    states="paper_states",
-    fresh=PaperState,
-)
+deliver_papers = Delivery("papers", catalog_paper, states="paper_states", fresh=PaperState)
 # Preloaded alerts keep their catalogued read state; new ones arrive unread.
-deliver_alerts = Delivery(
-    "alerts",
-    lambda scholar, alert_id, stamp: catalog_alert(
-        scholar.catalog, alert_id, arrived_at=stamp.at, keep_read=stamp.preloaded
-    ),
-    states="alert_read",
-)
+deliver_alerts = Delivery("alerts", catalog_alert, states="alert_read")
 
 
 def shelve(scholar: Scholar, paper_ids: Iterable[str], at: float, *, preloaded: bool) -> Scholar:

@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
+from apps.kit.records import flag, from_catalog, text, text_or, texts, whole_number
 from apps.kit.retractions import is_gone, present
 from apps.kit.state import CatalogState
 from apps.kit.streaming import no_items, shown_count
@@ -24,18 +25,20 @@ class Paper:
     """One indexed article (the catalog record as the site shows it)."""
 
     id: str
-    title: str
-    author_ids: tuple[str, ...]
-    authors: str  # display string, "C Taylor, H Marsh" (the eval column)
-    source: str
-    year: int
-    snippet: str  # the abstract (the eval column is called snippet, as the original's)
+    title: str = from_catalog(text("title"))
+    author_ids: tuple[str, ...] = from_catalog(texts("authorIds"))
+    # display string, "C Taylor, H Marsh" (the eval column)
+    authors: str = from_catalog(text("authors"))
+    source: str = from_catalog(text("source"))
+    year: int = from_catalog(whole_number("year"))
+    # the abstract (the eval column is called snippet, as the original's)
+    snippet: str = from_catalog(text("snippet"))
     citations: Waypoints  # "Cited by N" over simulated time
-    pdf_source: str = ""
-    is_book: bool = False
-    is_target: bool = False
-    task_type: str = "noise"
-    versions: int = 1
+    pdf_source: str = from_catalog(text_or("pdfSource"), default="")
+    is_book: bool = from_catalog(flag("isBook"), default=False)
+    is_target: bool = from_catalog(flag("isTargetPaper"), default=False)
+    task_type: str = from_catalog(text_or("taskType", "noise"), default="noise")
+    versions: int = from_catalog(whole_number("versions", 1), default=1)
     indexed_at: float = 0.0  # simulated seconds
     gone_at: float | None = None  # withdrawn by its authors then (apps.kit.retractions)
 
@@ -56,10 +59,10 @@ class PaperState:
 @dataclass(frozen=True)
 class Alert:
     id: str
-    type: str  # citation | new_paper | keyword
-    title: str
-    description: str
-    related_paper_id: str = ""
+    type: str = from_catalog(text_or("type", "keyword"))  # citation | new_paper | keyword
+    title: str = from_catalog(text("title"))
+    description: str = from_catalog(text("description"))
+    related_paper_id: str = from_catalog(text_or("relatedPaperId"), default="")
     arrived_at: float = 0.0
 
 

@@ -16,7 +16,7 @@ from urllib.parse import quote
 
 from pydantic import Field
 
-from apps.kit.deciding import checking
+from apps.kit.deciding import checking, marking
 from apps.kit.fields import ItemId, Line, Text
 from apps.kit.state import setting, with_changed, with_items
 from apps.kit.streaming import bounded_text, id_payload, numbered_id
@@ -173,10 +173,8 @@ def create_playlist_page(tube: Tube, payload: dict) -> PageStep:
     return PageStep("feed/playlists", {"name": payload["name"]})
 
 
-def rating(help: str, **changes: Any) -> Action:
-    """An action setting the user's rating or save of a video, on its watch page."""
-    reduce = setting("video_states", "video_id", **changes)
-    return Action(VideoId, video_exists, reduce, help=help, page=on_watch_page())
+# The user's rating or save of a video, on its watch page.
+rates = marking(VideoId, video_exists, "video_states", "video_id", page=on_watch_page())
 
 
 def on_notification(help: str, **changes: Any) -> Action:
@@ -197,12 +195,12 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             help="Watch a video (opening its watch page does it); adds it to the history.",
             page=opening_watch_page,
         ),
-        "like_video": rating("Like a video (clears a dislike).", liked=True, disliked=False),
-        "unlike_video": rating("Remove your like.", liked=False),
-        "dislike_video": rating("Dislike a video (clears a like).", disliked=True, liked=False),
-        "undislike_video": rating("Remove your dislike.", disliked=False),
-        "save_video": rating("Save to Watch later.", saved=True),
-        "unsave_video": rating("Remove from Watch later.", saved=False),
+        "like_video": rates(help="Like a video (clears a dislike).", liked=True, disliked=False),
+        "unlike_video": rates(help="Remove your like.", liked=False),
+        "dislike_video": rates(help="Dislike a video (clears a like).", disliked=True, liked=False),
+        "undislike_video": rates(help="Remove your dislike.", disliked=False),
+        "save_video": rates(help="Save to Watch later.", saved=True),
+        "unsave_video": rates(help="Remove from Watch later.", saved=False),
         "post_comment": Action(
             PostComment,
             decide_comment,

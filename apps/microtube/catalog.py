@@ -12,11 +12,12 @@ record without growth points keeps its catalogued count, which is the original's
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
 
 from apps.kit.arrivals import Stamp
+from apps.kit.feeds import from_catalog
+from apps.kit.records import Record, read
 from apps.kit.streaming import whole
-from apps.kit.waypoints import Waypoints
+from apps.kit.waypoints import growing
 from apps.microtube.state import (
     ENVIRONMENT,
     SELF_CHANNEL,
@@ -31,47 +32,24 @@ from apps.microtube.state import (
 HOUR, DAY = 3600.0, 86400.0
 # The original's categories (and ours) → the apps.media picture subject of the thumbnail.
 SUBJECT_BY_CATEGORY: Mapping[str, str] = {
-    "tech": "screenshot",
-    "education": "screenshot",
-    "gaming": "screenshot",
-    "news": "office",
+    **dict.fromkeys(("tech", "education", "gaming"), "screenshot"),
+    **dict.fromkeys(("news", "diy"), "office"),
     "science": "abstract",
-    "cooking": "food",
-    "food": "food",
-    "fitness": "people",
-    "travel": "landscape",
-    "diy": "office",
-    "auto": "city",
-    "autos": "city",
-    "history": "landscape",
-    "comedy": "people",
-    "fashion": "people",
+    **dict.fromkeys(("cooking", "food"), "food"),
+    **dict.fromkeys(("fitness", "comedy", "fashion", "sports", "lifestyle"), "people"),
+    **dict.fromkeys(("travel", "history"), "landscape"),
+    **dict.fromkeys(("auto", "autos", "movies", "film", "language"), "city"),
     "pets": "pet",
     "finance": "chart",
-    "movies": "city",
-    "film": "city",
-    "sports": "people",
     "music": "product",
-    "lifestyle": "people",
-    "language": "city",
 }
 
 
-def growth_series(start: float, growth: Any, arrived_at: float) -> Waypoints:
-    """`start` until the item arrives, then along its growth points (seconds after arrival)."""
-    if not growth:
-        return Waypoints(start)
-    points = [(arrived_at, start)] + [(arrived_at + float(dt), float(v)) for dt, v in growth]
-    return Waypoints(start).with_points(points)
-
-
-def catalog_channel(tube: Tube, channel_id: str, stamp: Stamp) -> Channel | None:
+@from_catalog(ENVIRONMENT, "channels")
+def catalog_channel(tube: Tube, channel_id: str, record: Record, stamp: Stamp) -> Channel:
     """The channel as loaded now. The channel marked isSelf shows the self user's name and
     handle, as the original substitutes them."""
     catalog = tube.catalog
-    record = catalog.table(ENVIRONMENT, "channels").get(channel_id)
-    if record is None:
-        return None
     is_self = bool(record.get("isSelf")) or channel_id == SELF_CHANNEL
     me = getattr(catalog, "self_user", None) or {}
     name, handle = str(record.get("name", "")), str(record.get("handle", ""))
@@ -79,20 +57,19 @@ def catalog_channel(tube: Tube, channel_id: str, stamp: Stamp) -> Channel | None
         name = str(me.get("name") or name)
         handle = f"@{me['username']}" if me.get("username") else handle
     start = float(whole(record.get("subscribers")))
-    return Channel(
+    return read(
+        Channel,
+        record,
         id=channel_id,
         name=name,
         handle=handle,
-        description=str(record.get("description", "")),
-        subscribers=growth_series(start, record.get("subscriberGrowth"), stamp.at),
-        video_total=whole(record.get("videos")),
-        verified=bool(record.get("isVerified", False)),
+        subscribers=growing(start, record.get("subscriberGrowth"), stamp.at),
         is_self=is_self,
         owner_id=str(record.get("ownerId") or (me.get("id", "") if is_self else "")),
     )
 
 
-def _published_at(record: Mapping[str, Any], stamp: Stamp) -> float:
+def _published_at(record: Record, stamp: Stamp) -> float:
     """A new upload is published when it arrives; a preloaded one `publishedAgo` before the
     run (or, for a record without it, an age cycling with its catalog order, as the original's
     labels do)."""
@@ -104,72 +81,54 @@ def _published_at(record: Mapping[str, Any], stamp: Stamp) -> float:
     return stamp.at - float(ago)
 
 
-def catalog_video(tube: Tube, video_id: str, stamp: Stamp) -> Video | None:
-    record = tube.catalog.table(ENVIRONMENT, "videos").get(video_id)
-    if record is None:
-        return None
+@from_catalog(ENVIRONMENT, "videos")
+def catalog_video(tube: Tube, video_id: str, record: Record, stamp: Stamp) -> Video:
     category = str(record.get("category") or "")
     subject = str(record.get("thumbnailSubject") or SUBJECT_BY_CATEGORY.get(category, "abstract"))
-    return Video(
+    return read(
+        Video,
+        record,
         id=video_id,
-        channel_id=str(record.get("channel_id", "")),
-        title=str(record.get("title", "")),
-        description=str(record.get("description", "")),
-        duration=str(record.get("duration") or "0:00"),
         thumbnail_subject=subject,
-        views=growth_series(float(whole(record.get("views"))), record.get("viewGrowth"), stamp.at),
-        likes=growth_series(float(whole(record.get("likes"))), record.get("likeGrowth"), stamp.at),
-        dislikes=whole(record.get("dislikes")),
-        is_live=bool(record.get("isLive", False)),
-        is_short=bool(record.get("isShort", False)),
-        category=category,
+        views=growing(float(whole(record.get("views"))), record.get("viewGrowth"), stamp.at),
+        likes=growing(float(whole(record.get("likes"))), record.get("likeGrowth"), stamp.at),
         published_at=_published_at(record, stamp),
         arrived_at=float(stamp.at),
         uploaded=not stamp.preloaded,
-        thumbnail_text=str(record.get("thumbnailText") or ""),
     )
 
 
-def catalog_comment(tube: Tube, comment_id: str, stamp: Stamp) -> Comment | None:
+@from_catalog(ENVIRONMENT, "comments")
+def catalog_comment(tube: Tube, comment_id: str, record: Record, stamp: Stamp) -> Comment:
     """A scenario comment; preloaded ones were written a few hours before the run."""
     catalog = tube.catalog
-    record = catalog.table(ENVIRONMENT, "comments").get(comment_id)
-    if record is None:
-        return None
     user_id = str(record.get("user_id", ""))
     person = catalog.users.get(user_id) or {}
     me = getattr(catalog, "self_user", None) or {}
-    return Comment(
+    return read(
+        Comment,
+        record,
         id=comment_id,
-        video_id=str(record.get("video_id", "")),
         user_id=user_id,
         author=str(person.get("name") or user_id or "Unknown viewer"),
-        content=str(record.get("content", "")),
-        likes=whole(record.get("likes")),
-        replies=whole(record.get("replies")),
         posted_at=stamp.at - (1 + stamp.order % 9) * HOUR if stamp.preloaded else stamp.at,
         by_self=bool(me) and user_id == me.get("id"),
     )
 
 
+@from_catalog(ENVIRONMENT, "notifications")
 def catalog_notification(
-    tube: Tube, notification_id: str, stamp: Stamp
-) -> tuple[Notification, NotificationState] | None:
+    tube: Tube, notification_id: str, record: Record, stamp: Stamp
+) -> tuple[Notification, NotificationState]:
     """A notification and its state: a new one arrives unread; preloaded ones came in hours
     before the run, read as the catalog says."""
-    record = tube.catalog.table(ENVIRONMENT, "notifications").get(notification_id)
-    if record is None:
-        return None
     arrived_at = stamp.at - (1 + stamp.order) * HOUR if stamp.preloaded else stamp.at
     channel = catalog_channel(tube, str(record.get("channel_id") or ""), stamp)
-    notification = Notification(
+    notification = read(
+        Notification,
+        record,
         id=notification_id,
-        type=str(record.get("type") or "upload"),
-        channel_id=str(record.get("channel_id") or ""),
-        video_id=str(record.get("video_id") or ""),
-        message=str(record.get("message", "")),
         arrived_at=float(arrived_at),
-        actor=str(record.get("actorName") or ""),
         channel_name=channel.name if channel else "",
     )
     return notification, NotificationState(read=stamp.preloaded and bool(record.get("isRead")))

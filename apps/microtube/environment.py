@@ -21,9 +21,10 @@ from typing import Any
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount, item_on_screen
+from apps.kit.deciding import opening
 from apps.kit.retractions import retraction, still_there, window
 from apps.kit.streaming import read_at
-from apps.kit.tables import KEY, Table, tables
+from apps.kit.tables import KEY, Table, named, tables
 from apps.microtube import screens as tube_screens
 from apps.microtube import state as tube_state
 from apps.microtube.actions import ACTIONS
@@ -43,7 +44,7 @@ from apps.microtube.state import (
     with_subscription,
     with_watched,
 )
-from events.registry import Environment, ImplicitAction, counted
+from events.registry import Environment, counted
 
 # Counted right after the preload, by the core (eval_sql reads baseline_<name>). The original
 # captures the first six; `video_count` is read by its video-total-relative-passive scenario.
@@ -149,9 +150,7 @@ materialize = tables(
         "videos",
         read_at(lambda tube: tube.videos.values()),
         {
-            "id TEXT PRIMARY KEY": "id",
-            "channel_id TEXT": "channel_id",
-            "title TEXT": "title",
+            **named("id TEXT PRIMARY KEY", "channel_id TEXT", "title TEXT"),
             "views INTEGER": lambda v: v.view_count(v.now),
             "likes INTEGER": lambda v: v.like_count(v.now),
             "isLive INTEGER": "is_live",
@@ -173,9 +172,7 @@ materialize = tables(
         "channels",
         read_at(lambda tube: tube.channels.values()),
         {
-            "id TEXT PRIMARY KEY": "id",
-            "name TEXT": "name",
-            "handle TEXT": "handle",
+            **named("id TEXT PRIMARY KEY", "name TEXT", "handle TEXT"),
             "subscribers INTEGER": lambda c: c.subscriber_count(c.now),
             "isVerified INTEGER": "verified",
         },
@@ -188,20 +185,15 @@ materialize = tables(
     Table(
         "comments",
         lambda tube, now: tube.comments.values(),
-        {
-            "id TEXT PRIMARY KEY": "id",
-            "video_id TEXT": "video_id",
-            "user_id TEXT": "user_id",
-            "content TEXT": "content",
-            "likes INTEGER": "likes",
-        },
+        named(
+            "id TEXT PRIMARY KEY", "video_id TEXT", "user_id TEXT", "content TEXT", "likes INTEGER"
+        ),
     ),
     Table(
         "notifications",
         lambda tube, now: tube.notifications.values(),
         {
-            "id TEXT PRIMARY KEY": "id",
-            "type TEXT": "type",
+            **named("id TEXT PRIMARY KEY", "type TEXT"),
             "channel_id TEXT": lambda n: n.channel_id or None,
             "message TEXT": "message",
         },
@@ -218,12 +210,12 @@ materialize = tables(
     Table(
         "user_created_comments",
         lambda tube, now: tube.user_comments.values(),
-        {"id TEXT PRIMARY KEY": "id", "video_id TEXT": "video_id", "content TEXT": "content"},
+        named("id TEXT PRIMARY KEY", "video_id TEXT", "content TEXT"),
     ),
     Table(
         "user_created_playlists",
         lambda tube, now: tube.playlists.values(),
-        {"id TEXT PRIMARY KEY": "id", "name TEXT": "name", "data TEXT": "data"},
+        named("id TEXT PRIMARY KEY", "name TEXT", "data TEXT"),
     ),
     Table(
         "watched_videos", lambda tube, now: tube.watched, {"video_id TEXT PRIMARY KEY": lambda v: v}
@@ -239,10 +231,6 @@ def _on_screen(path: str, page: str, key: str) -> str:
     return next((v for k, _, v in (p.partition("=") for p in query.split("&")) if k == key), "")
 
 
-def _channel_on_screen(path: str) -> str:
-    return item_on_screen(path, "channel/")
-
-
 # The numbers shown in more than one place (apps.kit.counts): a channel's video count in its
 # header and its About box, a video's comment count. (The bell reads "9+" past nine.)
 SHOWN_COUNTS = (
@@ -250,8 +238,10 @@ SHOWN_COUNTS = (
         "videos of the channel on screen",
         lambda tube, now: 0,
         ("{n} videos?",),
-        on=lambda tube, path: bool(_channel_on_screen(path)),
-        value_on=lambda tube, now, path: tube.channels[_channel_on_screen(path)].video_total,
+        on=lambda tube, path: bool(item_on_screen(path, "channel/")),
+        value_on=lambda tube, now, path: (
+            tube.channels[item_on_screen(path, "channel/")].video_total
+        ),
     ),
     ShownCount(
         "comments on the video on screen",
@@ -263,6 +253,10 @@ SHOWN_COUNTS = (
         ),
     ),
 )
+
+
+def not_watched_yet(tube: Tube, video_id: str) -> bool:
+    return still_there(tube.videos, video_id) and video_id not in tube.watched
 
 
 MICROTUBE = Environment(
@@ -277,15 +271,7 @@ MICROTUBE = Environment(
     implicit_actions=(
         # Opening a video's watch page is watching it (however the page was reached: the
         # original counted only clicks inside its own feed).
-        ImplicitAction(
-            page="watch",
-            param="v",
-            action="watch_video",
-            payload=lambda video_id: {"video_id": video_id},
-            applies=lambda tube, video_id: (
-                still_there(tube.videos, video_id) and video_id not in tube.watched
-            ),
-        ),
+        opening("watch", "v", "watch_video", "video_id", applies=not_watched_yet),
     ),
     sample_pages=sample_pages,
     shown_counts=SHOWN_COUNTS,

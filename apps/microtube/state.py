@@ -15,6 +15,7 @@ from dataclasses import dataclass, replace
 from types import MappingProxyType
 from typing import ClassVar
 
+from apps.kit.records import flag, from_catalog, text, text_or, whole_number
 from apps.kit.state import SelfUserState, with_changed
 from apps.kit.streaming import counting, no_items, shown_count
 from apps.kit.waypoints import Waypoints
@@ -30,10 +31,11 @@ class Channel:
     id: str
     name: str
     handle: str
-    description: str
+    description: str = from_catalog(text("description"))
     subscribers: Waypoints  # the catalog's count, drifting with the clock
-    video_total: int  # "342 videos" on the channel header (the catalog's number)
-    verified: bool = False
+    # "342 videos" on the channel header (the catalog's number)
+    video_total: int = from_catalog(whole_number("videos"))
+    verified: bool = from_catalog(flag("isVerified"), default=False)
     is_self: bool = False
     owner_id: str = ""  # the persona who runs it (users.json), when one does
 
@@ -44,21 +46,22 @@ class Channel:
 @dataclass(frozen=True)
 class Video:
     id: str
-    channel_id: str
-    title: str
-    description: str
-    duration: str  # "24:30", as catalogued
+    channel_id: str = from_catalog(text("channel_id"))
+    title: str = from_catalog(text("title"))
+    description: str = from_catalog(text("description"))
+    duration: str = from_catalog(text_or("duration", "0:00"))  # "24:30", as catalogued
     thumbnail_subject: str  # the apps.media picture subject drawn for it
     views: Waypoints
     likes: Waypoints
-    dislikes: int = 0
-    is_live: bool = False
-    is_short: bool = False
-    category: str = ""
+    dislikes: int = from_catalog(whole_number("dislikes"), default=0)
+    is_live: bool = from_catalog(flag("isLive"), default=False)
+    is_short: bool = from_catalog(flag("isShort"), default=False)
+    category: str = from_catalog(text_or("category"), default="")
     published_at: float = 0.0  # simulated seconds (negative: before the run started)
     arrived_at: float = 0.0
     uploaded: bool = False  # arrived during the run (new_video), not preloaded
-    thumbnail_text: str = ""  # the words on its thumbnail ("" → the key words of the title)
+    # The words on its thumbnail ("" → the key words of the title).
+    thumbnail_text: str = from_catalog(text_or("thumbnailText"), default="")
     gone_at: float | None = None  # made private by its uploader then (apps.kit.retractions)
 
     def view_count(self, now: float) -> int:
@@ -86,12 +89,12 @@ class ChannelState:
 @dataclass(frozen=True)
 class Comment:
     id: str
-    video_id: str
+    video_id: str = from_catalog(text("video_id"))
     user_id: str
     author: str
-    content: str
-    likes: int = 0
-    replies: int = 0
+    content: str = from_catalog(text("content"))
+    likes: int = from_catalog(whole_number("likes"), default=0)
+    replies: int = from_catalog(whole_number("replies"), default=0)
     posted_at: float = 0.0
     by_self: bool = False
 
@@ -99,12 +102,14 @@ class Comment:
 @dataclass(frozen=True)
 class Notification:
     id: str
-    type: str  # upload | live | comment | community | mention
-    channel_id: str
-    video_id: str
-    message: str
+    # upload | live | comment | community | mention
+    type: str = from_catalog(text_or("type", "upload"))
+    channel_id: str = from_catalog(text_or("channel_id"))
+    video_id: str = from_catalog(text_or("video_id"))
+    message: str = from_catalog(text("message"))
     arrived_at: float = 0.0
-    actor: str = ""  # who did it, when not the channel (a viewer who commented): their avatar
+    # Who did it, when not the channel (a viewer who commented): their avatar.
+    actor: str = from_catalog(text_or("actorName"), default="")
     channel_name: str = ""  # the catalog's, for a channel the run has not loaded
 
 
@@ -142,10 +147,6 @@ class Tube(SelfUserState):
     notification_states: Mapping[str, NotificationState] = no_items()
     playlists: Mapping[str, Playlist] = no_items()
     watched: tuple[str, ...] = ()  # video ids in the order first watched
-
-    @property
-    def self_id(self) -> str:
-        return self.me("id")
 
     def is_subscribed(self, channel_id: str) -> bool:
         state = self.channel_states.get(channel_id)

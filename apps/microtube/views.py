@@ -23,11 +23,8 @@ from apps.microtube import screens
 from apps.microtube.query import ChannelQuery, PlaylistQuery, ResultsQuery, WatchQuery
 from apps.microtube.state import SELF_CHANNEL, Tube, Video, unread_notification_count
 
-VIDEO_ACTIONS = {
-    "like_video": "",
-    "unlike_video": "",
-    "dislike_video": "",
-    "undislike_video": "",
+VIDEO_ACTIONS = {  # action → the toast it shows ("" for none)
+    **dict.fromkeys(("like_video", "unlike_video", "dislike_video", "undislike_video"), ""),
     "save_video": "Saved to Watch later",
     "unsave_video": "Removed from Watch later",
     "post_comment": "Comment added",
@@ -163,7 +160,6 @@ def watch(request: HttpRequest, page: Page) -> HttpResponse:
         **playing(tube, video),
         related=screens.related(tube, video.id),
         lists=[p for p in screens.playlists(tube) if not p.built_in],
-        watched=video.id in tube.watched,
     )
 
 
@@ -214,15 +210,14 @@ def channel(request: HttpRequest, page: Page, channel_id: str) -> HttpResponse:
 @require_POST
 @run_page
 def channel_action(request: HttpRequest, page: Page, channel_id: str, action: str) -> HttpResponse:
-    one_of(action, CHANNEL_ACTIONS, "channel action")
-    page.act(action, {"channel_id": channel_id})
+    done = act_on_item(request, page, action, CHANNEL_ACTIONS, "channel_id", channel_id)
     # Back to the video the button was under, or to the channel page.
     video_id = request.POST.get("video_id", "")
     back = f"channel/{quote(channel_id)}"
     if video_id in page.state.videos:
         on_shorts = request.POST.get("back") == "shorts"
         back = f"shorts/{quote(video_id)}" if on_shorts else watch_path(video_id)
-    return redirect_after(request, page, back, CHANNEL_ACTIONS[action])
+    return redirect_after(request, page, back, done)
 
 
 # --- notifications --------------------------------------------------------------------------
