@@ -22,6 +22,7 @@ from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
 
 from apps.kit.arrivals import Stamp
+from apps.kit.feeds import from_catalog as from_table
 from apps.kit.streaming import whole
 
 T = TypeVar("T")
@@ -89,12 +90,9 @@ def reader(
     `id` the row's), the attributes in `given` computed from the catalog, row and stamp; None
     for an id the table does not have."""
 
-    def make(state: Any, record_id: str, stamp: Stamp) -> T | None:
-        catalog = state.catalog
-        record = catalog.table(environment, table).get(record_id)
-        if record is None:
-            return None
-        computed = {name: get(catalog, record, stamp) for name, get in given.items()}
+    @from_table(environment, table)
+    def make(state: Any, record_id: str, record: Record, stamp: Stamp) -> T:
+        computed = {name: get(state.catalog, record, stamp) for name, get in given.items()}
         return read(kind, record, id=record_id, **computed)
 
     return make
