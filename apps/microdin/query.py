@@ -39,3 +39,13 @@ class NotificationsQuery(QueryState):
 class SearchQuery(QueryState):
     q: str = text()
     kind: str = choice(SEARCH_KINDS, default="all")
+
+
+def thread_path(conversation_id: str) -> str:
+    """The messaging screen with the thread open."""
+    return "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
+
+
+def job_path(job_id: str) -> str:
+    """The jobs screen with the posting open."""
+    return "jobs/" + JobsQuery(job=job_id).querystring()

@@ -73,11 +73,6 @@ class NotificationRow:
     target: str  # where clicking it goes, relative to the environment root
 
 
-@dataclass(frozen=True)
-class Invitation:
-    connection: Connection
-
-
 def _contains(needle: str, *texts: str) -> bool:
     needle = needle.strip().casefold()
     return not needle or any(needle in text.casefold() for text in texts)
@@ -129,10 +124,10 @@ def feed_suggestions(network: Network) -> tuple[Company, ...]:
 
 
 @per_state()
-def invitations(network: Network) -> tuple[Invitation, ...]:
+def invitations(network: Network) -> tuple[Connection, ...]:
     """Invitations waiting for an answer, newest first."""
     pending = (c for c in network.connections.values() if net.status(network, c.id) == "pending")
-    return tuple(Invitation(c) for c in net.newest_first(pending, "received_at"))
+    return tuple(net.newest_first(pending, "received_at"))
 
 
 @per_state()
@@ -248,18 +243,15 @@ def notification_target(network: Network, notification: Notification) -> str:
 def notifications_screen(
     network: Network, query: NotificationsQuery
 ) -> tuple[NotificationRow, ...]:
-    rows = []
-    for notification in net.newest_first(network.notifications.values(), "at"):
-        read = network.notification_states[notification.id].is_read
-        if query.filter == "unread" and read:
-            continue
-        if (
-            query.filter in NOTIFICATION_KINDS
-            and notification.type not in NOTIFICATION_KINDS[query.filter]
-        ):
-            continue
-        rows.append(NotificationRow(notification, read, notification_target(network, notification)))
-    return tuple(rows)
+    kinds = NOTIFICATION_KINDS.get(query.filter)
+    rows = (
+        NotificationRow(
+            n, network.notification_states[n.id].is_read, notification_target(network, n)
+        )
+        for n in net.newest_first(network.notifications.values(), "at")
+        if kinds is None or n.type in kinds
+    )
+    return tuple(r for r in rows if not (query.filter == "unread" and r.is_read))
 
 
 # --- profile, company, search --------------------------------------------------------------------
@@ -359,13 +351,7 @@ def search(network: Network, query: SearchQuery) -> SearchResults:
         for job in net.newest_first(network.jobs.values(), "posted_at")
         if _contains(query.q, job.title, job.company.name)
     )
-    if query.kind == "all":
-        people = people[: SEARCH_LIMITS["people"]]
-        companies = companies[: SEARCH_LIMITS["companies"]]
-        jobs = jobs[: SEARCH_LIMITS["jobs"]]
-    return SearchResults(
-        query,
-        people if query.kind in ("all", "people") else (),
-        companies if query.kind in ("all", "companies") else (),
-        jobs if query.kind in ("all", "jobs") else (),
-    )
+    found = {"people": people, "companies": companies, "jobs": jobs}
+    if query.kind != "all":  # one kind, all of it
+        return SearchResults(query, **{k: v if k == query.kind else () for k, v in found.items()})
+    return SearchResults(query, **{k: v[: SEARCH_LIMITS[k]] for k, v in found.items()})
