@@ -24,7 +24,7 @@ from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.feeds import opening, posts_table
 from apps.kit.retractions import retraction, window
-from apps.kit.tables import KEY, Table, tables
+from apps.kit.tables import Table, item_states, tables
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
 from apps.microdin.actions import ACTIONS
@@ -212,11 +212,7 @@ EVENT_TYPES = event_types(
 
 materialize = tables(
     posts_table(("content TEXT", "post.content"), ("shares INTEGER", "post.shares")),
-    Table.keyed(
-        "post_states",
-        "post_states",
-        {"post_id TEXT PRIMARY KEY": KEY, "isLiked INTEGER": "is_liked"},
-    ),
+    item_states("post", {"isLiked INTEGER": "is_liked"}),
     Table(
         "connections",
         lambda network, now: network.connections.values(),
@@ -227,11 +223,7 @@ materialize = tables(
             "mutualConnections INTEGER": "mutual",
         },
     ),
-    Table.keyed(
-        "connection_states",
-        "connection_states",
-        {"connection_id TEXT PRIMARY KEY": KEY, "status TEXT": "status"},
-    ),
+    item_states("connection", {"status TEXT": "status"}),
     Table(
         "messages",
         lambda network, now: network.messages.values(),
@@ -242,11 +234,7 @@ materialize = tables(
             "content TEXT": "content",
         },
     ),
-    Table.keyed(
-        "message_states",
-        "message_states",
-        {"message_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": "is_read"},
-    ),
+    item_states("message", {"isRead INTEGER": "is_read"}),
     Table(
         "notifications",
         lambda network, now: network.notifications.values(),
@@ -257,11 +245,7 @@ materialize = tables(
             "content TEXT": "content",
         },
     ),
-    Table.keyed(
-        "notification_states",
-        "notification_states",
-        {"notification_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": "is_read"},
-    ),
+    item_states("notification", {"isRead INTEGER": "is_read"}),
     Table(
         "jobs",
         lambda network, now: network.jobs.values(),
@@ -273,11 +257,7 @@ materialize = tables(
             **window("posted_at"),
         },
     ),
-    Table.keyed(
-        "job_states",
-        "job_states",
-        {"job_id TEXT PRIMARY KEY": KEY, "isApplied INTEGER": "is_applied"},
-    ),
+    item_states("job", {"isApplied INTEGER": "is_applied"}),
 )
 
 

@@ -24,7 +24,7 @@ from apps.kit.feeds import opening, posts_table
 from apps.kit.retractions import retraction, still_there, window
 from apps.kit.social import Comment
 from apps.kit.state import with_changed, with_items
-from apps.kit.tables import KEY, VALUE, Keyed, Table, tables
+from apps.kit.tables import KEY, VALUE, Keyed, Table, item_states, named, tables
 from apps.microgram import catalog as records
 from apps.microgram import state as gram_state
 from apps.microgram.actions import ACTIONS
@@ -169,13 +169,12 @@ def story_states(gram: Gram, now: float) -> Iterable[Keyed]:
     return (Keyed(story_id, story_id in gram.viewed_stories) for story_id in gram.stories)
 
 
+ID = "id TEXT PRIMARY KEY"  # the key column most tables have, read from the attribute `id`
 materialize = tables(
     posts_table(("caption TEXT", "post.caption"), ("isTargetPost INTEGER", "post.is_target")),
-    Table.keyed(
-        "post_states",
-        "post_states",
+    item_states(
+        "post",
         {
-            "post_id TEXT PRIMARY KEY": KEY,
             "isLiked INTEGER": "is_liked",
             "isSaved INTEGER": "is_saved",
             "isViewed INTEGER": "is_viewed",
@@ -205,35 +204,19 @@ materialize = tables(
     Table(
         "story_states", story_states, {"story_id TEXT PRIMARY KEY": KEY, "isViewed INTEGER": VALUE}
     ),
-    Table(
-        "messages",
-        lambda gram, now: gram.conversations.values(),
-        {"id TEXT PRIMARY KEY": "id", "data TEXT": "data"},
-    ),
-    Table.keyed(
-        "message_states",
-        "read_messages",
-        {"message_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": VALUE},
-    ),
+    Table("messages", lambda gram, now: gram.conversations.values(), named(ID, "data TEXT")),
+    item_states("message", {"isRead INTEGER": VALUE}, "read_messages"),
     Table(
         "sent_messages",
         lambda gram, now: gram.sent,
-        {
-            "id TEXT PRIMARY KEY": "id",
-            "conversation_id TEXT": "conversation_id",
-            "text TEXT": "text",
-        },
+        named(ID, "conversation_id TEXT", "text TEXT"),
     ),
     Table(
         "activity",
         lambda gram, now: gram.activity.values(),
-        {"id TEXT PRIMARY KEY": "id", "type TEXT": "type", "actorId TEXT": "actor.id"},
+        {**named(ID, "type TEXT"), "actorId TEXT": "actor.id"},
     ),
-    Table.keyed(
-        "activity_states",
-        "read_activity",
-        {"activity_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": VALUE},
-    ),
+    item_states("activity", {"isRead INTEGER": VALUE}, "read_activity"),
     Table(
         "followed_users",
         lambda gram, now: gram.followed,
@@ -242,7 +225,7 @@ materialize = tables(
     Table(
         "user_created_comments",
         lambda gram, now: gram.user_comments,
-        {"id TEXT PRIMARY KEY": "id", "post_id TEXT": "post_id", "text TEXT": "text"},
+        named(ID, "post_id TEXT", "text TEXT"),
     ),
 )
 
