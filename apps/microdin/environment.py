@@ -21,7 +21,7 @@ from dataclasses import replace
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, untimed
 from apps.kit.feeds import opening, posts_table
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import Table, item_states, tables
@@ -57,29 +57,25 @@ def _not_a_strangers_profile(network: Network, path: str) -> bool:
 SHOWN_COUNTS = (
     ShownCount(
         "connections",
-        lambda network, now: network_state.connections_count(network),
+        untimed(network_state.connections_count),
         # ("Profile viewers 87 Connections 412": the card's figures sit side by side)
         ("Connections {n}", "(?<!viewers ){n} Connections?", "{n} connections?"),
         on=_not_a_strangers_profile,
     ),
     ShownCount(
         "pending invitations",
-        lambda network, now: network_state.pending_connection_count(network),
+        untimed(network_state.pending_connection_count),
         ("{n} pending invitations?", r"Invitations \({n}\)", "Invitations {n}", "Show all {n}"),
     ),
     ShownCount(
-        "unread messages",
-        lambda network, now: network_state.unread_message_count(network),
-        ("{n} unread messages?",),
+        "unread messages", untimed(network_state.unread_message_count), ("{n} unread messages?",)
     ),
     ShownCount(
         "unread notifications",
-        lambda network, now: network_state.unread_notification_count(network),
+        untimed(network_state.unread_notification_count),
         ("{n} unread notifications?",),
     ),
-    ShownCount(
-        "jobs", lambda network, now: network_state.job_count(network), ("{n} jobs? on MicroDin",)
-    ),
+    ShownCount("jobs", untimed(network_state.job_count), ("{n} jobs? on MicroDin",)),
 )
 
 

@@ -19,7 +19,7 @@ from typing import NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, untimed
 from apps.kit.feeds import opening, posts_table
 from apps.kit.retractions import retraction, still_there, window
 from apps.kit.social import Comment
@@ -239,12 +239,12 @@ def _opens_unviewed_post(gram: Gram, post_id: str) -> bool:
 SHOWN_COUNTS = (
     ShownCount(
         "unread conversations",
-        lambda gram, now: gram_state.unread_conversation_count(gram),
+        untimed(gram_state.unread_conversation_count),
         ("{n} Messages", "{n} unread conversations?"),
     ),
     ShownCount(
         "unread notifications",
-        lambda gram, now: gram_state.unread_activity_count(gram),
+        untimed(gram_state.unread_activity_count),
         ("Notifications , {n} unread",),
     ),
 )

@@ -25,7 +25,7 @@ from typing import Any, NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, untimed
 from apps.kit.deciding import opening
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import Rows, Table, named, tables
@@ -205,7 +205,7 @@ def unviewed_invitation(agenda: Agenda, event_id: str) -> bool:
 
 # The numbers shown in more than one place (apps.kit.counts): the sidebar on every view.
 SHOWN_COUNTS = (
-    ShownCount("tasks", lambda agenda, now: agenda_state.task_count(agenda), ("Tasks {n}",)),
+    ShownCount("tasks", untimed(agenda_state.task_count), ("Tasks {n}",)),
     ShownCount(
         "new invitations",
         lambda agenda, now: len(agenda_state.new_invitations(agenda)),

@@ -114,13 +114,9 @@ def month_bounds(day: date) -> tuple[date, date]:
 
 
 def visible_range(view: str, shown: date) -> tuple[date, date]:
-    if view == "day":
-        return shown, shown
-    if view == "4days":
-        return shown, shown + timedelta(days=3)
-    if view == "week":
-        start = week_start(shown)
-        return start, start + timedelta(days=6)
+    if view in GRID_DAYS:  # a week from its Sunday, a day and 4 days from the shown date
+        first = week_start(shown) if view == "week" else shown
+        return first, first + timedelta(days=GRID_DAYS[view] - 1)
     if view == "year":
         return date(shown.year, 1, 1), date(shown.year, 12, 31)
     return month_bounds(shown)  # month, schedule

@@ -240,17 +240,8 @@ def task_count(agenda: Agenda) -> int:
 
 
 def conflict_count(agenda: Agenda) -> int:
-    """Pairs of events on the same day whose times overlap."""
-    by_day: dict[date, list[CalendarEvent]] = {}
-    for event in live_events(agenda):
-        by_day.setdefault(event.day, []).append(event)
-    return sum(
-        1
-        for day_events in by_day.values()
-        for i, first in enumerate(day_events)
-        for second in day_events[i + 1 :]
-        if first.overlaps(second)
-    )
+    """Pairs of events on the same day whose times overlap (each pair has two ends)."""
+    return sum(len(conflicts_with(agenda, event)) for event in live_events(agenda)) // 2
 
 
 def new_invitations(agenda: Agenda) -> list[CalendarEvent]:

@@ -88,14 +88,13 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
         raise Http404("no such event")
     context = base_context(page, query)
     screen = screens.calendar_screen(agenda, query, context["today"])
+    opened = agenda.events[query.event] if query.event else None
     context.update(
         screen=screen,
         now_top=screens.now_line_top(context["moment"]),
-        details=agenda.events[query.event] if query.event else None,
-        guests=guests(agenda, agenda.events[query.event]) if query.event else (),
-        conflicts=conflicts_with(agenda, agenda.events[query.event])
-        if query.event and agenda.has_event(query.event)
-        else (),
+        details=opened,
+        guests=guests(agenda, opened) if opened else (),
+        conflicts=conflicts_with(agenda, opened) if opened and agenda.has_event(opened.id) else (),
         close_url=query.but(event=None).querystring() or "?",
         clear_search_url=query.but(q="", event=None).querystring() or "?",
         title_for_tab=screen.title,
