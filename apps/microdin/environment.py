@@ -52,6 +52,13 @@ def _not_a_strangers_profile(network: Network, path: str) -> bool:
     return not path.startswith("in/") or path == f"in/{network.me.id}/"
 
 
+def _opens_unread(network: Network, conversation_id: str) -> bool:
+    return (
+        conversation_id in network.conversations
+        and network_state.unread_in(network, conversation_id) > 0
+    )
+
+
 # The numbers shown in more than one place (apps.kit.counts): the nav badges, the home page's
 # card, My Network, the profile.
 SHOWN_COUNTS = (
@@ -269,14 +276,7 @@ MICRODIN = Environment(
     implicit_actions=(
         # Opening a thread marks its messages read, as clicking it in the original does.
         opening(
-            "messaging",
-            "conversation",
-            "open_conversation",
-            lambda network, conversation_id: (
-                conversation_id in network.conversations
-                and network_state.unread_in(network, conversation_id) > 0
-            ),
-            key="conversation_id",
+            "messaging", "conversation", "open_conversation", _opens_unread, key="conversation_id"
         ),
     ),
     sample_pages=sample_pages,

@@ -8,12 +8,13 @@ Every view serves the full page, or just its content when htmx asks for a fragme
 
 from __future__ import annotations
 
-from django.http import Http404, HttpRequest, HttpResponse
+from django.http import HttpRequest, HttpResponse
 
 from apps.kit import feed_views
 from apps.kit.feed_views import FeedPages, act_on_post, open_thread, shown
 from apps.kit.pages import Page, one_of
 from apps.kit.rendering import back_field, came_from, redirect_after, redirect_to
+from apps.kit.streaming import present
 from apps.microdin import screens
 from apps.microdin.query import (
     NOTIFICATION_FILTERS,
@@ -170,9 +171,7 @@ def read_notification(request: HttpRequest, page: Page) -> HttpResponse:
 
 @PAGES.screen("profile.html")
 def profile(request: HttpRequest, page: Page, user_id: str):
-    found = screens.profile(page.state, user_id)
-    if found is None:
-        raise Http404("no such member")
+    found = present(screens.profile(page.state, user_id), "member")
     tab = "me" if found.is_self else ""
     return {"tab": tab, "profile": found, "section_types": SECTION_TYPES}
 
@@ -188,10 +187,7 @@ def add_section(request: HttpRequest, page: Page, user_id: str) -> HttpResponse:
 
 @PAGES.screen("company.html")
 def company(request: HttpRequest, page: Page, company_id: str):
-    found = screens.company_page(page.state, company_id)
-    if found is None:
-        raise Http404("no such company")
-    return {"company_page": found}
+    return {"company_page": present(screens.company_page(page.state, company_id), "company")}
 
 
 @PAGES.screen("search.html")

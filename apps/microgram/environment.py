@@ -235,6 +235,14 @@ def _opens_unviewed_post(gram: Gram, post_id: str) -> bool:
     return state is not None and not state.is_viewed
 
 
+def _opens_unwatched_story(gram: Gram, story_id: str) -> bool:
+    return still_there(gram.stories, story_id) and story_id not in gram.viewed_stories
+
+
+def _opens_unread_thread(gram: Gram, conversation_id: str) -> bool:
+    return unread_in(gram, conversation_id) > 0
+
+
 # The numbers shown in more than one place (apps.kit.counts): the sidebar's badges on every page.
 SHOWN_COUNTS = (
     ShownCount(
@@ -262,20 +270,8 @@ MICROGRAM = Environment(
     implicit_actions=(
         # Opening a post (its comments), a story or a DM thread is what views / reads it.
         opening("post", "post_id", "view_post", _opens_unviewed_post),
-        opening(
-            "story",
-            "story_id",
-            "view_story",
-            lambda gram, story_id: (
-                still_there(gram.stories, story_id) and story_id not in gram.viewed_stories
-            ),
-        ),
-        opening(
-            "thread",
-            "conversation_id",
-            "read_conversation",
-            lambda gram, conversation_id: unread_in(gram, conversation_id) > 0,
-        ),
+        opening("story", "story_id", "view_story", _opens_unwatched_story),
+        opening("thread", "conversation_id", "read_conversation", _opens_unread_thread),
     ),
     sample_pages=sample_pages,
     shown_counts=SHOWN_COUNTS,

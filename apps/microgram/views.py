@@ -162,8 +162,7 @@ def read_all_activity(request: HttpRequest, page: Page) -> HttpResponse:
 
 @PAGES.screen("profile.html")
 def profile(request: HttpRequest, page: Page, user_id: str):
-    if user_id not in known_people(page.state):
-        raise Http404("no such member")  # unknown or not seen on MicroGram yet: alike
+    shown(known_people(page.state), user_id, "member")  # unknown or not seen yet: alike
     query = ProfileQuery.from_params(request.GET)
     view = screens.profile(page.state, user_id, query.tab)
     return {
