@@ -31,10 +31,7 @@ def sample_pages(network: Network) -> list[str]:
         ]
     if network.conversations:
         conversation = next(iter(network.conversations.values()))
-        pages += [
-            thread_path(conversation.id),
-            f"in/{conversation.other.id}/",
-        ]
+        pages += [thread_path(conversation.id), f"in/{conversation.other.id}/"]
     if network.posts:
         pages.append(f"feed/update/{next(iter(network.posts))}/")
     return pages

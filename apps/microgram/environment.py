@@ -85,10 +85,9 @@ class AlreadyDone(Payload):
 
 def already_done(gram: Gram, payload: Mapping, at: float) -> Gram:
     """Likes, saves and views apply only to items that were loaded; follows to anyone."""
-    for post_id in payload.get("liked_post_ids") or ():
-        gram = with_changed(gram, "post_states", post_id, is_liked=True)
-    for post_id in payload.get("saved_post_ids") or ():
-        gram = with_changed(gram, "post_states", post_id, is_saved=True)
+    for ids, flag in (("liked_post_ids", "is_liked"), ("saved_post_ids", "is_saved")):
+        for post_id in payload.get(ids) or ():
+            gram = with_changed(gram, "post_states", post_id, **{flag: True})
     viewed = {s for s in payload.get("viewed_story_ids") or () if s in gram.stories}
     followed = tuple(dict.fromkeys((*gram.followed, *(payload.get("followed_user_ids") or ()))))
     return replace(gram, viewed_stories=gram.viewed_stories | viewed, followed=followed)
@@ -207,9 +206,7 @@ materialize = tables(
     Table("messages", lambda gram, now: gram.conversations.values(), named(ID, "data TEXT")),
     item_states("message", {"isRead INTEGER": VALUE}, "read_messages"),
     Table(
-        "sent_messages",
-        lambda gram, now: gram.sent,
-        named(ID, "conversation_id TEXT", "text TEXT"),
+        "sent_messages", lambda gram, now: gram.sent, named(ID, "conversation_id TEXT", "text TEXT")
     ),
     Table(
         "activity",

@@ -25,12 +25,9 @@ class FeedQuery(QueryState):
 
 
 @dataclass(frozen=True)
-class ExploreQuery(QueryState):
-    q: str = text()
-
-
-@dataclass(frozen=True)
 class SearchQuery(QueryState):
+    """What Explore's grid and Search's people are filtered by."""
+
     q: str = text()
 
 

@@ -15,7 +15,7 @@ from apps.kit.feeds import thread_with
 from apps.kit.pages import Page, one_of
 from apps.kit.rendering import came_from, redirect_after, redirect_to
 from apps.microgram import screens
-from apps.microgram.query import ExploreQuery, FeedQuery, ProfileQuery, SearchQuery
+from apps.microgram.query import FeedQuery, ProfileQuery, SearchQuery
 from apps.microgram.state import comments_of, is_following, known_people
 
 PAGES = FeedPages(badges=screens.badges)
@@ -99,7 +99,7 @@ def story(request: HttpRequest, page: Page, story_id: str):
 
 @PAGES.screen("explore.html", tab="explore")
 def explore(request: HttpRequest, page: Page):
-    query = ExploreQuery.from_params(request.GET)
+    query = SearchQuery.from_params(request.GET)
     return {"query": query, "cards": screens.explore(page.state, query.q)}
 
 

@@ -34,6 +34,7 @@ from events.registry import ActionRejected
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
 EVENT_ACTIONS = {"reschedule": "reschedule_event", "delete": "delete_event"}
 TASK_ACTIONS = {"toggle": "toggle_task", "delete": "delete_task"}
+TICKED = {True: "Task completed", False: "Task marked not done"}  # what a toggle led to
 
 
 def calendar_moment(agenda: Agenda, page: Page) -> datetime:
@@ -239,10 +240,7 @@ def new_task(request: HttpRequest, page: Page) -> HttpResponse:
 def task_action(request: HttpRequest, page: Page, task_id: str, action: str) -> HttpResponse:
     one_of(action, TASK_ACTIONS, "task action")
     event = page.act(TASK_ACTIONS[action], {"task_id": task_id})
-    if action == "delete":
-        done = "Task deleted"
-    else:
-        done = "Task completed" if event.payload["completed"] else "Task marked not done"
+    done = "Task deleted" if action == "delete" else TICKED[event.payload["completed"]]
     return redirect_after(request, page, _back(request).querystring(), done)
 
 
