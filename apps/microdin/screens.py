@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from itertools import islice
 from typing import Any
 
 from apps.kit.derived import per_state
@@ -65,6 +66,10 @@ class ThreadRow:
     unread: int
     last: Message | None
 
+    @property
+    def last_at(self) -> float:
+        return self.last.sent_at if self.last else 0
+
 
 @dataclass(frozen=True)
 class NotificationRow:
@@ -111,13 +116,12 @@ def news(catalog: Any) -> tuple[Mapping[str, Any], ...]:
 def feed_suggestions(network: Network) -> tuple[Company, ...]:
     """ "Add to your feed": companies of the catalog other than the self user's (first three)."""
     mine = network.me.company.id if network.me.company else None
-    companies = []
-    for entity_id, entity in network.catalog.entities.items():
-        if entity.get("type") == "company" and entity_id != mine:
-            companies.append(records.company(network.catalog, entity_id))
-        if len(companies) == 3:
-            break
-    return tuple(companies)
+    companies = (
+        records.company(network.catalog, entity_id)
+        for entity_id, entity in network.catalog.entities.items()
+        if entity.get("type") == "company" and entity_id != mine
+    )
+    return tuple(islice(companies, 3))
 
 
 # --- my network -------------------------------------------------------------------------------
@@ -197,14 +201,7 @@ def thread_rows(network: Network) -> list[ThreadRow]:
         last = messages[-1] if messages else None
         rows.append(ThreadRow(conversation, net.unread_in(network, conversation.id), last))
     # Latest activity first; a thread without messages yet (just started) goes on top.
-    return sorted(
-        rows,
-        key=lambda r: (
-            r.last is not None,
-            -(r.last.sent_at if r.last else 0),
-            r.conversation.order,
-        ),
-    )
+    return sorted(rows, key=lambda r: (r.last is not None, -r.last_at, r.conversation.order))
 
 
 @per_state()
