@@ -303,15 +303,13 @@ class CompanyPage:
 
 
 def company_page(network: Network, company_id: str) -> CompanyPage | None:
-    company = (
-        records.company(network.catalog, company_id)
-        if company_id in network.catalog.entities
-        else None
-    )
     jobs = [j for j in network.jobs.values() if j.company.id == company_id]
-    if company is None and not jobs:
+    if company_id in network.catalog.entities:
+        company = records.company(network.catalog, company_id)
+    elif jobs:  # known only from its postings
+        company = jobs[0].company
+    else:
         return None
-    company = company or jobs[0].company
     cards = tuple(job_card(network, job, False) for job in net.newest_first(jobs, "posted_at"))
     people = tuple(
         p

@@ -75,9 +75,8 @@ def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> 
 
 @PAGES.form
 def share(request: HttpRequest, page: Page, post_id: str) -> HttpResponse:
-    note = request.POST.get("text", "")
-    conversation_id = request.POST.get("conversation_id", "")
-    page.act("share_post", {"post_id": post_id, "conversation_id": conversation_id, "text": note})
+    form = {field: request.POST.get(field, "") for field in ("conversation_id", "text")}
+    page.act("share_post", {"post_id": post_id, **form})
     return redirect_after(request, page, f"p/{post_id}/", "Sent")
 
 
