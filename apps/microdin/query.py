@@ -10,22 +10,20 @@ from dataclasses import dataclass
 
 from apps.kit.query import QueryState, choice, item, text
 
-JOB_FILTERS = ("all", "applied")
-THREAD_FILTERS = ("all", "unread")
 NOTIFICATION_FILTERS = ("all", "unread", "posts", "mentions", "jobs")
 SEARCH_KINDS = ("all", "people", "companies", "jobs")
 
 
 @dataclass(frozen=True)
 class JobsQuery(QueryState):
-    filter: str = choice(JOB_FILTERS, default="all")
+    filter: str = choice(("all", "applied"), default="all")
     q: str = text()
     job: str | None = item()
 
 
 @dataclass(frozen=True)
 class MessagingQuery(QueryState):
-    filter: str = choice(THREAD_FILTERS, default="all")
+    filter: str = choice(("all", "unread"), default="all")
     q: str = text()
     conversation: str | None = item()
 

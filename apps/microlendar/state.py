@@ -134,9 +134,6 @@ class Agenda(SelfUserState):
         event = self.events.get(event_id)
         return event is not None and is_gone(event)
 
-    def me_as_guest(self) -> Attendee:
-        return Attendee(id=self.self_id, name=self.self_name, email=self.self_email)
-
     def response(self, event_id: str) -> str:
         """The user's answer to an invitation. There is no reply button: one already on the
         calendar when the run starts was accepted; one that came in during the run awaits it."""
@@ -179,7 +176,7 @@ def live_events(agenda: Agenda) -> list[CalendarEvent]:
 def guests(agenda: Agenda, event: CalendarEvent) -> tuple[Guest, ...]:
     """The guest list as Google Calendar's event details give it: the organiser first, then the
     user (with their answer, when someone else invited them), then the other attendees."""
-    me = agenda.me_as_guest()
+    me = Attendee(id=agenda.self_id, name=agenda.self_name, email=agenda.self_email)
     if event.organizer is None:
         first = (Guest(me, "Organizer"),)
     else:
