@@ -97,3 +97,8 @@ def appearances(counts: Iterable[ShownCount[S]], state: S, path: str, text: str)
         for count in counts
         if count.on(state, path) and any(p.search(text) for p in count.patterns())
     }
+
+
+def untimed(count: Callable[[S], int]) -> Callable[[S, float], int]:
+    """A `ShownCount` value no clock moves: `count(state)` at any time."""
+    return lambda state, now: count(state)

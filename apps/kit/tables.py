@@ -129,3 +129,11 @@ def _of_value(name: str) -> Callable[[Keyed], Any]:
 def _sql(value: Any) -> Any:
     # SQLite has no booleans: upstream stored them as 0/1 and eval_sql compares with integers.
     return int(value) if isinstance(value, bool) else value
+
+
+def item_states(item: str, columns: Mapping[str, Getter], mapping: str = "") -> Table[Any]:
+    """The original's `<item>_states` table: one row per entry of the state's mapping `mapping`
+    (by default the table's own name), keyed `<item>_id`, then `columns` read from the value:
+    `item_states("post", {"isLiked INTEGER": "is_liked"})`."""
+    name = f"{item}_states"
+    return Table.keyed(name, mapping or name, {f"{item}_id TEXT PRIMARY KEY": KEY, **columns})

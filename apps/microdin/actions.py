@@ -19,14 +19,14 @@ from urllib.parse import quote
 from pydantic import Field
 
 from apps.kit import feeds
-from apps.kit.deciding import found, new_id
+from apps.kit.deciding import found, marking, new_id
 from apps.kit.feeds import ConversationId
 from apps.kit.fields import ItemId, Line, Text
 from apps.kit.retractions import is_gone
 from apps.kit.social import Comment, post_actions
 from apps.kit.state import setting, with_changed, with_items
 from apps.microdin import catalog as records
-from apps.microdin.query import JobsQuery, MessagingQuery
+from apps.microdin.query import job_path, thread_path
 from apps.microdin.state import (
     SECTION_TYPES,
     Conversation,
@@ -35,6 +35,7 @@ from apps.microdin.state import (
     Network,
     ProfileSection,
     status,
+    unread_messages,
 )
 from events.registry import Action, ActionRejected, LoggedEvent, PageStep
 from events.schemas import Payload
@@ -113,13 +114,10 @@ def reduce_send(network: Network, event: LoggedEvent) -> Network:
 
 def reduce_open(network: Network, event: LoggedEvent) -> Network:
     """Every message of the thread is read."""
-    conversation_id = event.payload["conversation_id"]
-    unread = [
-        (m.id, MessageState(is_read=True))
-        for m in network.messages.values()
-        if m.conversation_id == conversation_id and not network.message_states[m.id].is_read
-    ]
-    return with_items(network, "message_states", unread)
+    unread = unread_messages(network, event.payload["conversation_id"])
+    return with_items(
+        network, "message_states", [(m.id, MessageState(is_read=True)) for m in unread]
+    )
 
 
 def decide_start(network: Network, payload: dict) -> dict:
@@ -176,13 +174,7 @@ def invitations_page(network: Network, payload: dict) -> PageStep:
     return PageStep("mynetwork/invitations/", {"connection_id": payload["connection_id"]})
 
 
-thread_page = feeds.thread_page(
-    lambda conversation_id: (
-        "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
-    ),
-    "content",
-    WHERE,
-)
+thread_page = feeds.thread_page(thread_path, "content", WHERE)
 
 
 def notifications_page(network: Network, payload: dict) -> PageStep:
@@ -192,7 +184,7 @@ def notifications_page(network: Network, payload: dict) -> PageStep:
 
 def job_page(network: Network, payload: dict) -> PageStep:
     found(network.jobs, payload["job_id"], "job", WHERE)
-    return PageStep("jobs/" + JobsQuery(job=payload["job_id"]).querystring(), {})
+    return PageStep(job_path(payload["job_id"]), {})
 
 
 def section_page(network: Network, payload: dict) -> PageStep:
@@ -200,6 +192,9 @@ def section_page(network: Network, payload: dict) -> PageStep:
     return PageStep(f"in/{quote(network.me.id)}/", form)
 
 
+answers = marking(
+    ConnectionId, decide_answer, "connection_states", "connection_id", page=invitations_page
+)
 on_thread = feeds.item_action(ConversationId, "conversations", "conversation", WHERE)
 on_notification = feeds.item_action(NotificationId, "notifications", "notification", WHERE)
 
@@ -207,19 +202,9 @@ on_notification = feeds.item_action(NotificationId, "notifications", "notificati
 ACTIONS: Mapping[str, Action] = MappingProxyType(
     {
         **post_actions(WHERE, feeds.liking, reduce_comment, feeds.post_page("feed/update/", WHERE)),
-        "accept_connection": Action(
-            ConnectionId,
-            decide_answer,
-            setting("connection_states", "connection_id", status="accepted"),
-            help="Accept a pending invitation.",
-            page=invitations_page,
-        ),
-        "ignore_connection": Action(
-            ConnectionId,
-            decide_answer,
-            setting("connection_states", "connection_id", status="ignored"),
-            help="Ignore (reject) a pending invitation.",
-            page=invitations_page,
+        "accept_connection": answers(status="accepted", help="Accept a pending invitation."),
+        "ignore_connection": answers(
+            status="ignored", help="Ignore (reject) a pending invitation."
         ),
         "open_conversation": on_thread(
             reduce_open, "Open a thread; this marks its messages read.", thread_page

@@ -6,7 +6,7 @@ profile, a company page and a search. Paths are relative to the environment root
 
 from __future__ import annotations
 
-from apps.microdin.query import JobsQuery, MessagingQuery, NotificationsQuery, SearchQuery
+from apps.microdin.query import NotificationsQuery, SearchQuery, job_path, thread_path
 from apps.microdin.state import Network
 
 
@@ -25,16 +25,13 @@ def sample_pages(network: Network) -> list[str]:
     if network.jobs:
         job = next(reversed(network.jobs.values()))
         pages += [
-            "jobs/" + JobsQuery(job=job.id).querystring(),
+            job_path(job.id),
             f"company/{job.company.id}/",
             "search/" + SearchQuery(q=job.title.split()[0]).querystring(),
         ]
     if network.conversations:
         conversation = next(iter(network.conversations.values()))
-        pages += [
-            "messaging/" + MessagingQuery(conversation=conversation.id).querystring(),
-            f"in/{conversation.other.id}/",
-        ]
+        pages += [thread_path(conversation.id), f"in/{conversation.other.id}/"]
     if network.posts:
         pages.append(f"feed/update/{next(iter(network.posts))}/")
     return pages

@@ -102,9 +102,7 @@ def picture(record: Mapping[str, Any]) -> social.Picture | None:
     """Ours: `image {subject, label}`; the original: an `imageUrl` (its file name is the seed)."""
     drawn = social.drawn_picture(record, default_subject="office")
     url = record.get("imageUrl")
-    if drawn is None and url:
-        return social.file_picture(url, lambda seed: "office")
-    return drawn
+    return drawn or (social.file_picture(url, lambda seed: "office") if url else None)
 
 
 # --- items as they arrive (each the `make` of an apps.kit.arrivals.Delivery) ----------------------

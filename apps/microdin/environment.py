@@ -21,10 +21,10 @@ from dataclasses import replace
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, untimed
 from apps.kit.feeds import opening, posts_table
 from apps.kit.retractions import retraction, window
-from apps.kit.tables import KEY, Table, tables
+from apps.kit.tables import Table, item_states, tables
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
 from apps.microdin.actions import ACTIONS
@@ -52,34 +52,37 @@ def _not_a_strangers_profile(network: Network, path: str) -> bool:
     return not path.startswith("in/") or path == f"in/{network.me.id}/"
 
 
+def _opens_unread(network: Network, conversation_id: str) -> bool:
+    return (
+        conversation_id in network.conversations
+        and network_state.unread_in(network, conversation_id) > 0
+    )
+
+
 # The numbers shown in more than one place (apps.kit.counts): the nav badges, the home page's
 # card, My Network, the profile.
 SHOWN_COUNTS = (
     ShownCount(
         "connections",
-        lambda network, now: network_state.connections_count(network),
+        untimed(network_state.connections_count),
         # ("Profile viewers 87 Connections 412": the card's figures sit side by side)
         ("Connections {n}", "(?<!viewers ){n} Connections?", "{n} connections?"),
         on=_not_a_strangers_profile,
     ),
     ShownCount(
         "pending invitations",
-        lambda network, now: network_state.pending_connection_count(network),
+        untimed(network_state.pending_connection_count),
         ("{n} pending invitations?", r"Invitations \({n}\)", "Invitations {n}", "Show all {n}"),
     ),
     ShownCount(
-        "unread messages",
-        lambda network, now: network_state.unread_message_count(network),
-        ("{n} unread messages?",),
+        "unread messages", untimed(network_state.unread_message_count), ("{n} unread messages?",)
     ),
     ShownCount(
         "unread notifications",
-        lambda network, now: network_state.unread_notification_count(network),
+        untimed(network_state.unread_notification_count),
         ("{n} unread notifications?",),
     ),
-    ShownCount(
-        "jobs", lambda network, now: network_state.job_count(network), ("{n} jobs? on MicroDin",)
-    ),
+    ShownCount("jobs", untimed(network_state.job_count), ("{n} jobs? on MicroDin",)),
 )
 
 
@@ -212,11 +215,7 @@ EVENT_TYPES = event_types(
 
 materialize = tables(
     posts_table(("content TEXT", "post.content"), ("shares INTEGER", "post.shares")),
-    Table.keyed(
-        "post_states",
-        "post_states",
-        {"post_id TEXT PRIMARY KEY": KEY, "isLiked INTEGER": "is_liked"},
-    ),
+    item_states("post", {"isLiked INTEGER": "is_liked"}),
     Table(
         "connections",
         lambda network, now: network.connections.values(),
@@ -227,11 +226,7 @@ materialize = tables(
             "mutualConnections INTEGER": "mutual",
         },
     ),
-    Table.keyed(
-        "connection_states",
-        "connection_states",
-        {"connection_id TEXT PRIMARY KEY": KEY, "status TEXT": "status"},
-    ),
+    item_states("connection", {"status TEXT": "status"}),
     Table(
         "messages",
         lambda network, now: network.messages.values(),
@@ -242,11 +237,7 @@ materialize = tables(
             "content TEXT": "content",
         },
     ),
-    Table.keyed(
-        "message_states",
-        "message_states",
-        {"message_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": "is_read"},
-    ),
+    item_states("message", {"isRead INTEGER": "is_read"}),
     Table(
         "notifications",
         lambda network, now: network.notifications.values(),
@@ -257,11 +248,7 @@ materialize = tables(
             "content TEXT": "content",
         },
     ),
-    Table.keyed(
-        "notification_states",
-        "notification_states",
-        {"notification_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": "is_read"},
-    ),
+    item_states("notification", {"isRead INTEGER": "is_read"}),
     Table(
         "jobs",
         lambda network, now: network.jobs.values(),
@@ -273,11 +260,7 @@ materialize = tables(
             **window("posted_at"),
         },
     ),
-    Table.keyed(
-        "job_states",
-        "job_states",
-        {"job_id TEXT PRIMARY KEY": KEY, "isApplied INTEGER": "is_applied"},
-    ),
+    item_states("job", {"isApplied INTEGER": "is_applied"}),
 )
 
 
@@ -293,14 +276,7 @@ MICRODIN = Environment(
     implicit_actions=(
         # Opening a thread marks its messages read, as clicking it in the original does.
         opening(
-            "messaging",
-            "conversation",
-            "open_conversation",
-            lambda network, conversation_id: (
-                conversation_id in network.conversations
-                and network_state.unread_in(network, conversation_id) > 0
-            ),
-            key="conversation_id",
+            "messaging", "conversation", "open_conversation", _opens_unread, key="conversation_id"
         ),
     ),
     sample_pages=sample_pages,

@@ -10,22 +10,20 @@ from dataclasses import dataclass
 
 from apps.kit.query import QueryState, choice, item, text
 
-JOB_FILTERS = ("all", "applied")
-THREAD_FILTERS = ("all", "unread")
 NOTIFICATION_FILTERS = ("all", "unread", "posts", "mentions", "jobs")
 SEARCH_KINDS = ("all", "people", "companies", "jobs")
 
 
 @dataclass(frozen=True)
 class JobsQuery(QueryState):
-    filter: str = choice(JOB_FILTERS, default="all")
+    filter: str = choice(("all", "applied"), default="all")
     q: str = text()
     job: str | None = item()
 
 
 @dataclass(frozen=True)
 class MessagingQuery(QueryState):
-    filter: str = choice(THREAD_FILTERS, default="all")
+    filter: str = choice(("all", "unread"), default="all")
     q: str = text()
     conversation: str | None = item()
 
@@ -39,3 +37,13 @@ class NotificationsQuery(QueryState):
 class SearchQuery(QueryState):
     q: str = text()
     kind: str = choice(SEARCH_KINDS, default="all")
+
+
+def thread_path(conversation_id: str) -> str:
+    """The messaging screen with the thread open."""
+    return "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
+
+
+def job_path(job_id: str) -> str:
+    """The jobs screen with the posting open."""
+    return "jobs/" + JobsQuery(job=job_id).querystring()

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from itertools import islice
 from typing import Any
 
 from apps.kit.derived import per_state
@@ -65,17 +66,16 @@ class ThreadRow:
     unread: int
     last: Message | None
 
+    @property
+    def last_at(self) -> float:
+        return self.last.sent_at if self.last else 0
+
 
 @dataclass(frozen=True)
 class NotificationRow:
     notification: Notification
     is_read: bool
     target: str  # where clicking it goes, relative to the environment root
-
-
-@dataclass(frozen=True)
-class Invitation:
-    connection: Connection
 
 
 def _contains(needle: str, *texts: str) -> bool:
@@ -116,23 +116,22 @@ def news(catalog: Any) -> tuple[Mapping[str, Any], ...]:
 def feed_suggestions(network: Network) -> tuple[Company, ...]:
     """ "Add to your feed": companies of the catalog other than the self user's (first three)."""
     mine = network.me.company.id if network.me.company else None
-    companies = []
-    for entity_id, entity in network.catalog.entities.items():
-        if entity.get("type") == "company" and entity_id != mine:
-            companies.append(records.company(network.catalog, entity_id))
-        if len(companies) == 3:
-            break
-    return tuple(companies)
+    companies = (
+        records.company(network.catalog, entity_id)
+        for entity_id, entity in network.catalog.entities.items()
+        if entity.get("type") == "company" and entity_id != mine
+    )
+    return tuple(islice(companies, 3))
 
 
 # --- my network -------------------------------------------------------------------------------
 
 
 @per_state()
-def invitations(network: Network) -> tuple[Invitation, ...]:
+def invitations(network: Network) -> tuple[Connection, ...]:
     """Invitations waiting for an answer, newest first."""
     pending = (c for c in network.connections.values() if net.status(network, c.id) == "pending")
-    return tuple(Invitation(c) for c in net.newest_first(pending, "received_at"))
+    return tuple(net.newest_first(pending, "received_at"))
 
 
 @per_state()
@@ -202,14 +201,7 @@ def thread_rows(network: Network) -> list[ThreadRow]:
         last = messages[-1] if messages else None
         rows.append(ThreadRow(conversation, net.unread_in(network, conversation.id), last))
     # Latest activity first; a thread without messages yet (just started) goes on top.
-    return sorted(
-        rows,
-        key=lambda r: (
-            r.last is not None,
-            -(r.last.sent_at if r.last else 0),
-            r.conversation.order,
-        ),
-    )
+    return sorted(rows, key=lambda r: (r.last is not None, -r.last_at, r.conversation.order))
 
 
 @per_state()
@@ -248,18 +240,15 @@ def notification_target(network: Network, notification: Notification) -> str:
 def notifications_screen(
     network: Network, query: NotificationsQuery
 ) -> tuple[NotificationRow, ...]:
-    rows = []
-    for notification in net.newest_first(network.notifications.values(), "at"):
-        read = network.notification_states[notification.id].is_read
-        if query.filter == "unread" and read:
-            continue
-        if (
-            query.filter in NOTIFICATION_KINDS
-            and notification.type not in NOTIFICATION_KINDS[query.filter]
-        ):
-            continue
-        rows.append(NotificationRow(notification, read, notification_target(network, notification)))
-    return tuple(rows)
+    kinds = NOTIFICATION_KINDS.get(query.filter)
+    rows = (
+        NotificationRow(
+            n, network.notification_states[n.id].is_read, notification_target(network, n)
+        )
+        for n in net.newest_first(network.notifications.values(), "at")
+        if kinds is None or n.type in kinds
+    )
+    return tuple(r for r in rows if not (query.filter == "unread" and r.is_read))
 
 
 # --- profile, company, search --------------------------------------------------------------------
@@ -314,15 +303,13 @@ class CompanyPage:
 
 
 def company_page(network: Network, company_id: str) -> CompanyPage | None:
-    company = (
-        records.company(network.catalog, company_id)
-        if company_id in network.catalog.entities
-        else None
-    )
     jobs = [j for j in network.jobs.values() if j.company.id == company_id]
-    if company is None and not jobs:
+    if company_id in network.catalog.entities:
+        company = records.company(network.catalog, company_id)
+    elif jobs:  # known only from its postings
+        company = jobs[0].company
+    else:
         return None
-    company = company or jobs[0].company
     cards = tuple(job_card(network, job, False) for job in net.newest_first(jobs, "posted_at"))
     people = tuple(
         p
@@ -359,13 +346,7 @@ def search(network: Network, query: SearchQuery) -> SearchResults:
         for job in net.newest_first(network.jobs.values(), "posted_at")
         if _contains(query.q, job.title, job.company.name)
     )
-    if query.kind == "all":
-        people = people[: SEARCH_LIMITS["people"]]
-        companies = companies[: SEARCH_LIMITS["companies"]]
-        jobs = jobs[: SEARCH_LIMITS["jobs"]]
-    return SearchResults(
-        query,
-        people if query.kind in ("all", "people") else (),
-        companies if query.kind in ("all", "companies") else (),
-        jobs if query.kind in ("all", "jobs") else (),
-    )
+    found = {"people": people, "companies": companies, "jobs": jobs}
+    if query.kind != "all":  # one kind, all of it
+        return SearchResults(query, **{k: v if k == query.kind else () for k, v in found.items()})
+    return SearchResults(query, **{k: v[: SEARCH_LIMITS[k]] for k, v in found.items()})

@@ -210,12 +210,16 @@ def conversation_messages(network: Network, conversation_id: str) -> list[Messag
     )
 
 
-def unread_in(network: Network, conversation_id: str) -> int:
-    return sum(
-        1
+def unread_messages(network: Network, conversation_id: str) -> list[Message]:
+    return [
+        m
         for m in network.messages.values()
         if m.conversation_id == conversation_id and not network.message_states[m.id].is_read
-    )
+    ]
+
+
+def unread_in(network: Network, conversation_id: str) -> int:
+    return len(unread_messages(network, conversation_id))
 
 
 def newest_first(items: Iterable[Item], stamp: str) -> list[Item]:

@@ -8,43 +8,42 @@ Every view serves the full page, or just its content when htmx asks for a fragme
 
 from __future__ import annotations
 
-from django.http import Http404, HttpRequest, HttpResponse
+from django.http import HttpRequest, HttpResponse
 
 from apps.kit import feed_views
 from apps.kit.feed_views import FeedPages, act_on_post, open_thread, shown
-from apps.kit.pages import Page
+from apps.kit.pages import Page, one_of
 from apps.kit.rendering import back_field, came_from, redirect_after, redirect_to
+from apps.kit.streaming import present
 from apps.microdin import screens
-from apps.microdin.query import JobsQuery, MessagingQuery, NotificationsQuery, SearchQuery
-from apps.microdin.state import SECTION_TYPES, connections_count
+from apps.microdin.query import (
+    NOTIFICATION_FILTERS,
+    SEARCH_KINDS,
+    JobsQuery,
+    MessagingQuery,
+    NotificationsQuery,
+    SearchQuery,
+    job_path,
+    thread_path,
+)
+from apps.microdin.state import SECTION_TYPES, Network, connections_count
 from events.registry import ActionRejected
 
 PAGES = FeedPages(badges=screens.nav_badges)
 POST_ACTIONS = {"like_post": "", "unlike_post": "", "comment_post": "Comment posted"}
-NOTIFICATION_FILTER_LABELS = (
-    ("all", "All"),
-    ("unread", "Unread"),
-    ("posts", "My posts"),
-    ("mentions", "Mentions"),
-    ("jobs", "Jobs"),
+# (value, label) per chip: the value capitalised ("My posts": notifications about the user's).
+NOTIFICATION_FILTER_LABELS = tuple(
+    (name, "My posts" if name == "posts" else name.title()) for name in NOTIFICATION_FILTERS
 )
-SEARCH_KIND_LABELS = (
-    ("all", "All"),
-    ("people", "People"),
-    ("companies", "Companies"),
-    ("jobs", "Jobs"),
-)
+SEARCH_KIND_LABELS = tuple((kind, kind.title()) for kind in SEARCH_KINDS)
 INVITATION_VERBS = {"accept": "accept_connection", "ignore": "ignore_connection"}
+ANSWERED = {"accept": "You are now connected with {}", "ignore": "Invitation from {} ignored"}
 
 
 def ending(query, item: str) -> str:
     """The screen's query string without its open item, ready for `<item>=…` to be appended."""
     rest = query.but(**{item: None}).querystring()
     return rest + "&" if rest else "?"
-
-
-def thread_path(conversation_id: str) -> str:
-    return "messaging/" + MessagingQuery(conversation=conversation_id).querystring()
 
 
 # --- home feed and posts -----------------------------------------------------------------------
@@ -78,52 +77,35 @@ def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> 
 # --- my network ----------------------------------------------------------------------------------
 
 
+def network_counts(network: Network) -> dict:
+    """What every My Network screen counts. One number of connections everywhere (home, My
+    Network, profile): the profile's count, not the length of the list of people we can show."""
+    return {"pending": len(screens.invitations(network)), "connections": connections_count(network)}
+
+
 @PAGES.screen("network.html", tab="network")
 def my_network(request: HttpRequest, page: Page):
-    pending = screens.invitations(page.state)
-    return {
-        "invitations": pending[: screens.INVITATIONS_PREVIEW],
-        "pending": len(pending),
-        "suggestions": screens.suggestions(page.state),
-        # One number everywhere (home, My Network, profile): the profile's count, not the
-        # length of the list of people we can show.
-        "connections": connections_count(page.state),
-    }
+    preview = screens.invitations(page.state)[: screens.INVITATIONS_PREVIEW]
+    suggestions = screens.suggestions(page.state)
+    return {"invitations": preview, "suggestions": suggestions, **network_counts(page.state)}
 
 
 @PAGES.screen("invitations.html", tab="network")
 def invitations(request: HttpRequest, page: Page):
-    pending = screens.invitations(page.state)
-    return {
-        "invitations": pending,
-        "pending": len(pending),
-        "connections": connections_count(page.state),
-    }
+    return {"invitations": screens.invitations(page.state), **network_counts(page.state)}
 
 
 @PAGES.screen("connections.html", tab="network")
 def connections(request: HttpRequest, page: Page):
-    pending = screens.invitations(page.state)
-    return {
-        "people": screens.connected_people(page.state),
-        "pending": len(pending),
-        "connections": connections_count(page.state),
-    }
+    return {"people": screens.connected_people(page.state), **network_counts(page.state)}
 
 
 @PAGES.form
 def answer_invitation(request: HttpRequest, page: Page, verb: str) -> HttpResponse:
-    action = INVITATION_VERBS.get(verb)
-    if action is None:
-        raise ActionRejected(f"unknown answer {verb!r}; allowed: accept, ignore", 404)
+    one_of(verb, INVITATION_VERBS, "answer")
     connection_id = request.POST.get("connection_id", "")
-    page.act(action, {"connection_id": connection_id})
-    name = page.state.connections[connection_id].person.name
-    done = (
-        f"You are now connected with {name}"
-        if verb == "accept"
-        else f"Invitation from {name} ignored"
-    )
+    page.act(INVITATION_VERBS[verb], {"connection_id": connection_id})
+    done = ANSWERED[verb].format(page.state.connections[connection_id].person.name)
     return redirect_after(request, page, back_field(request, "mynetwork/"), done)
 
 
@@ -142,7 +124,7 @@ def jobs(request: HttpRequest, page: Page):
 def apply(request: HttpRequest, page: Page, job_id: str) -> HttpResponse:
     page.act("apply_job", {"job_id": job_id})
     job = page.state.jobs[job_id]
-    back = back_field(request, "jobs/" + JobsQuery(job=job_id).querystring())
+    back = back_field(request, job_path(job_id))
     return redirect_after(request, page, back, f"Application sent to {job.company.name}")
 
 
@@ -189,9 +171,7 @@ def read_notification(request: HttpRequest, page: Page) -> HttpResponse:
 
 @PAGES.screen("profile.html")
 def profile(request: HttpRequest, page: Page, user_id: str):
-    found = screens.profile(page.state, user_id)
-    if found is None:
-        raise Http404("no such member")
+    found = present(screens.profile(page.state, user_id), "member")
     tab = "me" if found.is_self else ""
     return {"tab": tab, "profile": found, "section_types": SECTION_TYPES}
 
@@ -207,10 +187,7 @@ def add_section(request: HttpRequest, page: Page, user_id: str) -> HttpResponse:
 
 @PAGES.screen("company.html")
 def company(request: HttpRequest, page: Page, company_id: str):
-    found = screens.company_page(page.state, company_id)
-    if found is None:
-        raise Http404("no such company")
-    return {"company_page": found}
+    return {"company_page": present(screens.company_page(page.state, company_id), "company")}
 
 
 @PAGES.screen("search.html")

@@ -239,9 +239,7 @@ ACTIONS: Mapping[str, Action] = MappingProxyType(
             reduce_view_story, "Watch a story (its ring turns grey).", story_page
         ),
         "read_conversation": on_thread(
-            reduce_read_conversation,
-            "Open a DM thread; this marks its messages read.",
-            thread_page,
+            reduce_read_conversation, "Open a DM thread; this marks its messages read.", thread_page
         ),
         "send_message": Action(
             SendMessage,

@@ -6,7 +6,7 @@ longer feed and the searches. Paths are relative to the environment root.
 
 from __future__ import annotations
 
-from apps.microgram.query import ExploreQuery, FeedQuery, ProfileQuery, SearchQuery
+from apps.microgram.query import FeedQuery, ProfileQuery, SearchQuery
 
 
 def sample_pages(gram) -> list[str]:
@@ -15,7 +15,7 @@ def sample_pages(gram) -> list[str]:
         "",
         "" + FeedQuery(page="3").querystring(),
         "explore/",
-        "explore/" + ExploreQuery(q="sunset").querystring(),
+        "explore/" + SearchQuery(q="sunset").querystring(),
         "search/" + SearchQuery(q="an").querystring(),
         "direct/inbox/",
         "activity/",

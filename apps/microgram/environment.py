@@ -19,12 +19,12 @@ from typing import NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, untimed
 from apps.kit.feeds import opening, posts_table
 from apps.kit.retractions import retraction, still_there, window
 from apps.kit.social import Comment
 from apps.kit.state import with_changed, with_items
-from apps.kit.tables import KEY, VALUE, Keyed, Table, tables
+from apps.kit.tables import KEY, VALUE, Keyed, Table, item_states, named, tables
 from apps.microgram import catalog as records
 from apps.microgram import state as gram_state
 from apps.microgram.actions import ACTIONS
@@ -85,10 +85,9 @@ class AlreadyDone(Payload):
 
 def already_done(gram: Gram, payload: Mapping, at: float) -> Gram:
     """Likes, saves and views apply only to items that were loaded; follows to anyone."""
-    for post_id in payload.get("liked_post_ids") or ():
-        gram = with_changed(gram, "post_states", post_id, is_liked=True)
-    for post_id in payload.get("saved_post_ids") or ():
-        gram = with_changed(gram, "post_states", post_id, is_saved=True)
+    for ids, flag in (("liked_post_ids", "is_liked"), ("saved_post_ids", "is_saved")):
+        for post_id in payload.get(ids) or ():
+            gram = with_changed(gram, "post_states", post_id, **{flag: True})
     viewed = {s for s in payload.get("viewed_story_ids") or () if s in gram.stories}
     followed = tuple(dict.fromkeys((*gram.followed, *(payload.get("followed_user_ids") or ()))))
     return replace(gram, viewed_stories=gram.viewed_stories | viewed, followed=followed)
@@ -169,13 +168,12 @@ def story_states(gram: Gram, now: float) -> Iterable[Keyed]:
     return (Keyed(story_id, story_id in gram.viewed_stories) for story_id in gram.stories)
 
 
+ID = "id TEXT PRIMARY KEY"  # the key column most tables have, read from the attribute `id`
 materialize = tables(
     posts_table(("caption TEXT", "post.caption"), ("isTargetPost INTEGER", "post.is_target")),
-    Table.keyed(
-        "post_states",
-        "post_states",
+    item_states(
+        "post",
         {
-            "post_id TEXT PRIMARY KEY": KEY,
             "isLiked INTEGER": "is_liked",
             "isSaved INTEGER": "is_saved",
             "isViewed INTEGER": "is_viewed",
@@ -205,35 +203,17 @@ materialize = tables(
     Table(
         "story_states", story_states, {"story_id TEXT PRIMARY KEY": KEY, "isViewed INTEGER": VALUE}
     ),
+    Table("messages", lambda gram, now: gram.conversations.values(), named(ID, "data TEXT")),
+    item_states("message", {"isRead INTEGER": VALUE}, "read_messages"),
     Table(
-        "messages",
-        lambda gram, now: gram.conversations.values(),
-        {"id TEXT PRIMARY KEY": "id", "data TEXT": "data"},
-    ),
-    Table.keyed(
-        "message_states",
-        "read_messages",
-        {"message_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": VALUE},
-    ),
-    Table(
-        "sent_messages",
-        lambda gram, now: gram.sent,
-        {
-            "id TEXT PRIMARY KEY": "id",
-            "conversation_id TEXT": "conversation_id",
-            "text TEXT": "text",
-        },
+        "sent_messages", lambda gram, now: gram.sent, named(ID, "conversation_id TEXT", "text TEXT")
     ),
     Table(
         "activity",
         lambda gram, now: gram.activity.values(),
-        {"id TEXT PRIMARY KEY": "id", "type TEXT": "type", "actorId TEXT": "actor.id"},
+        {**named(ID, "type TEXT"), "actorId TEXT": "actor.id"},
     ),
-    Table.keyed(
-        "activity_states",
-        "read_activity",
-        {"activity_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": VALUE},
-    ),
+    item_states("activity", {"isRead INTEGER": VALUE}, "read_activity"),
     Table(
         "followed_users",
         lambda gram, now: gram.followed,
@@ -242,7 +222,7 @@ materialize = tables(
     Table(
         "user_created_comments",
         lambda gram, now: gram.user_comments,
-        {"id TEXT PRIMARY KEY": "id", "post_id TEXT": "post_id", "text TEXT": "text"},
+        named(ID, "post_id TEXT", "text TEXT"),
     ),
 )
 
@@ -252,16 +232,24 @@ def _opens_unviewed_post(gram: Gram, post_id: str) -> bool:
     return state is not None and not state.is_viewed
 
 
+def _opens_unwatched_story(gram: Gram, story_id: str) -> bool:
+    return still_there(gram.stories, story_id) and story_id not in gram.viewed_stories
+
+
+def _opens_unread_thread(gram: Gram, conversation_id: str) -> bool:
+    return unread_in(gram, conversation_id) > 0
+
+
 # The numbers shown in more than one place (apps.kit.counts): the sidebar's badges on every page.
 SHOWN_COUNTS = (
     ShownCount(
         "unread conversations",
-        lambda gram, now: gram_state.unread_conversation_count(gram),
+        untimed(gram_state.unread_conversation_count),
         ("{n} Messages", "{n} unread conversations?"),
     ),
     ShownCount(
         "unread notifications",
-        lambda gram, now: gram_state.unread_activity_count(gram),
+        untimed(gram_state.unread_activity_count),
         ("Notifications , {n} unread",),
     ),
 )
@@ -279,20 +267,8 @@ MICROGRAM = Environment(
     implicit_actions=(
         # Opening a post (its comments), a story or a DM thread is what views / reads it.
         opening("post", "post_id", "view_post", _opens_unviewed_post),
-        opening(
-            "story",
-            "story_id",
-            "view_story",
-            lambda gram, story_id: (
-                still_there(gram.stories, story_id) and story_id not in gram.viewed_stories
-            ),
-        ),
-        opening(
-            "thread",
-            "conversation_id",
-            "read_conversation",
-            lambda gram, conversation_id: unread_in(gram, conversation_id) > 0,
-        ),
+        opening("story", "story_id", "view_story", _opens_unwatched_story),
+        opening("thread", "conversation_id", "read_conversation", _opens_unread_thread),
     ),
     sample_pages=sample_pages,
     shown_counts=SHOWN_COUNTS,

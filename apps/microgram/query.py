@@ -12,7 +12,6 @@ from apps.kit.query import QueryState, choice, text
 
 FEED_PAGE_SIZE = 10  # posts per "Load more", as the original
 FEED_PAGES = tuple(str(n) for n in range(1, 31))  # up to the whole 300-post catalog
-PROFILE_TABS = ("posts", "saved", "tagged")
 
 
 @dataclass(frozen=True)
@@ -25,15 +24,12 @@ class FeedQuery(QueryState):
 
 
 @dataclass(frozen=True)
-class ExploreQuery(QueryState):
-    q: str = text()
-
-
-@dataclass(frozen=True)
 class SearchQuery(QueryState):
+    """What Explore's grid and Search's people are filtered by."""
+
     q: str = text()
 
 
 @dataclass(frozen=True)
 class ProfileQuery(QueryState):
-    tab: str = choice(PROFILE_TABS, default="posts", not_found=True)
+    tab: str = choice(("posts", "saved", "tagged"), default="posts", not_found=True)

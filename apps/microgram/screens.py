@@ -240,14 +240,11 @@ def profile(gram: Gram, user_id: str, tab: str) -> ProfileView:
     """A member's profile. Posts: those of theirs in the feed (saved ones on the self user's
     Saved tab). Counts: the catalog's, never fewer than the posts shown; following the person
     adds one follower, and the self user's own following grows with each follow."""
-    who = gram.me if user_id == gram.me.id else person(gram.catalog, user_id)
     is_self = user_id == gram.me.id
+    who = gram.me if is_self else person(gram.catalog, user_id)
     theirs = tuple(c for c in feed(gram) if c.post.author.id == user_id)
-    shown = theirs
-    if tab == "saved":
-        shown = tuple(c for c in feed(gram) if c.is_saved) if is_self else ()
-    elif tab == "tagged":
-        shown = ()
+    saved = tuple(c for c in feed(gram) if c.is_saved) if is_self else ()
+    shown = {"posts": theirs, "saved": saved}.get(tab, ())  # Tagged: nobody tags anyone here
     followed = is_following(gram, user_id)
     return ProfileView(
         person=who,

@@ -15,7 +15,7 @@ from apps.kit.feeds import thread_with
 from apps.kit.pages import Page, one_of
 from apps.kit.rendering import came_from, redirect_after, redirect_to
 from apps.microgram import screens
-from apps.microgram.query import ExploreQuery, FeedQuery, ProfileQuery, SearchQuery
+from apps.microgram.query import FeedQuery, ProfileQuery, SearchQuery
 from apps.microgram.state import comments_of, is_following, known_people
 
 PAGES = FeedPages(badges=screens.badges)
@@ -75,9 +75,8 @@ def post_action(request: HttpRequest, page: Page, post_id: str, action: str) -> 
 
 @PAGES.form
 def share(request: HttpRequest, page: Page, post_id: str) -> HttpResponse:
-    note = request.POST.get("text", "")
-    conversation_id = request.POST.get("conversation_id", "")
-    page.act("share_post", {"post_id": post_id, "conversation_id": conversation_id, "text": note})
+    form = {field: request.POST.get(field, "") for field in ("conversation_id", "text")}
+    page.act("share_post", {"post_id": post_id, **form})
     return redirect_after(request, page, f"p/{post_id}/", "Sent")
 
 
@@ -99,7 +98,7 @@ def story(request: HttpRequest, page: Page, story_id: str):
 
 @PAGES.screen("explore.html", tab="explore")
 def explore(request: HttpRequest, page: Page):
-    query = ExploreQuery.from_params(request.GET)
+    query = SearchQuery.from_params(request.GET)
     return {"query": query, "cards": screens.explore(page.state, query.q)}
 
 
@@ -162,8 +161,7 @@ def read_all_activity(request: HttpRequest, page: Page) -> HttpResponse:
 
 @PAGES.screen("profile.html")
 def profile(request: HttpRequest, page: Page, user_id: str):
-    if user_id not in known_people(page.state):
-        raise Http404("no such member")  # unknown or not seen on MicroGram yet: alike
+    shown(known_people(page.state), user_id, "member")  # unknown or not seen yet: alike
     query = ProfileQuery.from_params(request.GET)
     view = screens.profile(page.state, user_id, query.tab)
     return {

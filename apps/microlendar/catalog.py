@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from apps.kit.arrivals import Stamp
 from apps.microlendar import times
 from apps.microlendar.state import (
     CALENDARS,
@@ -19,8 +20,10 @@ from apps.microlendar.state import (
     DEFAULT_CALENDAR,
     DEFAULT_DURATION_MIN,
     ENVIRONMENT,
+    Agenda,
     Attendee,
     CalendarEvent,
+    EventState,
     Task,
     TaskState,
 )
@@ -51,8 +54,12 @@ def organizer(catalog: Any, record: dict) -> Attendee | None:
     return attendee(catalog, who) or Attendee(id=who, name=who, email=who)
 
 
-def catalog_event(catalog: Any, event_id: str) -> CalendarEvent | None:
-    """The event `event_id`; None if the catalog lacks it, it is a task or has no start time."""
+def catalog_event(
+    agenda: Agenda, event_id: str, stamp: Stamp
+) -> tuple[CalendarEvent, EventState] | None:
+    """The event `event_id`, marked as a new invitation unless it is part of the starting world;
+    None if the catalog lacks it, it is a task or has no start time."""
+    catalog = agenda.catalog
     record = catalog.table(ENVIRONMENT, TABLE).get(event_id)
     if record is None or record.get("is_task") or not record.get("start_time"):
         return None
@@ -66,7 +73,7 @@ def catalog_event(catalog: Any, event_id: str) -> CalendarEvent | None:
         end = start + DEFAULT_DURATION_MIN
     calendar = str(record.get("category") or DEFAULT_CALENDAR)
     people = (attendee(catalog, user_id) for user_id in record.get("attendees") or ())
-    return CalendarEvent(
+    event = CalendarEvent(
         id=event_id,
         title=str(record.get("title") or "(No title)"),
         day=day,
@@ -78,12 +85,14 @@ def catalog_event(catalog: Any, event_id: str) -> CalendarEvent | None:
         attendees=tuple(p for p in people if p is not None),
         organizer=organizer(catalog, record),
         order=int(record.get("order") or 0),
+        arrived_at=stamp.at,
     )
+    return event, EventState(arrived_during_run=not stamp.preloaded)
 
 
-def catalog_task(catalog: Any, task_id: str) -> tuple[Task, TaskState] | None:
+def catalog_task(agenda: Agenda, task_id: str, stamp: Stamp) -> tuple[Task, TaskState] | None:
     """The task `task_id` with its catalog completion; None if missing or not a task."""
-    record = catalog.table(ENVIRONMENT, TABLE).get(task_id)
+    record = agenda.catalog.table(ENVIRONMENT, TABLE).get(task_id)
     if record is None or not record.get("is_task"):
         return None
     due = record.get("due_date") or record.get("dueDate") or record.get("start_time")

@@ -25,7 +25,7 @@ from typing import Any, NamedTuple
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, untimed
 from apps.kit.deciding import opening
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import Rows, Table, named, tables
@@ -34,7 +34,7 @@ from apps.microlendar import times
 from apps.microlendar.actions import ACTIONS
 from apps.microlendar.bench import sample_pages
 from apps.microlendar.catalog import catalog_event, catalog_task
-from apps.microlendar.state import ENVIRONMENT, Agenda, EventState, empty_agenda
+from apps.microlendar.state import ENVIRONMENT, Agenda, empty_agenda
 from events.registry import Environment, counted
 from events.schemas import Payload
 
@@ -53,21 +53,8 @@ BASELINES = counted(
 )
 
 
-def delivered_event(agenda: Agenda, event_id: str, stamp) -> tuple[Any, EventState] | None:
-    """The catalog event, marked as a new invitation unless it is part of the starting world."""
-    event = catalog_event(agenda.catalog, event_id)
-    if event is None:
-        return None
-    return replace(event, arrived_at=stamp.at), EventState(arrived_during_run=not stamp.preloaded)
-
-
-deliver_events = Delivery("events", delivered_event, states="event_states")
-# A catalog task comes with its catalogued completion.
-deliver_tasks = Delivery(
-    "tasks",
-    lambda agenda, task_id, stamp: catalog_task(agenda.catalog, task_id),
-    states="task_states",
-)
+deliver_events = Delivery("events", catalog_event, states="event_states")
+deliver_tasks = Delivery("tasks", catalog_task, states="task_states")  # with their completion
 
 
 class CalendarDays(Payload):
@@ -205,7 +192,7 @@ def unviewed_invitation(agenda: Agenda, event_id: str) -> bool:
 
 # The numbers shown in more than one place (apps.kit.counts): the sidebar on every view.
 SHOWN_COUNTS = (
-    ShownCount("tasks", lambda agenda, now: agenda_state.task_count(agenda), ("Tasks {n}",)),
+    ShownCount("tasks", untimed(agenda_state.task_count), ("Tasks {n}",)),
     ShownCount(
         "new invitations",
         lambda agenda, now: len(agenda_state.new_invitations(agenda)),

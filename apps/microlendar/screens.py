@@ -11,6 +11,7 @@ from __future__ import annotations
 import calendar as month_math
 from dataclasses import dataclass, replace
 from datetime import date, datetime, timedelta
+from itertools import groupby
 
 from apps.kit.derived import per_state
 from apps.microlendar import times
@@ -114,13 +115,9 @@ def month_bounds(day: date) -> tuple[date, date]:
 
 
 def visible_range(view: str, shown: date) -> tuple[date, date]:
-    if view == "day":
-        return shown, shown
-    if view == "4days":
-        return shown, shown + timedelta(days=3)
-    if view == "week":
-        start = week_start(shown)
-        return start, start + timedelta(days=6)
+    if view in GRID_DAYS:  # a week from its Sunday, a day and 4 days from the shown date
+        first = week_start(shown) if view == "week" else shown
+        return first, first + timedelta(days=GRID_DAYS[view] - 1)
     if view == "year":
         return date(shown.year, 1, 1), date(shown.year, 12, 31)
     return month_bounds(shown)  # month, schedule
@@ -216,10 +213,8 @@ def month_weeks(
     """Six weeks from the Sunday before the 1st. In the month view each cell links to its day
     view and shows its first events and "+N more"; in a mini month it moves the screen there."""
     grid = days(week_start(shown.replace(day=1)), 42)
-    by_day: dict[date, list[CalendarEvent]] = {}
-    if not mini:
-        for event in shown_events(agenda, query, grid[0], grid[-1]):
-            by_day.setdefault(event.day, []).append(event)
+    events = () if mini else shown_events(agenda, query, grid[0], grid[-1])  # in time order
+    by_day = {day: list(on_day) for day, on_day in groupby(events, key=lambda e: e.day)}
     cells = []
     for day in grid:
         on_day = by_day.get(day, [])

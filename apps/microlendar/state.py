@@ -134,9 +134,6 @@ class Agenda(SelfUserState):
         event = self.events.get(event_id)
         return event is not None and is_gone(event)
 
-    def me_as_guest(self) -> Attendee:
-        return Attendee(id=self.self_id, name=self.self_name, email=self.self_email)
-
     def response(self, event_id: str) -> str:
         """The user's answer to an invitation. There is no reply button: one already on the
         calendar when the run starts was accepted; one that came in during the run awaits it."""
@@ -179,7 +176,7 @@ def live_events(agenda: Agenda) -> list[CalendarEvent]:
 def guests(agenda: Agenda, event: CalendarEvent) -> tuple[Guest, ...]:
     """The guest list as Google Calendar's event details give it: the organiser first, then the
     user (with their answer, when someone else invited them), then the other attendees."""
-    me = agenda.me_as_guest()
+    me = Attendee(id=agenda.self_id, name=agenda.self_name, email=agenda.self_email)
     if event.organizer is None:
         first = (Guest(me, "Organizer"),)
     else:
@@ -240,17 +237,8 @@ def task_count(agenda: Agenda) -> int:
 
 
 def conflict_count(agenda: Agenda) -> int:
-    """Pairs of events on the same day whose times overlap."""
-    by_day: dict[date, list[CalendarEvent]] = {}
-    for event in live_events(agenda):
-        by_day.setdefault(event.day, []).append(event)
-    return sum(
-        1
-        for day_events in by_day.values()
-        for i, first in enumerate(day_events)
-        for second in day_events[i + 1 :]
-        if first.overlaps(second)
-    )
+    """Pairs of events on the same day whose times overlap (each pair has two ends)."""
+    return sum(len(conflicts_with(agenda, event)) for event in live_events(agenda)) // 2
 
 
 def new_invitations(agenda: Agenda) -> list[CalendarEvent]:

@@ -54,8 +54,7 @@ def hour_label(hour: int) -> str:
     """The hour rows of the time grid: "1 AM" … "11 PM" (no label for midnight)."""
     if hour == 0:
         return ""
-    suffix = "AM" if hour < 12 else "PM"
-    return f"{hour % 12 or 12} {suffix}"
+    return f"{hour % 12 or 12} {'AM' if hour < 12 else 'PM'}"
 
 
 def span(start: int, end: int) -> str:

@@ -34,6 +34,7 @@ from events.registry import ActionRejected
 DONE = {"reschedule": "Event rescheduled", "delete": "Event deleted"}
 EVENT_ACTIONS = {"reschedule": "reschedule_event", "delete": "delete_event"}
 TASK_ACTIONS = {"toggle": "toggle_task", "delete": "delete_task"}
+TICKED = {True: "Task completed", False: "Task marked not done"}  # what a toggle led to
 
 
 def calendar_moment(agenda: Agenda, page: Page) -> datetime:
@@ -88,14 +89,13 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
         raise Http404("no such event")
     context = base_context(page, query)
     screen = screens.calendar_screen(agenda, query, context["today"])
+    opened = agenda.events[query.event] if query.event else None
     context.update(
         screen=screen,
         now_top=screens.now_line_top(context["moment"]),
-        details=agenda.events[query.event] if query.event else None,
-        guests=guests(agenda, agenda.events[query.event]) if query.event else (),
-        conflicts=conflicts_with(agenda, agenda.events[query.event])
-        if query.event and agenda.has_event(query.event)
-        else (),
+        details=opened,
+        guests=guests(agenda, opened) if opened else (),
+        conflicts=conflicts_with(agenda, opened) if opened and agenda.has_event(opened.id) else (),
         close_url=query.but(event=None).querystring() or "?",
         clear_search_url=query.but(q="", event=None).querystring() or "?",
         title_for_tab=screen.title,
@@ -240,10 +240,7 @@ def new_task(request: HttpRequest, page: Page) -> HttpResponse:
 def task_action(request: HttpRequest, page: Page, task_id: str, action: str) -> HttpResponse:
     one_of(action, TASK_ACTIONS, "task action")
     event = page.act(TASK_ACTIONS[action], {"task_id": task_id})
-    if action == "delete":
-        done = "Task deleted"
-    else:
-        done = "Task completed" if event.payload["completed"] else "Task marked not done"
+    done = "Task deleted" if action == "delete" else TICKED[event.payload["completed"]]
     return redirect_after(request, page, _back(request).querystring(), done)
 
 
