@@ -59,6 +59,11 @@ def integer(key: str) -> Field:
     return lambda record: int(record.get(key) or 0)
 
 
+def raw(key: str) -> Field:
+    """The value as the catalog gives it, unconverted; None when missing."""
+    return lambda record: record.get(key)
+
+
 def texts(key: str) -> Field:
     """A list's items as texts; () when the value is not a list."""
     return lambda record: tuple(map(str, v)) if isinstance(v := record.get(key), list) else ()
@@ -76,6 +81,12 @@ def inner(key: str, inner_key: str) -> Field:
 def each(key: str, kind: type[T]) -> Field:
     """A tuple of `kind`, one read from each object of the list at `key`."""
     return lambda record: tuple(read(kind, item) for item in record.get(key) or ())
+
+
+def looked_up(find: Callable[[Any, Any], T], key: str) -> Given:
+    """For `reader`: what the record's value at `key` names elsewhere in the catalog,
+    `find(catalog, value)` (an author's id → the person)."""
+    return lambda catalog, record, stamp: find(catalog, record.get(key))
 
 
 def read(kind: type[T], record: Record, **known: Any) -> T:

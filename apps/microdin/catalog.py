@@ -19,6 +19,7 @@ from typing import Any
 from apps.kit import social
 from apps.kit.arrivals import Stamp
 from apps.kit.feeds import Members, arrived_at, from_catalog, thread_messages
+from apps.kit.records import Record, read, reader
 from apps.microdin.state import (
     ENVIRONMENT,
     Company,
@@ -57,11 +58,8 @@ def company(catalog: Any, company_id: str | None, name: str = "") -> Company | N
         or {}
     )
     made_up = (company_id or "").removeprefix("company-").replace("-", " ").title()
-    return Company(
-        id=company_id or name,
-        name=str(entity.get("name") or name or made_up),
-        description=str(entity.get("description") or ""),
-        industry=str(entity.get("industry") or ""),
+    return read(
+        Company, entity, id=company_id or name, name=str(entity.get("name") or name or made_up)
     )
 
 
@@ -92,10 +90,14 @@ def _order(record: Mapping[str, Any], fallback: int) -> int:
     return int(value) if isinstance(value, int | float) else fallback
 
 
-def arrival(record: Mapping[str, Any], stamp: Stamp) -> tuple[float, int]:
-    """When the item appeared and its place among equal times: the record's `order`, else its
-    place in the delivery."""
-    return arrived_at(record, stamp, PRELOAD_AGE_S), _order(record, stamp.order)
+def appeared(catalog: Any, record: Record, stamp: Stamp) -> float:
+    """When the item appeared (`feeds.arrived_at`)."""
+    return arrived_at(record, stamp, PRELOAD_AGE_S)
+
+
+def place(catalog: Any, record: Record, stamp: Stamp) -> int:
+    """Its place among equal times: the record's `order`, else its place in the delivery."""
+    return _order(record, stamp.order)
 
 
 def picture(record: Mapping[str, Any]) -> social.Picture | None:
@@ -105,81 +107,78 @@ def picture(record: Mapping[str, Any]) -> social.Picture | None:
     return drawn or (social.file_picture(url, lambda seed: "office") if url else None)
 
 
+def employer(catalog: Any, record: Record, stamp: Stamp) -> Company:
+    """A job's company (`company`), never none: an unnamed one reads as a member's."""
+    name = str(record.get("company") or "")
+    found = company(catalog, record.get("companyId"), name)
+    return found or Company(id="", name=UNKNOWN_MEMBER)
+
+
 # --- items as they arrive (each the `make` of an apps.kit.arrivals.Delivery) ----------------------
 
 
 @from_catalog(ENVIRONMENT, "posts")
-def catalog_post(network: Network, post_id: str, record: Mapping, stamp: Stamp) -> Post:
+def catalog_post(network: Network, post_id: str, record: Record, stamp: Stamp) -> Post:
     catalog = network.catalog
-    posted_at, order = arrival(record, stamp)
-    return Post(
+    return read(
+        Post,
+        record,
         id=post_id,
         author=person(catalog, record.get("authorId")),
-        content=str(record.get("content", "")),
-        likes=int(record.get("likes") or 0),
-        shares=int(record.get("shares") or 0),
         comments=social.catalog_comments(record, post_id, partial(person, catalog)),
-        posted_at=posted_at,
-        order=order,
+        posted_at=appeared(catalog, record, stamp),
+        order=place(catalog, record, stamp),
         image=picture(record),
     )
 
 
 @from_catalog(ENVIRONMENT, "connections")
 def catalog_connection(
-    network: Network, connection_id: str, record: Mapping, stamp: Stamp
+    network: Network, connection_id: str, record: Record, stamp: Stamp
 ) -> tuple[Connection, ConnectionState]:
     """An invitation, with the status the catalog gives it (pending unless it says)."""
-    received_at, order = arrival(record, stamp)
-    connection = Connection(
+    catalog = network.catalog
+    connection = read(
+        Connection,
+        record,
         id=connection_id,
-        person=person(network.catalog, record.get("userId")),
-        mutual=int(record.get("mutualConnections") or 0),
-        received_at=received_at,
-        order=order,
+        person=person(catalog, record.get("userId")),
+        received_at=appeared(catalog, record, stamp),
+        order=place(catalog, record, stamp),
     )
-    return connection, ConnectionState(status=str(record.get("status") or "pending"))
+    return connection, read(ConnectionState, record)
 
 
 @from_catalog(ENVIRONMENT, "notifications")
 def catalog_notification(
-    network: Network, notification_id: str, record: Mapping, stamp: Stamp
+    network: Network, notification_id: str, record: Record, stamp: Stamp
 ) -> tuple[Notification, NotificationState]:
     """A notification: preloaded, with the catalog's read flag; arriving later, unread."""
+    catalog = network.catalog
     kind = str(record.get("type") or "other")
-    at, order = arrival(record, stamp)
-    notification = Notification(
+    notification = read(
+        Notification,
+        record,
         id=notification_id,
         type=kind,
-        actor=person(network.catalog, record.get("actorId")),
+        actor=person(catalog, record.get("actorId")),
         content=str(record.get("text") or DEFAULT_PHRASES.get(kind, "has a new update for you")),
-        at=at,
-        order=order,
-        target_post_id=record.get("targetPostId"),
-        company=str(record.get("company") or ""),
+        at=appeared(catalog, record, stamp),
+        order=place(catalog, record, stamp),
     )
-    read = bool(record.get("isRead", False)) and stamp.preloaded
-    return notification, NotificationState(is_read=read)
+    read_flag = bool(record.get("isRead", False)) and stamp.preloaded
+    return notification, NotificationState(is_read=read_flag)
 
 
-@from_catalog(ENVIRONMENT, "jobs")
-def catalog_job(network: Network, job_id: str, record: Mapping, stamp: Stamp) -> Job:
-    catalog = network.catalog
-    posted_at, order = arrival(record, stamp)
-    return Job(
-        id=job_id,
-        title=str(record.get("title", "")),
-        company=company(catalog, record.get("companyId"), str(record.get("company") or ""))
-        or Company(id="", name=UNKNOWN_MEMBER),
-        location=str(record.get("location", "")),
-        type=str(record.get("type") or "full-time"),
-        description=str(record.get("description", "")),
-        requirements=tuple(str(r) for r in record.get("requirements") or ()),
-        applicants=int(record.get("applicants") or 0),
-        posted_at=posted_at,
-        order=order,
-        posted_during_run=not stamp.preloaded,
-    )
+catalog_job = reader(
+    ENVIRONMENT,
+    "jobs",
+    Job,
+    company=employer,
+    posted_at=appeared,
+    order=place,
+    posted_during_run=lambda catalog, record, stamp: not stamp.preloaded,
+)
 
 
 # --- threads: one record per conversation, its messages inside -----------------------------------
@@ -187,7 +186,7 @@ def catalog_job(network: Network, job_id: str, record: Mapping, stamp: Stamp) ->
 
 @from_catalog(ENVIRONMENT, "messages")
 def catalog_conversation(
-    network: Network, conversation_id: str, record: Mapping, stamp: Stamp
+    network: Network, conversation_id: str, record: Record, stamp: Stamp
 ) -> Conversation:
     """A thread, listed after those there are unless its record says where."""
     order = _order(record, len(network.conversations) + stamp.order)
@@ -214,18 +213,19 @@ def catalog_message(
     found = network.catalog.index(message_index).get(message_id)
     if found is None:
         return None
+    catalog = network.catalog
     conversation_id, record = found
-    sent_at, order = arrival(record, stamp)
-    message = Message(
+    message = read(
+        Message,
+        record,
         id=message_id,
         conversation_id=conversation_id,
-        sender=person(network.catalog, record.get("senderId")),
-        content=str(record.get("text", record.get("content", ""))),
-        sent_at=sent_at,
-        order=order,
+        sender=person(catalog, record.get("senderId")),
+        sent_at=appeared(catalog, record, stamp),
+        order=place(catalog, record, stamp),
     )
-    read = stamp.preloaded and preloaded_read(network.catalog, conversation_id, record)
-    return message, MessageState(is_read=read)
+    read_flag = stamp.preloaded and preloaded_read(catalog, conversation_id, record)
+    return message, MessageState(is_read=read_flag)
 
 
 def preloaded_read(catalog: Any, conversation_id: str, message: Mapping[str, Any]) -> bool:

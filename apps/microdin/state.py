@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from typing import TypeVar
 
 from apps.kit.feeds import counting
+from apps.kit.records import from_catalog, integer, raw, text, text_or
 from apps.kit.social import Comment, Picture
 from apps.kit.state import EMPTY, CatalogState
 
@@ -26,8 +27,8 @@ SECTION_TYPES = ("experience", "education", "skill", "certification", "project",
 class Company:
     id: str
     name: str
-    description: str = ""
-    industry: str = ""
+    description: str = from_catalog(text_or("description"), default="")
+    industry: str = from_catalog(text_or("industry"), default="")
 
 
 @dataclass(frozen=True)
@@ -51,9 +52,10 @@ class Person:
 class Post:
     id: str
     author: Person
-    content: str
-    likes: int  # as delivered; the user's own like is added by `likes_now`
-    shares: int
+    content: str = from_catalog(text("content"))
+    # as delivered; the user's own like is added by `likes_now`
+    likes: int = from_catalog(integer("likes"))
+    shares: int = from_catalog(integer("shares"))
     comments: tuple[Comment[Person], ...]
     posted_at: float
     order: int
@@ -72,14 +74,15 @@ class Connection:
 
     id: str
     person: Person
-    mutual: int
+    mutual: int = from_catalog(integer("mutualConnections"))
     received_at: float
     order: int
 
 
 @dataclass(frozen=True)
 class ConnectionState:
-    status: str = "pending"  # pending | accepted | ignored
+    # pending | accepted | ignored: as the catalog says, else pending
+    status: str = from_catalog(text_or("status", "pending"), default="pending")
 
 
 @dataclass(frozen=True)
@@ -96,7 +99,7 @@ class Message:
     id: str
     conversation_id: str
     sender: Person
-    content: str
+    content: str = from_catalog(lambda r: str(r.get("text", r.get("content", ""))))
     sent_at: float
     order: int  # position in its conversation
 
@@ -114,8 +117,9 @@ class Notification:
     content: str
     at: float
     order: int
-    target_post_id: str | None = None
-    company: str = ""  # a job notification's employer: its logo, not a person's face
+    target_post_id: str | None = from_catalog(raw("targetPostId"), default=None)
+    # a job notification's employer: its logo, not a person's face
+    company: str = from_catalog(text_or("company"), default="")
 
 
 @dataclass(frozen=True)
@@ -126,13 +130,16 @@ class NotificationState:
 @dataclass(frozen=True)
 class Job:
     id: str
-    title: str
+    title: str = from_catalog(text("title"))
     company: Company
-    location: str
-    type: str
-    description: str
-    requirements: tuple[str, ...]
-    applicants: int  # the catalog's count, for a posting that was up before the run
+    location: str = from_catalog(text("location"))
+    type: str = from_catalog(text_or("type", "full-time"))
+    description: str = from_catalog(text("description"))
+    requirements: tuple[str, ...] = from_catalog(
+        lambda r: tuple(str(line) for line in r.get("requirements") or ())
+    )
+    # the catalog's count, for a posting that was up before the run
+    applicants: int = from_catalog(integer("applicants"))
     posted_at: float
     order: int
     # Posted while the run plays (minutes ago): it cannot have its catalogued applicants yet,
