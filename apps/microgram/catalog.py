@@ -21,6 +21,7 @@ from typing import Any
 from apps.kit import social
 from apps.kit.arrivals import Stamp
 from apps.kit.feeds import Members, arrived_at, from_catalog, thread_messages
+from apps.kit.records import Record, looked_up, read, reader
 from apps.microgram.state import (
     ENVIRONMENT,
     Activity,
@@ -50,16 +51,13 @@ def member(
     catalog: Any, user_id: str, user: Mapping[str, Any], profile: Mapping[str, Any]
 ) -> Person:
     """A catalog user as MicroGram shows them; `profile` holds their numbers on MicroGram."""
-    return Person(
+    return read(
+        Person,
+        profile,
         id=user_id,
         name=str(user.get("name") or user_id),
         username=str(user.get("username") or user_id),
         bio=str(profile.get("bio") or user.get("bio") or ""),
-        website=str(profile.get("website") or ""),
-        followers=int(profile.get("followers") or 0),
-        following=int(profile.get("following") or 0),
-        posts_count=int(profile.get("postsCount") or 0),
-        verified=bool(profile.get("isVerified")),
     )
 
 
@@ -107,50 +105,42 @@ def arrival(catalog: Any, name: str, record: Mapping[str, Any], stamp: Stamp) ->
 
 
 @from_catalog(ENVIRONMENT, "posts")
-def catalog_post(gram: Gram, post_id: str, record: Mapping, stamp: Stamp) -> Post:
+def catalog_post(gram: Gram, post_id: str, record: Record, stamp: Stamp) -> Post:
     catalog = gram.catalog
-    return Post(
+    return read(
+        Post,
+        record,
         id=post_id,
         author=person(catalog, record.get("authorId")),
         image=picture(record, "imageUrl"),
-        caption=str(record.get("caption") or ""),
-        location=str(record.get("location") or ""),
-        likes=int(record.get("likes") or 0),
         comments=social.catalog_comments(record, post_id, partial(person, catalog)),
-        is_target=bool(record.get("isTargetPost")),
         posted_at=arrival(catalog, "posts", record, stamp),
-        order=int(record.get("order") or 0),
     )
 
 
-@from_catalog(ENVIRONMENT, "stories")
-def catalog_story(gram: Gram, story_id: str, record: Mapping, stamp: Stamp) -> Story:
-    catalog = gram.catalog
-    return Story(
-        id=story_id,
-        author=person(catalog, record.get("authorId")),
-        image=picture(record, "mediaUrl"),
-        media_type=str(record.get("mediaType") or "image"),
-        posted_at=arrival(catalog, "stories", record, stamp),
-        order=int(record.get("order") or 0),
-    )
+catalog_story = reader(
+    ENVIRONMENT,
+    "stories",
+    Story,
+    author=looked_up(person, "authorId"),
+    image=lambda catalog, record, stamp: picture(record, "mediaUrl"),
+    posted_at=lambda catalog, record, stamp: arrival(catalog, "stories", record, stamp),
+)
 
 
 @from_catalog(ENVIRONMENT, "activity")
 def catalog_activity(
-    gram: Gram, activity_id: str, record: Mapping, stamp: Stamp
+    gram: Gram, activity_id: str, record: Record, stamp: Stamp
 ) -> tuple[Activity, bool]:
     """An activity item and whether it is read: preloaded items keep the catalog's `isRead`
     (older ones were seen before the task); what arrives later is unread."""
     catalog = gram.catalog
-    activity = Activity(
+    activity = read(
+        Activity,
+        record,
         id=activity_id,
-        type=str(record.get("type") or "mention"),
         actor=person(catalog, record.get("actorId")),
-        text=str(record.get("text") or ""),
-        target_post_id=record.get("targetPostId"),
         posted_at=arrival(catalog, "activity", record, stamp),
-        order=int(record.get("order") or 0),
     )
     return activity, stamp.preloaded and bool(record.get("isRead"))
 
@@ -177,27 +167,29 @@ def conversation_data(catalog: Any, record: Mapping[str, Any]) -> str:
 
 @from_catalog(ENVIRONMENT, "messages")
 def catalog_conversation(
-    gram: Gram, conversation_id: str, record: Mapping, stamp: Stamp
+    gram: Gram, conversation_id: str, record: Record, stamp: Stamp
 ) -> Conversation:
     catalog = gram.catalog
     messages = tuple(
-        Message(
+        read(
+            Message,
+            m,
             id=str(m["id"]),
             sender=person(catalog, m.get("senderId")),
-            text=str(m.get("text") or ""),
             order=int(m.get("order") or n),
         )
         for n, m in enumerate(record.get("messages") or ())
         if isinstance(m, Mapping) and "id" in m
     )
-    return Conversation(
+    return read(
+        Conversation,
+        record,
         id=conversation_id,
         other=MEMBERS.other_in(catalog, record),
         messages=tuple(sorted(messages, key=lambda m: m.order)),
         last_message=str(record.get("lastMessage") or (messages[-1].text if messages else "")),
         data=conversation_data(catalog, record),
         arrived_at=arrival(catalog, "messages", record, stamp),
-        order=int(record.get("order") or 0),
     )
 
 

@@ -14,6 +14,7 @@ from typing import Any
 
 from apps.kit.derived import per_state
 from apps.kit.feeds import counting
+from apps.kit.records import flag, from_catalog, integer, raw, text_or
 from apps.kit.retractions import present
 from apps.kit.social import Comment, Picture
 from apps.kit.state import EMPTY, CatalogState
@@ -29,11 +30,11 @@ class Person:
     name: str
     username: str
     bio: str = ""
-    website: str = ""
-    followers: int = 0
-    following: int = 0
-    posts_count: int = 0
-    verified: bool = False
+    website: str = from_catalog(text_or("website"), default="")
+    followers: int = from_catalog(integer("followers"), default=0)
+    following: int = from_catalog(integer("following"), default=0)
+    posts_count: int = from_catalog(integer("postsCount"), default=0)
+    verified: bool = from_catalog(flag("isVerified"), default=False)
 
 
 @dataclass(frozen=True)
@@ -41,13 +42,14 @@ class Post:
     id: str
     author: Person
     image: Picture
-    caption: str
-    location: str
-    likes: int  # as delivered; the self user's like is added by `likes_now`
+    caption: str = from_catalog(text_or("caption"))
+    location: str = from_catalog(text_or("location"))
+    # as delivered; the self user's like is added by `likes_now`
+    likes: int = from_catalog(integer("likes"))
     comments: tuple[Comment[Person], ...]  # the catalog's (the `comments` evaluation table)
-    is_target: bool
+    is_target: bool = from_catalog(flag("isTargetPost"))
     posted_at: float
-    order: int
+    order: int = from_catalog(integer("order"))
 
 
 @dataclass(frozen=True)
@@ -62,9 +64,9 @@ class Story:
     id: str
     author: Person
     image: Picture
-    media_type: str
+    media_type: str = from_catalog(text_or("mediaType", "image"))
     posted_at: float
-    order: int
+    order: int = from_catalog(integer("order"))
     gone_at: float | None = None  # expired then: out of the tray (apps.kit.retractions)
 
 
@@ -72,7 +74,7 @@ class Story:
 class Message:
     id: str
     sender: Person
-    text: str
+    text: str = from_catalog(text_or("text"))
     order: int
 
 
@@ -87,7 +89,7 @@ class Conversation:
     last_message: str
     data: str
     arrived_at: float
-    order: int
+    order: int = from_catalog(integer("order"))
 
 
 @dataclass(frozen=True)
@@ -104,12 +106,12 @@ class SentMessage:
 @dataclass(frozen=True)
 class Activity:
     id: str
-    type: str
+    type: str = from_catalog(text_or("type", "mention"))
     actor: Person
-    text: str
-    target_post_id: str | None
+    text: str = from_catalog(text_or("text"))
+    target_post_id: str | None = from_catalog(raw("targetPostId"))
     posted_at: float
-    order: int
+    order: int = from_catalog(integer("order"))
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,8 @@ from __future__ import annotations
 from typing import Any
 
 from apps.kit.arrivals import Stamp
+from apps.kit.feeds import from_catalog
+from apps.kit.records import Record, read
 from apps.microlendar import times
 from apps.microlendar.state import (
     CALENDARS,
@@ -35,12 +37,7 @@ def attendee(catalog: Any, user_id: str) -> Attendee | None:
     user = catalog.users.get(str(user_id))
     if user is None:
         return None
-    return Attendee(
-        id=str(user_id),
-        name=str(user.get("name") or user_id),
-        email=str(user.get("email") or ""),
-        job_title=str(user.get("jobTitle") or ""),
-    )
+    return read(Attendee, user, id=str(user_id), name=str(user.get("name") or user_id))
 
 
 def organizer(catalog: Any, record: dict) -> Attendee | None:
@@ -54,14 +51,14 @@ def organizer(catalog: Any, record: dict) -> Attendee | None:
     return attendee(catalog, who) or Attendee(id=who, name=who, email=who)
 
 
+@from_catalog(ENVIRONMENT, TABLE)
 def catalog_event(
-    agenda: Agenda, event_id: str, stamp: Stamp
+    agenda: Agenda, event_id: str, record: Record, stamp: Stamp
 ) -> tuple[CalendarEvent, EventState] | None:
     """The event `event_id`, marked as a new invitation unless it is part of the starting world;
     None if the catalog lacks it, it is a task or has no start time."""
     catalog = agenda.catalog
-    record = catalog.table(ENVIRONMENT, TABLE).get(event_id)
-    if record is None or record.get("is_task") or not record.get("start_time"):
+    if record.get("is_task") or not record.get("start_time"):
         return None
     day, start = times.parse_iso(record["start_time"])
     end = start + DEFAULT_DURATION_MIN
@@ -73,35 +70,36 @@ def catalog_event(
         end = start + DEFAULT_DURATION_MIN
     calendar = str(record.get("category") or DEFAULT_CALENDAR)
     people = (attendee(catalog, user_id) for user_id in record.get("attendees") or ())
-    event = CalendarEvent(
+    event = read(
+        CalendarEvent,
+        record,
         id=event_id,
-        title=str(record.get("title") or "(No title)"),
         day=day,
         start=start,
         end=min(end, DAY_MIN),
         calendar=calendar if calendar in CALENDARS else DEFAULT_CALENDAR,
-        description=str(record.get("description") or ""),
-        location=str(record.get("location") or ""),
         attendees=tuple(p for p in people if p is not None),
         organizer=organizer(catalog, record),
-        order=int(record.get("order") or 0),
         arrived_at=stamp.at,
     )
     return event, EventState(arrived_during_run=not stamp.preloaded)
 
 
-def catalog_task(agenda: Agenda, task_id: str, stamp: Stamp) -> tuple[Task, TaskState] | None:
+@from_catalog(ENVIRONMENT, TABLE)
+def catalog_task(
+    agenda: Agenda, task_id: str, record: Record, stamp: Stamp
+) -> tuple[Task, TaskState] | None:
     """The task `task_id` with its catalog completion; None if missing or not a task."""
-    record = agenda.catalog.table(ENVIRONMENT, TABLE).get(task_id)
-    if record is None or not record.get("is_task"):
+    if not record.get("is_task"):
         return None
     due = record.get("due_date") or record.get("dueDate") or record.get("start_time")
-    task = Task(
+    task = read(
+        Task,
+        record,
         id=task_id,
-        title=str(record.get("title") or "(No title)"),
         due=times.parse_iso(due)[0] if due and "T" in str(due) else _date_or_none(due),
     )
-    return task, TaskState(completed=bool(record.get("is_completed", False)))
+    return task, read(TaskState, record)
 
 
 def _date_or_none(text: Any):

@@ -17,6 +17,7 @@ from datetime import date, timedelta
 from types import MappingProxyType
 from typing import Any, ClassVar
 
+from apps.kit.records import flag, from_catalog, integer, text_or
 from apps.kit.retractions import is_gone, still_there
 from apps.kit.state import SelfUserState, with_items
 from apps.kit.streaming import no_items
@@ -38,8 +39,8 @@ DAY_MIN = 24 * 60
 class Attendee:
     id: str
     name: str
-    email: str = ""
-    job_title: str = ""
+    email: str = from_catalog(text_or("email"), default="")
+    job_title: str = from_catalog(text_or("jobTitle"), default="")
 
 
 @dataclass(frozen=True)
@@ -47,18 +48,19 @@ class CalendarEvent:
     """One event as it stands now (edits replace the value; the id never changes)."""
 
     id: str
-    title: str
+    title: str = from_catalog(text_or("title", "(No title)"))
     day: date
     start: int  # minutes after midnight
     end: int  # minutes after midnight, > start (an event ends on the day it starts)
     calendar: str = DEFAULT_CALENDAR
-    description: str = ""
-    location: str = ""
+    description: str = from_catalog(text_or("description"), default="")
+    location: str = from_catalog(text_or("location"), default="")
     attendees: tuple[Attendee, ...] = ()
     # Who invited the user (the catalog's `organizer`); None: the user organises it themselves.
     organizer: Attendee | None = None
     user_created: bool = False
-    order: int = 0  # the catalog's display order, for events starting at the same minute
+    # the catalog's display order, for events starting at the same minute
+    order: int = from_catalog(integer("order"), default=0)
     arrived_at: float = 0.0  # simulated second it reached the calendar (0: the starting world)
     gone_at: float | None = None  # cancelled by its organiser then (apps.kit.retractions)
 
@@ -100,14 +102,14 @@ class EventState:
 @dataclass(frozen=True)
 class Task:
     id: str
-    title: str
+    title: str = from_catalog(text_or("title", "(No title)"))
     due: date | None = None
     user_created: bool = False
 
 
 @dataclass(frozen=True)
 class TaskState:
-    completed: bool = False
+    completed: bool = from_catalog(flag("is_completed"), default=False)
     deleted: bool = False
 
 
