@@ -108,9 +108,8 @@ def picture(record: Mapping[str, Any]) -> social.Picture | None:
 
 
 def employer(catalog: Any, record: Record, stamp: Stamp) -> Company:
-    """A job's company (`company`), never none: an unnamed one reads as a member's."""
-    name = str(record.get("company") or "")
-    found = company(catalog, record.get("companyId"), name)
+    """A job's company; one its record does not name reads as a member's."""
+    found = company(catalog, record.get("companyId"), str(record.get("company") or ""))
     return found or Company(id="", name=UNKNOWN_MEMBER)
 
 
