@@ -83,12 +83,6 @@ def each(key: str, kind: type[T]) -> Field:
     return lambda record: tuple(read(kind, item) for item in record.get(key) or ())
 
 
-def looked_up(find: Callable[[Any, Any], T], key: str) -> Given:
-    """For `reader`: what the record's value at `key` names elsewhere in the catalog,
-    `find(catalog, value)` (an author's id → the person)."""
-    return lambda catalog, record, stamp: find(catalog, record.get(key))
-
-
 def read(kind: type[T], record: Record, **known: Any) -> T:
     """A `kind` with every declared attribute read from `record`; `known` ones as given."""
     return kind(**{name: get(record) for name, get in declared(kind).items()}, **known)

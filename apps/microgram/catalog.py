@@ -21,7 +21,7 @@ from typing import Any
 from apps.kit import social
 from apps.kit.arrivals import Stamp
 from apps.kit.feeds import Members, arrived_at, from_catalog, thread_messages
-from apps.kit.records import Record, looked_up, read, reader
+from apps.kit.records import Record, read, reader
 from apps.microgram.state import (
     ENVIRONMENT,
     Activity,
@@ -122,7 +122,7 @@ catalog_story = reader(
     ENVIRONMENT,
     "stories",
     Story,
-    author=looked_up(person, "authorId"),
+    author=lambda catalog, record, stamp: person(catalog, record.get("authorId")),
     image=lambda catalog, record, stamp: picture(record, "mediaUrl"),
     posted_at=lambda catalog, record, stamp: arrival(catalog, "stories", record, stamp),
 )
