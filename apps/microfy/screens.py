@@ -42,9 +42,11 @@ def trending(music: Music) -> tuple[Track, ...]:
     """Every track still available, newest arrival first (the original prepends each new track
     to the row). An unavailable one leaves the shelves and search, as on Spotify; the lists a
     person made (a playlist, Liked Songs) and an artist's keep it, greyed out."""
-    # Those that arrived during the session newest first, then the preloaded in catalog order.
-    newest = lambda t: (t.preloaded, 0.0 if t.preloaded else -t.arrived_at)  # noqa: E731
-    return tuple(sorted(present(music.tracks.values()), key=newest))
+    available = present(music.tracks.values())
+    arrived = [t for t in available if not t.preloaded]
+    preloaded = [t for t in available if t.preloaded]
+    arrived.sort(key=lambda t: t.arrived_at, reverse=True)
+    return (*arrived, *preloaded)
 
 
 @per_state()
@@ -146,7 +148,10 @@ def search(music: Music, q: str) -> SearchResults:
         tracks=tuple(
             t
             for t in trending(music)
-            if any(needle in f.lower() for f in (t.title, t.artist_name, t.album, t.genre))
+            if needle in t.title.lower()
+            or needle in t.artist_name.lower()
+            or needle in t.album.lower()
+            or needle in t.genre.lower()
         ),
         artists=tuple(
             a for a in top_artists(music) if needle in a.name.lower() or needle in a.genre.lower()
