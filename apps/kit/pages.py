@@ -181,6 +181,14 @@ def one_of(name: str, allowed, what: str) -> str:
     return name
 
 
+def chosen(name: str, value: str, allowed: Sequence[str]) -> str:
+    """`value` of the form field or URL parameter `name` when it is one of `allowed`, else a 400
+    page naming them (the message `QueryState` gives a URL's choices)."""
+    if value not in allowed:
+        raise ActionRejected(f"{name}={value!r} is not valid; allowed: {', '.join(allowed)}")
+    return value
+
+
 def is_navigation(request: HttpRequest) -> bool:
     """A page the user goes to (a load, a boosted link), not a fragment refreshed in place."""
     htmx = getattr(request, "htmx", None)
@@ -280,11 +288,3 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             return rejected(request, page, reason, missing=True)
 
     return renderable(wrapper)  # the only views the live protocol renders
-
-
-def chosen(name: str, value: str, allowed: Sequence[str]) -> str:
-    """`value` of the form field or URL parameter `name` when it is one of `allowed`, else a 400
-    page naming them (the message `QueryState` gives a URL's choices)."""
-    if value not in allowed:
-        raise ActionRejected(f"{name}={value!r} is not valid; allowed: {', '.join(allowed)}")
-    return value

@@ -9,7 +9,7 @@ from typing import Any
 from pydantic import Field
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, untimed
 from apps.kit.deciding import opening
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, VALUE, Table, named, tables
@@ -178,12 +178,12 @@ def has_unread(chat: Chat, conversation_id: str) -> bool:
 SHOWN_COUNTS = (
     ShownCount(
         "unread chats",
-        lambda chat, now: chats.unread_conversation_count(chat),
+        untimed(chats.unread_conversation_count),
         ("{n} unread chats?",),
     ),
     ShownCount(
         "missed calls",
-        lambda chat, now: chats.missed_call_count(chat),
+        untimed(chats.missed_call_count),
         ("Activity {n} new", r"All [\d,]+ Missed {n}"),
     ),
     ShownCount("calls", lambda chat, now: len(chat.calls), ("All {n} Missed",)),

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from apps.kit import feeds
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
-from apps.kit.counts import ShownCount
+from apps.kit.counts import ShownCount, untimed
 from apps.kit.deciding import opening
 from apps.kit.records import Record
 from apps.kit.retractions import retraction, window
@@ -108,7 +108,7 @@ def unread(mail: Mail, email_id: str) -> bool:
 # The numbers shown in more than one place (apps.kit.counts): the folder pane's badges (Inbox
 # under Favorites and again in the account's folders), every other folder its item count.
 SHOWN_COUNTS = (
-    ShownCount("inbox unread", lambda mail, now: mailbox.unread_count(mail), ("Inbox {n} unread",)),
+    ShownCount("inbox unread", untimed(mailbox.unread_count), ("Inbox {n} unread",)),
     *(
         ShownCount(
             f"{folder} items",
