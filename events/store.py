@@ -2,9 +2,11 @@
 
 `(run, seq)` is unique: a writer reads the last seq, inserts seq+1 and retries when another
 writer took that number first. No table lock is held, so appends to different runs never wait
-for each other (on PostgreSQL; SQLite serialises writers anyway). A writer that has lost a race
-queues on its run's row instead of racing again: otherwise a fast writer can win every round
-and starve a slower one.
+for each other (on PostgreSQL; SQLite serialises writers anyway). On PostgreSQL every append
+takes its run's row first, and a writer that has lost a race (it waited on that row, and its
+statement's snapshot is older than the seq the holder wrote) queues on the row before reading
+the last seq again: it then cannot lose twice. Without the row, a fast writer could win every
+round and starve a slower one out of its attempts.
 """
 
 from __future__ import annotations
@@ -44,10 +46,19 @@ def _insert_at_next_seq(run_id: int, values: dict[str, Any]) -> Event:
         for field, value in zip(fields, values.values(), strict=True)
     ]
     table = quote(Event._meta.db_table)
+    run_of = "%s"
+    if connection.features.has_select_for_update:
+        # Take the run's row before reading MAX(seq): a writer queued on it (see
+        # `_attempt_append`) then never meets an insert in flight, so the queue is fair. The
+        # lock is taken before any row is inserted, so it cannot deadlock with a queued writer.
+        run_of = (
+            f"(SELECT {quote('id')} FROM {quote(Run._meta.db_table)} "
+            f"WHERE {quote('id')} = %s FOR NO KEY UPDATE)"
+        )
     sql = (
         f"INSERT INTO {table} ({columns}, {quote('seq')}) "
         f"SELECT {', '.join(['%s'] * len(fields))}, COALESCE(MAX({quote('seq')}), 0) + 1 "
-        f"FROM {table} WHERE {quote('run_id')} = %s "
+        f"FROM {table} WHERE {quote('run_id')} = {run_of} "
         f"RETURNING {quote('id')}, {quote('seq')}"
     )
     with connection.cursor() as cursor:

@@ -5,8 +5,9 @@ from __future__ import annotations
 import threading
 
 import pytest
-from django.db import close_old_connections
+from django.db import connection
 
+from events import store
 from events.lifecycle import advance, create_run, start_clock
 from events.models import ClockMode, Event, EventKind
 from events.projection import fold_from_scratch, state_at
@@ -26,7 +27,7 @@ def _in_threads(count: int, target) -> None:
         except BaseException as exc:  # surface failures from worker threads
             errors.append(exc)
         finally:
-            close_old_connections()
+            connection.close()  # kept ones would outlive the test database
 
     threads = [threading.Thread(target=wrapped, args=(i,)) for i in range(count)]
     for thread in threads:
@@ -63,6 +64,21 @@ def test_two_concurrent_writers_append_a_gap_free_sequence(tally_spec):
     seqs = list(Event.objects.filter(run=run).order_by("seq").values_list("seq", flat=True))
     assert len(seqs) == before + 1000
     assert seqs == list(range(1, before + 1001))
+
+
+def test_a_writer_that_lost_a_race_appends_at_its_next_attempt(tally_spec, monkeypatch):
+    """The queue is fair: four writers hammering one run, and none needs a third attempt (a
+    writer that keeps losing to a faster one would exhaust its attempts and lose its event)."""
+    monkeypatch.setattr(store, "MAX_ATTEMPTS", 2)
+    run = create_run(tally_spec(pings=[]), clock_mode=ClockMode.VIRTUAL)
+    before = Event.objects.filter(run=run).count()
+
+    def writer(index: int) -> None:
+        for n in range(250):
+            store.append_event(run.pk, EventKind.ACTION, "poke", {"writer": index, "i": n})
+
+    _in_threads(4, writer)
+    assert Event.objects.filter(run=run).count() == before + 1000
 
 
 def test_a_busy_timeline_fires_every_entry_exactly_once_under_contention(tally_spec):

@@ -9,7 +9,7 @@ from __future__ import annotations
 import threading
 
 import pytest
-from django.db import close_old_connections
+from django.db import connection
 
 from events import lifecycle
 from events.clock import sim_now, wall_now
@@ -160,7 +160,7 @@ class TestConcurrency:
             except BaseException as exc:
                 errors.append(exc)
             finally:
-                close_old_connections()
+                connection.close()  # kept ones would outlive the test database
 
         threads = [threading.Thread(target=waiter) for _ in range(2)]
         for thread in threads:
@@ -208,7 +208,7 @@ class TestConcurrency:
             except BaseException as exc:
                 errors.append(exc)
             finally:
-                close_old_connections()
+                connection.close()  # kept ones would outlive the test database
 
         thread = threading.Thread(target=poker)
         thread.start()

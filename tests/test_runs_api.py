@@ -6,7 +6,7 @@ import threading
 import time
 
 import pytest
-from django.db import close_old_connections
+from django.db import connection
 from rest_framework.test import APIClient
 
 from apps.tally.environment import tally_scenario
@@ -128,7 +128,7 @@ def test_twenty_concurrent_runs_are_isolated(api):
         except BaseException as exc:
             errors.append(exc)
         finally:
-            close_old_connections()
+            connection.close()  # kept ones would outlive the test database
 
     threads = [threading.Thread(target=agent, args=(r,)) for r in runs]
     for t in threads:
