@@ -21,7 +21,8 @@ entries it passed.
 
 Concurrency: the clock moves by a conditional write on the sum it read (`skipped = seen`), so
 two waits at once are applied one after the other (the loser reads again and skips from where
-the winner left off), never both from the same moment. Entries are fired by the same code as
+the winner left off), never both from the same moment; and a wait never starts before the last
+skip ended, though its wall reading may be older than the one that skip was applied at. Entries are fired by the same code as
 everything else, so the unique (run, timeline_index) keeps each one once while the ticker or a
 page request fires too. An action posted meanwhile is appended before or after the skip in the
 one log (its seq orders it), never lost.
@@ -145,18 +146,13 @@ def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
     """Take `wait` on `run` at wall time `wall` (default now; read once): move the clock, log the
     skip and fire what it passed. Raises WaitRefused when the run cannot wait."""
     wall = wall_now() if wall is None else wall
-    for attempt in range(MAX_ATTEMPTS):
-        if attempt:
-            # Lost the race to another wait, which was applied at a later reading than ours:
-            # starting from our older one would begin this skip before that one ended (the
-            # clock read backwards by the difference). It starts now instead.
-            wall = max(wall, wall_now())
+    for _ in range(MAX_ATTEMPTS):
         run.reread(*CLOCK_FIELDS, "closed_at")
         refused = refusal(run)
         if refused is not None:
             raise refused
         fire_due(run, wall=wall, reload=False)  # what is due already fires on time, before
-        now = sim_now(run, wall)
+        now = max(sim_now(run, wall), _last_skip_end(run))
         to, why = target(run, wait, now)
         if to <= now:
             return Skipped(now, now, why)
@@ -181,6 +177,21 @@ def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
         notifications.clock_moved(run.pk)  # open pages re-render what the new time changes
         return Skipped(now, to, why, fired)
     raise LifecycleError("the run kept changing while the wait was applied; wait again")
+
+
+def _last_skip_end(run: Run) -> float:
+    """Where the run's last skip ended. A wait read at an older wall time than another that was
+    applied first (two at once, or a request that arrived first but got here second) starts
+    there: from its own reading, the clock would read backwards by the difference."""
+    if not run.skipped:
+        return -math.inf
+    last = (
+        Event.objects.filter(run_id=run.pk, kind=EventKind.LIFECYCLE, type=SKIP)
+        .order_by("-seq")
+        .values_list("payload", flat=True)
+        .first()
+    )
+    return last["to"] if last else -math.inf
 
 
 def _landing(run: Run, wall: float, to: float) -> float:

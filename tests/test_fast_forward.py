@@ -85,6 +85,13 @@ class TestOneSkip:
         fire_due(run, wall=START + 4.0)
         assert timeline_order(run) == [0, 1, 2]
 
+    def test_a_wait_read_before_one_applied_first_starts_where_that_one_ended(self, pings_spec):
+        run = fast_forward_run(pings_spec)
+        skip(run, Wait(seconds=10.0), wall=START + 5.0)  # from 5 s to 15 s
+        later = skip(run, Wait(seconds=10.0), wall=START + 3.0)  # read at 3 s, applied second
+        assert (later.start, later.end) == (15.0, 25.0)
+        assert [s["from"] for s in skips(run)] == [5.0, 15.0]  # the clock never read backwards
+
     def test_until_change_stops_at_the_next_entry_and_fires_it(self, pings_spec):
         run = fast_forward_run(pings_spec)
         done = skip(run, Wait(until_change=True, timeout=60.0), wall=START + 12.0)
