@@ -152,7 +152,10 @@ def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
         if refused is not None:
             raise refused
         fire_due(run, wall=wall, reload=False)  # what is due already fires on time, before
-        now = max(sim_now(run, wall), _last_skip_end(run))
+        now, last_end = sim_now(run, wall), _last_skip_end(run)
+        if now < last_end:  # read before the last skip was applied: it starts where that ended
+            wall += (last_end - now) / run.speed_factor
+            now = max(sim_now(run, wall), last_end)
         to, why = target(run, wait, now)
         if to <= now:
             return Skipped(now, now, why)
@@ -182,7 +185,8 @@ def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
 def _last_skip_end(run: Run) -> float:
     """Where the run's last skip ended. A wait read at an older wall time than another that was
     applied first (two at once, or a request that arrived first but got here second) starts
-    there: from its own reading, the clock would read backwards by the difference."""
+    there, as if read when the clock showed it: from its own reading, the clock would read
+    backwards by the difference (and the sum of skips would count it)."""
     if not run.skipped:
         return -math.inf
     last = (

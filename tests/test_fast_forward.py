@@ -91,6 +91,8 @@ class TestOneSkip:
         later = skip(run, Wait(seconds=10.0), wall=START + 3.0)  # read at 3 s, applied second
         assert (later.start, later.end) == (15.0, 25.0)
         assert [s["from"] for s in skips(run)] == [5.0, 15.0]  # the clock never read backwards
+        run.refresh_from_db()
+        assert run.skipped == 20.0  # the sum of the two skips, nothing more
 
     def test_until_change_stops_at_the_next_entry_and_fires_it(self, pings_spec):
         run = fast_forward_run(pings_spec)
