@@ -1,11 +1,12 @@
 /* Sentinel live pages — our own small client (no CDN, no htmx ws extension).
  *
  * The server pushes re-rendered `[data-live]` regions of this page as out-of-band swaps over
- * the websocket `/r/<token>/live` (events/consumers.py) when the run's log grows and when the
+ * the websocket `/r/<token>/live` (apps/kit/consumers.py) when the run's log grows and when the
  * clock changes what they show; when the socket cannot connect, the same URL is polled over
  * HTTP every `data-poll-ms` (2 s), with `due` (when the page next changes with the clock, as
  * the server said: data-due, then each update's next_change). The client keeps what the user is
- * doing: window and region scroll positions, focus, checked rows and chosen options; a region
+ * doing: window and region scroll positions, focus, checked rows, chosen options and the menus
+ * and sections (`<details>`) it opened or closed, matched by place and label; a region
  * holding a field being typed in, or typed text not sent yet, is swapped only once the user
  * leaves it. Config: <div id="sentinel-live" data-socket data-seq data-due data-poll-ms>.
  */
@@ -29,6 +30,11 @@
     });
   }
 
+  function summaryOf(details) {
+    var summary = details.querySelector("summary");
+    return summary ? summary.textContent.trim() + "|" + (summary.getAttribute("aria-label") || "") : "";
+  }
+
   function csrfToken() {  // the page's own token (pushed forms come with blank ones)
     try { return JSON.parse(document.body.getAttribute("hx-headers") || "{}")["X-CSRFToken"] || ""; }
     catch (e) { return ""; }
@@ -44,6 +50,9 @@
     [old].concat(Array.prototype.slice.call(old.querySelectorAll("[id]"))).forEach(function (el) {
       if (el.scrollTop || el.scrollLeft) scrolled.push([el.id, el.scrollTop, el.scrollLeft]);
     });
+    var menus = Array.prototype.map.call(old.querySelectorAll("details"), function (d) {
+      return [summaryOf(d), d.open];
+    });
     old.querySelectorAll("input[id], select[id]").forEach(function (f) {
       if ((f.type === "checkbox" || f.type === "radio") && f.checked !== f.defaultChecked) chosen.push([f.id, "checked", f.checked]);
       if (f.tagName === "SELECT" && f.selectedOptions.length && !f.selectedOptions[0].defaultSelected) chosen.push([f.id, "value", f.value]);
@@ -53,6 +62,9 @@
     fresh.querySelectorAll("input[name=csrfmiddlewaretoken]").forEach(function (f) { if (!f.value) f.value = token; });
     old.replaceWith(fresh);
     chosen.forEach(function (c) { var f = document.getElementById(c[0]); if (f) f[c[1]] = c[2]; });
+    fresh.querySelectorAll("details").forEach(function (d, i) {  // the same menu, by place and label
+      if (menus[i] && menus[i][0] === summaryOf(d)) d.open = menus[i][1];
+    });
     scrolled.forEach(function (s) { var el = document.getElementById(s[0]); if (el) { el.scrollTop = s[1]; el.scrollLeft = s[2]; } });
     if (window.htmx) window.htmx.process(fresh);
     if (focused && document.getElementById(focused)) document.getElementById(focused).focus({ preventScroll: true });

@@ -16,6 +16,7 @@ from tests.micromail.test_browser import inbox_link
 pytestmark = pytest.mark.browser
 
 FIRST, SECOND, KEPT = "base-01", "base-02", "base-30"
+LATE, LATE_AT = "base-40", 30.0  # arrives while a menu is open
 
 
 def scenario() -> dict:
@@ -29,7 +30,12 @@ def scenario() -> dict:
         "kill_at": 600.0,
         "taxonomy": {},
         "events": [
-            {"time": 0.0, "type": "preload_emails", "payload": {"email_ids": [FIRST, SECOND, KEPT]}}
+            {
+                "time": 0.0,
+                "type": "preload_emails",
+                "payload": {"email_ids": [FIRST, SECOND, KEPT]},
+            },
+            {"time": LATE_AT, "type": "new_email", "payload": {"email_id": LATE}},
         ],
         "eval_sql": "SELECT 1",
     }
@@ -66,3 +72,21 @@ def test_checked_messages_move_through_the_menu_and_the_open_one_is_flagged(live
     )
     expect(inbox_link(page)).to_be_visible()
     assert [name for name, _ in story.actions()] == ["move", "move", "flag", "move"]
+
+
+def test_a_message_pushed_while_a_menu_is_open_leaves_it_open(live_site, browser):  # noqa: F811
+    """A live push re-renders the list, menus and all: the one the person opened stays open (it
+    closed under them, and a click on one of its items then found nothing to click)."""
+    story = BrowserStory.start(live_site, browser, scenario())
+    page = story.page
+    bar = page.get_by_role("toolbar", name="Actions on selected messages")
+    messages = page.locator("#message-list li.message")
+    expect(messages).to_have_count(3)
+    bar.get_by_text("Move to", exact=True).click()
+    menu = bar.get_by_role("list", name="Move selected messages to")
+    expect(menu).to_be_visible()
+
+    story.advance(LATE_AT)
+    expect(messages).to_have_count(4)  # the list was pushed
+    expect(menu).to_be_visible()
+    expect(bar.get_by_role("list", name="More actions")).to_be_hidden()  # closed stays closed
