@@ -24,8 +24,8 @@ two waits at once are applied one after the other (the loser reads again and ski
 the winner left off), never both from the same moment; and a wait never starts before the last
 skip ended, though its wall reading may be older than the one that skip was applied at. Entries
 are fired by the same code as everything else, so the unique (run, timeline_index) keeps each
-one once while the ticker or a page request fires too. An action posted meanwhile is appended before or after the skip in the
-one log (its seq orders it), never lost.
+one once while the ticker or a page request fires too. An action posted meanwhile is appended
+before or after the skip in the one log (its seq orders it), never lost.
 """
 
 from __future__ import annotations
