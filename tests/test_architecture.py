@@ -164,11 +164,10 @@ def test_the_cycle_finder_finds_a_cycle():
 # --- one environment shape ---------------------------------------------------------------------
 
 ENVIRONMENT_MODULES = (
-    "apps",  # its AppConfig: registration (apps.kit.environments.EnvironmentConfig)
     "state",  # the immutable state and the questions asked of it
     "catalog",  # catalog records → items
     "actions",  # the agent's actions
-    "environment",  # scenario events, baselines, evaluation tables: the registration
+    "environment",  # its Environment: scenario events, baselines, evaluation tables
     "query",  # URL state of its screens
     "screens",  # what each screen shows, from the state
     "views",  # thin views
@@ -193,6 +192,8 @@ def shape_problems(app: Path) -> list[str]:
         for module in ENVIRONMENT_MODULES
         if not (app / f"{module}.py").is_file()
     ]
+    if (app / "apps.py").is_file():
+        problems.append(f"{name}: apps.py (the kit finds environment apps: apps.kit.environments)")
     for needed in (
         "README.md",
         f"templates/{name}/base.html",
@@ -244,7 +245,11 @@ def test_the_shape_check_names_what_is_missing(tmp_path):
     (app / "templates" / "microbroken").mkdir(parents=True)
     (app / "environment.py").write_text("def reduce_new_thing(state, event):\n    return state\n")
     (app / "templates" / "microbroken" / "page.html").write_text("<style>p{}</style>")
+    (app / "apps.py").write_text("")
     problems = shape_problems(app)
+    assert (
+        "microbroken: apps.py (the kit finds environment apps: apps.kit.environments)" in problems
+    )
     assert "microbroken: no screens.py" in problems
     assert "microbroken: no static/microbroken/microbroken.css" in problems
     assert any("inline styles in templates/microbroken/page.html" in p for p in problems)

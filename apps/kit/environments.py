@@ -1,33 +1,38 @@
-"""Registering an environment app with the core: one dotted path in its AppConfig.
+"""Finding the environment apps, as Django's admin finds `admin.py`: an installed app with an
+`environment` module is an environment, and the one `Environment` that module declares is
+registered with the core when Django starts (`apps.kit.apps.KitConfig.ready`).
 
-    from apps.kit import environments
-
-    class MicromailConfig(environments.EnvironmentConfig):
-        name = "apps.micromail"
-        environment = "apps.micromail.environment.MICROMAIL"
-
-(Import the module, not the class: Django picks an app's config automatically only when its
-apps.py defines exactly one AppConfig subclass.)
-
-The core never imports environments; each one registers itself when Django starts.
+So an environment app needs no `apps.py`: adding `"apps.<env>"` to `INSTALLED_APPS` is all.
+The core never imports environments; the kit hands each one to `events.registry.register`.
 """
 
 from __future__ import annotations
 
-from django.apps import AppConfig
+from importlib import import_module
+from types import ModuleType
+
+from django.apps import apps
 from django.core.exceptions import ImproperlyConfigured
-from django.utils.module_loading import import_string
+from django.utils.module_loading import module_has_submodule
 
 from events.registry import Environment, register
 
+MODULE = "environment"  # the module an environment app declares its Environment in
 
-class EnvironmentConfig(AppConfig):
-    environment: str = ""  # dotted path of the app's `Environment`
 
-    def ready(self) -> None:
-        if not self.environment:
-            raise ImproperlyConfigured(f"{type(self).__name__} must name its `environment`")
-        environment = import_string(self.environment)
-        if not isinstance(environment, Environment):
-            raise ImproperlyConfigured(f"{self.environment} is not an events.registry.Environment")
-        register(environment)
+def declared(module: ModuleType) -> Environment:
+    """The one `Environment` that `module` declares (an imported one would count too: none is)."""
+    found = [value for value in vars(module).values() if isinstance(value, Environment)]
+    if len(found) != 1:
+        raise ImproperlyConfigured(
+            f"{module.__name__} must declare exactly one events.registry.Environment; "
+            f"it declares {len(found)}"
+        )
+    return found[0]
+
+
+def register_installed() -> None:
+    """Register every installed environment app's `Environment`, in `INSTALLED_APPS` order."""
+    for app in apps.get_app_configs():
+        if module_has_submodule(app.module, MODULE):
+            register(declared(import_module(f"{app.name}.{MODULE}")))

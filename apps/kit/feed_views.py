@@ -21,10 +21,9 @@ from functools import wraps
 from typing import Any
 
 from django.http import Http404, HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit.item_actions import act_on_item
-from apps.kit.pages import Page, run_page
+from apps.kit.pages import Page, form_view, screen_view
 from apps.kit.rendering import redirect_to, render_screen
 
 Context = Mapping[str, Any]
@@ -53,14 +52,14 @@ class FeedPages:
                 context = dict(view(request, page, *args, **kwargs))
                 return self.show(request, page, template, context.pop("tab", tab), **context)
 
-            return require_GET(run_page(render))
+            return screen_view(render)
 
         return decorate
 
     @staticmethod
     def form(view: View) -> View:
         """Decorator: where a form posts (the view acts, then redirects: post/redirect/get)."""
-        return require_POST(run_page(view))
+        return form_view(view)
 
 
 def shown(items: Mapping[str, Any], item_id: str | None, what: str) -> None:

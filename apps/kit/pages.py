@@ -18,6 +18,7 @@ from typing import Any
 
 from django.http import Http404, HttpRequest, HttpResponse, HttpResponseNotAllowed
 from django.shortcuts import render
+from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit import links, request_attrs
 from apps.kit.live import renderable
@@ -288,3 +289,13 @@ def run_page(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
             return rejected(request, page, reason, missing=True)
 
     return renderable(wrapper)  # the only views the live protocol renders
+
+
+def screen_view(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
+    """A screen of the run: `@run_page`, answering GET only."""
+    return require_GET(run_page(view))
+
+
+def form_view(view: Callable[..., HttpResponse]) -> Callable[..., HttpResponse]:
+    """Where a form posts: `@run_page`, answering POST only (the view acts, then redirects)."""
+    return require_POST(run_page(view))

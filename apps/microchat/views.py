@@ -8,11 +8,10 @@ declared with the environment (`implicit_actions`), not here.
 from __future__ import annotations
 
 from django.http import Http404, HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit import simclock
 from apps.kit.item_actions import act_on_item
-from apps.kit.pages import Page, one_of, run_page
+from apps.kit.pages import Page, form_view, one_of, screen_view
 from apps.kit.rendering import redirect_after, redirect_to, render_screen
 from apps.kit.streaming import present
 from apps.microchat import screens
@@ -51,8 +50,7 @@ def show(page: Page, name: str, *, section: str = "", **context: object) -> Http
     return render_screen(page.request, page, f"microchat/{name}.html", {**chrome, **context})
 
 
-@require_GET
-@run_page
+@screen_view
 def chat(request: HttpRequest, page: Page) -> HttpResponse:
     """The chat list, with `conversation=<id>` open (opening has marked it read)."""
     query = ChatQuery.from_params(request.GET)
@@ -66,22 +64,19 @@ def chat(request: HttpRequest, page: Page) -> HttpResponse:
     return show(page, "chat", query=query, listing=listing, opened=opened, back=back)
 
 
-@require_GET
-@run_page
+@screen_view
 def search(request: HttpRequest, page: Page) -> HttpResponse:
     q = SearchQuery.from_params(request.GET).q
     results = screens.search(page.state, q, page.root + "/")
     return show(page, "search", section="chat", search_q=q, results=results)
 
 
-@require_GET
-@run_page
+@screen_view
 def teams(request: HttpRequest, page: Page) -> HttpResponse:
     return show(page, "teams", cards=screens.team_cards(page.state, page.root + "/"))
 
 
-@require_GET
-@run_page
+@screen_view
 def team(request: HttpRequest, page: Page, team_id: str, channel_id: str = "") -> HttpResponse:
     found = present(page.state.teams.get(team_id), "team")
     channel_id = channel_id or (found.channels[0].id if found.channels else "")
@@ -98,8 +93,7 @@ def team(request: HttpRequest, page: Page, team_id: str, channel_id: str = "") -
     )
 
 
-@require_GET
-@run_page
+@screen_view
 def calendar(request: HttpRequest, page: Page) -> HttpResponse:
     query = CalendarQuery.from_params(request.GET)
     zero = simclock.day_zero(page.run)
@@ -113,16 +107,14 @@ def calendar(request: HttpRequest, page: Page) -> HttpResponse:
     return show(page, "calendar", query=query, grid=grid, views=views)
 
 
-@require_GET
-@run_page
+@screen_view
 def calls(request: HttpRequest, page: Page) -> HttpResponse:
     query = CallsQuery.from_params(request.GET)
     calls_screen = screens.calls_screen(page.state, query)
     return show(page, "calls", query=query, screen=calls_screen)
 
 
-@require_GET
-@run_page
+@screen_view
 def activity(request: HttpRequest, page: Page) -> HttpResponse:
     items = screens.activity(page.state, page.root + "/")
     return show(page, "activity", items=items)
@@ -141,8 +133,7 @@ def back_to(
     return redirect_after(request, page, back.querystring(), done)
 
 
-@require_POST
-@run_page
+@form_view
 def conversation_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
     """`POST conversations/<action>` with `conversation_id`: pin, unpin, mute, unmute,
     mark_unread."""
@@ -154,8 +145,7 @@ def conversation_action(request: HttpRequest, page: Page, action: str) -> HttpRe
     return back_to(page, request, CONVERSATION_ACTIONS[action], close=closed)
 
 
-@require_POST
-@run_page
+@form_view
 def message_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
     """`POST messages/<action>` with `message_id` (react/unreact: `reaction`; edit: `content`)."""
     one_of(action, MESSAGE_ACTIONS, "message action")
@@ -165,8 +155,7 @@ def message_action(request: HttpRequest, page: Page, action: str) -> HttpRespons
     return back_to(page, request, done)
 
 
-@require_POST
-@run_page
+@form_view
 def send(request: HttpRequest, page: Page) -> HttpResponse:
     """`POST send` with `conversation_id`, `content` and optional `reply_to`."""
     payload = {field: request.POST.get(field, "") for field in ("conversation_id", "content")}

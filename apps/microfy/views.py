@@ -9,10 +9,9 @@ it next changes (`page.changes_at`), so kept screens and live pushes never show 
 from __future__ import annotations
 
 from django.http import Http404, HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_POST
 
 from apps.kit.item_actions import act_on_item
-from apps.kit.pages import Page, run_page
+from apps.kit.pages import Page, form_view, screen_view
 from apps.kit.rendering import back_field, redirect_after, render_screen
 from apps.kit.streaming import COUNT_REFRESH_S, present, showing, shown_count
 from apps.microfy import screens
@@ -55,8 +54,7 @@ def cards(music: Music, tracks: tuple[Track, ...]) -> list[tuple[Track, bool]]:
     return [(t, music.is_liked(t.id)) for t in tracks]
 
 
-@require_GET
-@run_page
+@screen_view
 def home(request: HttpRequest, page: Page) -> HttpResponse:
     query = HomeQuery.from_params(request.GET)
     music: Music = page.state
@@ -74,8 +72,7 @@ def home(request: HttpRequest, page: Page) -> HttpResponse:
     return render_screen(request, page, "microfy/home.html", context)
 
 
-@require_GET
-@run_page
+@screen_view
 def search(request: HttpRequest, page: Page) -> HttpResponse:
     query = SearchQuery.from_params(request.GET)
     results = screens.search(page.state, query.q)
@@ -89,8 +86,7 @@ def search(request: HttpRequest, page: Page) -> HttpResponse:
     return render_screen(request, page, "microfy/search.html", context)
 
 
-@require_GET
-@run_page
+@screen_view
 def track(request: HttpRequest, page: Page, track_id: str) -> HttpResponse:
     music: Music = page.state
     song = present(music.tracks.get(track_id), "track")
@@ -110,8 +106,7 @@ def track(request: HttpRequest, page: Page, track_id: str) -> HttpResponse:
     return render_screen(request, page, "microfy/track.html", context)
 
 
-@require_GET
-@run_page
+@screen_view
 def artist(request: HttpRequest, page: Page, artist_id: str) -> HttpResponse:
     music: Music = page.state
     found = present(screens.visible_artist(music, artist_id), "artist")
@@ -134,8 +129,7 @@ def artist(request: HttpRequest, page: Page, artist_id: str) -> HttpResponse:
     return render_screen(request, page, "microfy/artist.html", context)
 
 
-@require_GET
-@run_page
+@screen_view
 def playlist(request: HttpRequest, page: Page, playlist_id: str) -> HttpResponse:
     music: Music = page.state
     tracks = screens.playlist_tracks(music, playlist_id)
@@ -151,22 +145,19 @@ def playlist(request: HttpRequest, page: Page, playlist_id: str) -> HttpResponse
     return render_screen(request, page, "microfy/playlist.html", context)
 
 
-@require_POST
-@run_page
+@form_view
 def track_action(request: HttpRequest, page: Page, track_id: str, action: str) -> HttpResponse:
     done = act_on_item(request, page, action, TRACK_ACTIONS, "track_id", track_id, TRACK_FORMS)
     return redirect_after(request, page, back_field(request), done)
 
 
-@require_POST
-@run_page
+@form_view
 def artist_action(request: HttpRequest, page: Page, artist_id: str, action: str) -> HttpResponse:
     done = act_on_item(request, page, action, ARTIST_ACTIONS, "artist_id", artist_id)
     return redirect_after(request, page, back_field(request), done)
 
 
-@require_POST
-@run_page
+@form_view
 def create_playlist(request: HttpRequest, page: Page) -> HttpResponse:
     form = {field: request.POST.get(field, "") for field in ("name", "description")}
     created = page.act("create_playlist", form).payload

@@ -9,9 +9,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from django.http import HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_POST
 
-from apps.kit.pages import Page, chosen, run_page
+from apps.kit.pages import Page, chosen, form_view, screen_view
 from apps.kit.rendering import back_field, redirect_after, render_screen
 from apps.kit.streaming import present
 from apps.microhood import screens
@@ -52,8 +51,7 @@ def investing(request: HttpRequest, page: Page, template: str, **context) -> Htt
     )
 
 
-@require_GET
-@run_page
+@screen_view
 def home(request: HttpRequest, page: Page) -> HttpResponse:
     query = ChartQuery.from_params(request.GET)
     hood = page.state
@@ -72,8 +70,7 @@ def listed(page: Page, symbol: str) -> None:
     present(page.state.stocks.get(symbol), "stock")  # unknown, or not loaded: alike
 
 
-@require_GET
-@run_page
+@screen_view
 def stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     query = StockQuery.from_params(request.GET)
     listed(page, symbol)
@@ -105,8 +102,7 @@ def _limit(text: str) -> float | None:
         raise ActionRejected(f"limit_price {text!r} is not a price") from None
 
 
-@require_POST
-@run_page
+@form_view
 def place_order(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     """The order ticket: side, type (market|limit), quantity, limit_price."""
     listed(page, symbol)
@@ -131,8 +127,7 @@ def place_order(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     return redirect_after(request, page, f"stocks/{symbol}?side={payload['side']}", done)
 
 
-@require_POST
-@run_page
+@form_view
 def watch_stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     listed(page, symbol)
     intent = chosen("intent", request.POST.get("intent", "add"), ("add", "remove"))
@@ -142,8 +137,7 @@ def watch_stock(request: HttpRequest, page: Page, symbol: str) -> HttpResponse:
     return redirect_after(request, page, back_field(request, f"stocks/{symbol}"), done)
 
 
-@require_GET
-@run_page
+@screen_view
 def market(request: HttpRequest, page: Page) -> HttpResponse:
     hood = page.state
     watch(page, hood.stocks)
@@ -151,35 +145,30 @@ def market(request: HttpRequest, page: Page) -> HttpResponse:
     return show(request, page, "market", "market", equities=equities, coins=coins)
 
 
-@require_GET
-@run_page
+@screen_view
 def watchlist(request: HttpRequest, page: Page) -> HttpResponse:
     watch(page, account.watchlist_symbols(page.state))
     return show(request, page, "watchlist", "lists", rows=screens.watch_rows(page.state, page.now))
 
 
-@require_GET
-@run_page
+@screen_view
 def news(request: HttpRequest, page: Page) -> HttpResponse:
     return show(request, page, "news", "news", news=screens.newest_first(page.state.news.values()))
 
 
-@require_GET
-@run_page
+@screen_view
 def orders(request: HttpRequest, page: Page) -> HttpResponse:
     watch(page, [])
     return show(request, page, "orders", "orders", orders=screens.order_rows(page.state, page.now))
 
 
-@require_POST
-@run_page
+@form_view
 def cancel_order(request: HttpRequest, page: Page) -> HttpResponse:
     page.act("cancel_order", {"order_id": request.POST.get("order_id", "")})
     return redirect_after(request, page, "orders", "Order cancelled")
 
 
-@require_GET
-@run_page
+@screen_view
 def search(request: HttpRequest, page: Page) -> HttpResponse:
     query = SearchQuery.from_params(request.GET)
     results = screens.search(page.state, query.q, page.now)

@@ -11,9 +11,9 @@ from __future__ import annotations
 import posixpath
 
 from django.http import Http404, HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_http_methods, require_POST
+from django.views.decorators.http import require_http_methods
 
-from apps.kit.pages import AGE_REFRESH_S, Page, one_of, run_page
+from apps.kit.pages import AGE_REFRESH_S, Page, form_view, one_of, run_page, screen_view
 from apps.kit.rendering import back_field, redirect_after, redirect_to, render_screen
 from apps.kit.streaming import present
 from apps.microhub import screens
@@ -56,8 +56,7 @@ def show(page: Page, template: str, tab: str, **context) -> HttpResponse:
 # --- code -----------------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
+@screen_view
 def code(request: HttpRequest, page: Page, path: str = "") -> HttpResponse:
     hub = page.state
     if path:
@@ -90,8 +89,7 @@ def crumbs(path: str) -> list[tuple[str, str]]:
     return [(part, "/".join(parts[: k + 1])) for k, part in enumerate(parts)]
 
 
-@require_GET
-@run_page
+@screen_view
 def blob(request: HttpRequest, page: Page, path: str) -> HttpResponse:
     found = screens.file_at(page.state, path)
     if found is None or found.is_folder:
@@ -110,8 +108,7 @@ def blob(request: HttpRequest, page: Page, path: str) -> HttpResponse:
     )
 
 
-@require_GET
-@run_page
+@screen_view
 def commits(request: HttpRequest, page: Page) -> HttpResponse:
     return show(page, "commits.html", "code", history=screens.commit_history(page.state))
 
@@ -119,8 +116,7 @@ def commits(request: HttpRequest, page: Page) -> HttpResponse:
 # --- issues ---------------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
+@screen_view
 def issues(request: HttpRequest, page: Page) -> HttpResponse:
     query = IssuesQuery.from_params(request.GET)
     hub = page.state
@@ -149,8 +145,7 @@ def new_issue(request: HttpRequest, page: Page) -> HttpResponse:
     return show(page, "new_issue.html", "issues")
 
 
-@require_GET
-@run_page
+@screen_view
 def issue(request: HttpRequest, page: Page, issue_id: str) -> HttpResponse:
     hub = page.state
     found = present(hub.issue(issue_id), "issue")  # unknown or not filed yet: alike
@@ -183,8 +178,7 @@ def act_on_post(
     page.act(action, payload)
 
 
-@require_POST
-@run_page
+@form_view
 def issue_action(request: HttpRequest, page: Page, issue_id: str, verb: str) -> HttpResponse:
     act_on_post(page, verb, ISSUE_ACTIONS, "issue action", "issue_id", issue_id)
     return redirect_to(page, f"issues/{issue_id}")
@@ -193,8 +187,7 @@ def issue_action(request: HttpRequest, page: Page, issue_id: str, verb: str) -> 
 # --- pull requests ----------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
+@screen_view
 def pulls(request: HttpRequest, page: Page) -> HttpResponse:
     query = PullsQuery.from_params(request.GET)
     return show(
@@ -202,8 +195,7 @@ def pulls(request: HttpRequest, page: Page) -> HttpResponse:
     )
 
 
-@require_GET
-@run_page
+@screen_view
 def pull(request: HttpRequest, page: Page, pr_id: str) -> HttpResponse:
     hub = page.state
     pr = present(hub.prs.get(pr_id), "pull request")
@@ -219,8 +211,7 @@ def pull(request: HttpRequest, page: Page, pr_id: str) -> HttpResponse:
     )
 
 
-@require_POST
-@run_page
+@form_view
 def pull_action(request: HttpRequest, page: Page, pr_id: str, verb: str) -> HttpResponse:
     act_on_post(page, verb, PR_ACTIONS, "pull request action", "pr_id", pr_id)
     return redirect_after(
@@ -234,8 +225,7 @@ def pull_action(request: HttpRequest, page: Page, pr_id: str, verb: str) -> Http
 # --- actions ----------------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
+@screen_view
 def actions(request: HttpRequest, page: Page) -> HttpResponse:
     query = ActionsQuery.from_params(request.GET)
     hub = page.state
@@ -249,8 +239,7 @@ def actions(request: HttpRequest, page: Page) -> HttpResponse:
     )
 
 
-@require_GET
-@run_page
+@screen_view
 def run(request: HttpRequest, page: Page, run_id: str) -> HttpResponse:
     found = present(page.state.runs.get(run_id), "workflow run")
     return show(page, "run.html", "actions", run=found)
@@ -259,8 +248,7 @@ def run(request: HttpRequest, page: Page, run_id: str) -> HttpResponse:
 # --- the repository's buttons, settings, the user's repositories and profiles -------------------
 
 
-@require_POST
-@run_page
+@form_view
 def repo_action(request: HttpRequest, page: Page, verb: str) -> HttpResponse:
     page.act(one_of(verb, REPO_ACTIONS, "action"), {})
     return redirect_to(page, back_field(request))
@@ -295,8 +283,7 @@ def new_repository(request: HttpRequest, page: Page) -> HttpResponse:
     return show(page, "new_repository.html", "")
 
 
-@require_GET
-@run_page
+@screen_view
 def repositories(request: HttpRequest, page: Page) -> HttpResponse:
     return show(page, "repositories.html", "", repos=page.state.user_repos)
 

@@ -13,10 +13,10 @@ from dataclasses import dataclass
 from datetime import datetime
 
 from django.http import Http404, HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_http_methods, require_POST
+from django.views.decorators.http import require_http_methods
 
 from apps.kit import simclock
-from apps.kit.pages import Page, one_of, run_page
+from apps.kit.pages import Page, form_view, one_of, run_page, screen_view
 from apps.kit.rendering import redirect_after, render_screen
 from apps.microlendar import screens, times
 from apps.microlendar.actions import DEFAULT_START, EVENT_FIELDS, existing_event
@@ -76,8 +76,7 @@ def base_context(page: Page, query: CalendarQuery) -> dict:
     }
 
 
-@require_GET
-@run_page
+@screen_view
 def calendar(request: HttpRequest, page: Page) -> HttpResponse:
     """The calendar in the chosen view, with event `event=<id>` open (which marks it viewed)."""
     query = CalendarQuery.from_params(request.GET)
@@ -209,8 +208,7 @@ def edit_event(request: HttpRequest, page: Page, event_id: str) -> HttpResponse:
 # --- acting on an event, on tasks ----------------------------------------------------------------
 
 
-@require_POST
-@run_page
+@form_view
 def event_action(request: HttpRequest, page: Page, event_id: str, action: str) -> HttpResponse:
     """`POST events/<id>/reschedule` (date, time: the form and a drag send the same) and
     `POST events/<id>/delete`, then back to the screen."""
@@ -225,8 +223,7 @@ def event_action(request: HttpRequest, page: Page, event_id: str, action: str) -
     return redirect_after(request, page, back.querystring(), DONE[action])
 
 
-@require_POST
-@run_page
+@form_view
 def new_task(request: HttpRequest, page: Page) -> HttpResponse:
     payload = {"title": request.POST.get("title", "")}
     if request.POST.get("dueDate"):
@@ -235,8 +232,7 @@ def new_task(request: HttpRequest, page: Page) -> HttpResponse:
     return redirect_after(request, page, _back(request).querystring(), "Task created")
 
 
-@require_POST
-@run_page
+@form_view
 def task_action(request: HttpRequest, page: Page, task_id: str, action: str) -> HttpResponse:
     one_of(action, TASK_ACTIONS, "task action")
     event = page.act(TASK_ACTIONS[action], {"task_id": task_id})

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from django.contrib import messages
 from django.http import Http404, HttpRequest, HttpResponse, JsonResponse
-from django.views.decorators.http import require_GET, require_http_methods, require_POST
+from django.views.decorators.http import require_http_methods
 
-from apps.kit.pages import Page, chosen, one_of, run_page
+from apps.kit.pages import Page, chosen, form_view, one_of, run_page, screen_view
 from apps.kit.rendering import is_fragment, redirect_after, redirect_to, render_screen
 from apps.micromail.actions import existing_email
 from apps.micromail.compose import COMPOSE_MODES, Composition, prefill
@@ -83,8 +83,7 @@ def back_to(request: HttpRequest, page: Page, query: MailboxQuery) -> HttpRespon
     return redirect_to(page, query.querystring())
 
 
-@require_GET
-@run_page
+@screen_view
 def mailbox(request: HttpRequest, page: Page) -> HttpResponse:
     """The mail client, with message `email=<id>` open (which has marked it read)."""
     query = MailboxQuery.from_params(request.GET)
@@ -139,16 +138,14 @@ def act_on_emails(
     return back_to(request, page, _returning(request, action, ids))
 
 
-@require_POST
-@run_page
+@form_view
 def email_action(request: HttpRequest, page: Page, email_id: str, action: str) -> HttpResponse:
     """`POST emails/<id>/<action>` (move also takes `folder`), then back to the same screen."""
     action = one_of(action, EMAIL_ACTIONS, "email action")
     return act_on_emails(request, page, action, [email_id], request.POST.get("folder", ""))
 
 
-@require_POST
-@run_page
+@form_view
 def bulk_action(request: HttpRequest, page: Page) -> HttpResponse:
     """The checked messages (`ids`), one action each; all ids are checked before any acts."""
     chosen, folder = pressed(request)
@@ -162,8 +159,7 @@ def bulk_action(request: HttpRequest, page: Page) -> HttpResponse:
     return act_on_emails(request, page, action, ids, folder)
 
 
-@require_POST
-@run_page
+@form_view
 def favorite_action(request: HttpRequest, page: Page) -> HttpResponse:
     """`POST favorites` (`action` = add_favorite|remove_favorite, `folder`), then back."""
     action = one_of(request.POST.get("action"), FAVORITE_ACTIONS, "favorites action")

@@ -11,10 +11,10 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from django.http import Http404, HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_POST
+from django.views.decorators.http import require_POST
 
 from apps.kit import simclock
-from apps.kit.pages import Page, run_page
+from apps.kit.pages import Page, run_page, screen_view
 from apps.kit.rendering import back_field, redirect_after, render_screen
 from apps.kit.retractions import is_gone
 from apps.kit.streaming import COUNT_REFRESH_S, present
@@ -78,8 +78,7 @@ def citable_paper(page: Page, paper_id: str):
     return found
 
 
-@require_GET
-@run_page
+@screen_view
 def search(request: HttpRequest, page: Page) -> HttpResponse:
     """Home (recommended articles) without `q`; results with the filter column with it."""
     query = SearchQuery.from_params(request.GET).check()
@@ -106,14 +105,12 @@ def show_paper(request: HttpRequest, page: Page, paper_id: str, template: str, *
     return show(request, page, template, "paper", back, paper=paper, related=related, **context)
 
 
-@require_GET
-@run_page
+@screen_view
 def paper(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
     return show_paper(request, page, paper_id, "paper")
 
 
-@require_GET
-@run_page
+@screen_view
 def cite(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
     """The paper's page with the Cite dialog open: five styles and the export links."""
     found = citable_paper(page, paper_id)
@@ -123,8 +120,7 @@ def cite(request: HttpRequest, page: Page, paper_id: str) -> HttpResponse:
     return show_paper(request, page, paper_id, "cite", styles=styles, exports=exports)
 
 
-@require_GET
-@run_page
+@screen_view
 def export(request: HttpRequest, page: Page, paper_id: str, fmt: str) -> HttpResponse:
     """A citation file to download (the request is logged like every page view)."""
     found = citable_paper(page, paper_id)
@@ -137,8 +133,7 @@ def export(request: HttpRequest, page: Page, paper_id: str, fmt: str) -> HttpRes
     return response
 
 
-@require_GET
-@run_page
+@screen_view
 def profile(request: HttpRequest, page: Page) -> HttpResponse:
     query = ProfileQuery.from_params(request.GET)
     if not query.user:
@@ -155,15 +150,13 @@ def profile(request: HttpRequest, page: Page) -> HttpResponse:
     )
 
 
-@require_GET
-@run_page
+@screen_view
 def library(request: HttpRequest, page: Page) -> HttpResponse:
     rows = shown_rows(page, screens.library(page.state))
     return show(request, page, "library", "library", "library", rows=rows)
 
 
-@require_GET
-@run_page
+@screen_view
 def alerts(request: HttpRequest, page: Page) -> HttpResponse:
     query = AlertsQuery.from_params(request.GET)
     screen = screens.alerts_screen(page.state, query, root_url(page))

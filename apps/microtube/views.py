@@ -13,10 +13,10 @@ from typing import Any
 from urllib.parse import quote
 
 from django.http import HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_POST
+from django.views.decorators.http import require_GET
 
 from apps.kit.item_actions import act_on_item
-from apps.kit.pages import Page, one_of, run_page
+from apps.kit.pages import Page, form_view, one_of, run_page, screen_view
 from apps.kit.rendering import redirect_after, redirect_to, render_screen
 from apps.kit.streaming import present
 from apps.microtube import screens
@@ -102,16 +102,14 @@ shorts = feed("shorts.html", "shorts", cards=screens.shorts)
 notifications = feed("notifications.html", "notifications")
 
 
-@require_GET
-@run_page
+@screen_view
 def playlist(request: HttpRequest, page: Page) -> HttpResponse:
     query = PlaylistQuery.from_params(request.GET)
     shown = present(screens.playlist(page.state, query.list or ""), "playlist")
     return show(request, page, "playlist.html", "playlists", playlist=shown)
 
 
-@require_GET
-@run_page
+@screen_view
 def results(request: HttpRequest, page: Page) -> HttpResponse:
     query = ResultsQuery.from_params(request.GET)
     return show(
@@ -124,8 +122,7 @@ def results(request: HttpRequest, page: Page) -> HttpResponse:
     )
 
 
-@require_GET
-@run_page
+@screen_view
 def short(request: HttpRequest, page: Page, video_id: str) -> HttpResponse:
     """The Shorts player (opening a short is not watching it, as in the original: the history
     keeps what was opened on the watch page)."""
@@ -146,8 +143,7 @@ def short(request: HttpRequest, page: Page, video_id: str) -> HttpResponse:
 # --- watch page and what is done there ------------------------------------------------------
 
 
-@require_GET
-@run_page
+@screen_view
 def watch(request: HttpRequest, page: Page) -> HttpResponse:
     tube: Tube = page.state
     video_id = WatchQuery.from_params(request.GET).v
@@ -163,8 +159,7 @@ def watch(request: HttpRequest, page: Page) -> HttpResponse:
     )
 
 
-@require_POST
-@run_page
+@form_view
 def video_action(request: HttpRequest, page: Page, video_id: str, action: str) -> HttpResponse:
     done = act_on_item(request, page, action, VIDEO_ACTIONS, "video_id", video_id, VIDEO_FORMS)
     if action == "add_to_playlist":
@@ -175,8 +170,7 @@ def video_action(request: HttpRequest, page: Page, video_id: str, action: str) -
     return redirect_after(request, page, watch_path(video_id) + anchor, done)
 
 
-@require_POST
-@run_page
+@form_view
 def new_playlist(request: HttpRequest, page: Page) -> HttpResponse:
     video_id = request.POST.get("video_id") or None
     form = {"name": request.POST.get("name", ""), "video_id": video_id}
@@ -189,8 +183,7 @@ def new_playlist(request: HttpRequest, page: Page) -> HttpResponse:
 # --- channels -------------------------------------------------------------------------------
 
 
-@require_GET
-@run_page
+@screen_view
 def channel(request: HttpRequest, page: Page, channel_id: str) -> HttpResponse:
     tube: Tube = page.state
     shown = present(tube.channels.get(channel_id), "channel")
@@ -207,8 +200,7 @@ def channel(request: HttpRequest, page: Page, channel_id: str) -> HttpResponse:
     )
 
 
-@require_POST
-@run_page
+@form_view
 def channel_action(request: HttpRequest, page: Page, channel_id: str, action: str) -> HttpResponse:
     done = act_on_item(request, page, action, CHANNEL_ACTIONS, "channel_id", channel_id)
     # Back to the video the button was under, or to the channel page.
@@ -223,8 +215,7 @@ def channel_action(request: HttpRequest, page: Page, channel_id: str, action: st
 # --- notifications --------------------------------------------------------------------------
 
 
-@require_POST
-@run_page
+@form_view
 def notification_action(request: HttpRequest, page: Page, action: str) -> HttpResponse:
     one_of(action, NOTIFICATION_ACTIONS, "notification action")
     notification_id = request.POST.get("notification_id", "")

@@ -4,15 +4,13 @@ from __future__ import annotations
 
 from django.contrib import messages
 from django.http import HttpRequest, HttpResponse
-from django.views.decorators.http import require_GET, require_POST
 
-from apps.kit.pages import Page, run_page
+from apps.kit.pages import Page, form_view, screen_view
 from apps.kit.rendering import redirect_to, render_screen
 from events.registry import ActionRejected
 
 
-@require_GET
-@run_page
+@screen_view
 def tally(request: HttpRequest, page: Page) -> HttpResponse:
     """The tally, with the level as of the page's `now` (re-rendered when its shown value moves)."""
     state = page.state
@@ -29,8 +27,7 @@ def typed_count(request: HttpRequest) -> int:
         raise ActionRejected(f"n must be a whole number, got {text!r}") from None
 
 
-@require_POST
-@run_page
+@form_view
 def poke(request: HttpRequest, page: Page) -> HttpResponse:
     """`POST poke` with `n`, then back to the tally (post/redirect/get)."""
     n = typed_count(request)
