@@ -21,7 +21,7 @@ MODULE = "environment"  # the module an environment app declares its Environment
 
 
 def declared(module: ModuleType) -> Environment:
-    """The one `Environment` that `module` declares (an imported one would count too: none is)."""
+    """The one `Environment` bound in `module` (defined or imported alike: environments import none)."""
     found = [value for value in vars(module).values() if isinstance(value, Environment)]
     if len(found) != 1:
         raise ImproperlyConfigured(

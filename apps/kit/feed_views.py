@@ -56,10 +56,7 @@ class FeedPages:
 
         return decorate
 
-    @staticmethod
-    def form(view: View) -> View:
-        """Decorator: where a form posts (the view acts, then redirects: post/redirect/get)."""
-        return form_view(view)
+    form = staticmethod(form_view)  # where a form posts: it acts, then redirects
 
 
 def shown(items: Mapping[str, Any], item_id: str | None, what: str) -> None:
