@@ -56,6 +56,19 @@ class BrowserStory:
     def api(self, method: str, path: str, body: dict | None = None):
         return control_api.call(self.site, method, path, body)
 
+    def open_before_the_clock(self) -> None:
+        """Open the run's start page without starting its clock. What a page shows before
+        anything has arrived can then be checked on any machine: a live clock started by the
+        task URL delivered first whenever a loaded machine took longer to render the page than
+        the scenario took to its first arrival."""
+        self.page.goto(f"{self.site}/r/{self.run['token']}/{self.run['environment']}")
+
+    def start_clock(self) -> None:
+        """Start the run's clock as the agent's first visit does — a GET of its task URL — but
+        without following it, so the open page stays as it is."""
+        response = self.page.request.get(self.run["task_url"], max_redirects=0)
+        assert response.status == 302, f"the task URL answered {response.status}"
+
     def watch_for_reload(self) -> None:
         """Mark the page once its live client is up: a reload would lose the mark."""
         self.page.wait_for_function("() => document.getElementById('sentinel-live')")

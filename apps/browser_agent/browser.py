@@ -24,7 +24,7 @@ from typing import TypeVar
 from urllib.parse import urlsplit
 
 from playwright.sync_api import Error as PlaywrightError
-from playwright.sync_api import Locator, Page, Response, sync_playwright
+from playwright.sync_api import Locator, Page, Response, ViewportSize, sync_playwright
 
 from apps.browser_agent.sim_clock import ClockReading, reading_from_headers
 from apps.browser_agent.snapshot import html_to_markdown
@@ -38,7 +38,7 @@ CHROMIUM_ARGS = [
     "--disable-component-update",
     "--disable-sync",
 ]
-VIEWPORT = {"width": 1280, "height": 800}
+VIEWPORT: ViewportSize = {"width": 1280, "height": 800}
 MARK_ATTRIBUTE = "data-sentinel-mark"
 MAX_MARKS = 60  # elements listed per step: a dense page must not flood the prompt
 SUMMARY_CHARS = 1500  # page text in each step's description
@@ -390,7 +390,7 @@ def _sent_at(response: Response) -> float:
     """When the browser sent `response`'s request (its time.monotonic()): the moment the server
     read its clock for the answer, within the request's transfer time."""
     timing = response.request.timing
-    offset = next((timing[k] for k in ("requestStart", "responseStart") if timing[k] >= 0), None)
+    offset = next((t for t in (timing["requestStart"], timing["responseStart"]) if t >= 0), None)
     now = time.monotonic()
     if offset is None or timing["startTime"] <= 0:
         return now

@@ -185,7 +185,9 @@ def _turns(data: Any, source: str) -> tuple[Turn, ...]:
     one turn; any other reply is a turn by itself."""
     if not isinstance(data, list):
         raise ScriptError(f"{source}: agent: must be a list of replies")
-    turns, pending, opened_at = [], [], None
+    turns: list[Turn] = []
+    pending: list[Reply] = []
+    opened_at = None
     for index, item in enumerate(data):
         where = f"{source}: agent[{index}]"
         reply = _reply(item, where)
@@ -534,11 +536,11 @@ class _Server(ThreadingHTTPServer):
     def __init__(self, model: ScriptedModel, host: str, port: int) -> None:
         super().__init__((host, port), _Handler)
         self.model = model
+        self.host = host
 
     @property
     def base_url(self) -> str:
-        host, port = self.server_address[:2]
-        return f"http://{host}:{port}/v1"
+        return f"http://{self.host}:{self.server_port}/v1"  # the port bound (0 asks for a free one)
 
 
 @contextmanager

@@ -76,7 +76,7 @@ class Transcript:
         if screenshot is not None:
             relative = f"{SCREENSHOT_DIR}/step-{self.steps:03d}.jpg"
             (self.task_dir / relative).write_bytes(screenshot)
-        line = {
+        line: dict[str, Any] = {
             "step": self.steps,
             "t": round(time.monotonic() - self.started, 2),
             "sim_start": sim_start,

@@ -116,7 +116,8 @@ def wait_for(
 
     Everything is decided at look moments (look_at): whether to reload, whether the model may
     be asked, whether the time is up. The rate limit is counted from the model's answer, as the
-    algorithm does (a slow model must not eat into it); reloads from the look that reloaded.
+    algorithm does (a slow model must not eat into it), timed as the look's moment plus the
+    model's time to answer; reloads from the look that reloaded.
     """
     if not (math.isfinite(timeout) and timeout >= 0):
         raise ValueError(f"timeout must be a finite number of seconds ≥ 0, got {timeout!r}")
@@ -143,15 +144,21 @@ def wait_for(
         # In page order; the same text in two places is one block, like a block seen before.
         new = [block for block in dict.fromkeys(blocks) if block not in shown]
         if new and look >= may_ask_at - LOOK_EPSILON:
+            asked = clock.now()
             met, why = judge(condition, new)
+            answered = look + (clock.now() - asked)  # the look's moment, plus the model's time
             checks += 1
             shown.update(new)
             if met:
                 return result(True, why)
             check_interval = min(2 * check_interval, schedule.max_check)
             # Counted from the answer (a slow model must not eat into the rate limit), to the
-            # first look from then on.
-            may_ask_at = look_at(clock.now() + check_interval, schedule)
+            # first look after. The answer is timed from the look's moment: the look's own work
+            # (bringing the page up to it, reading it) is not counted, as a loaded machine
+            # stretches it and every later question would move with it. An answer always comes
+            # after the look it was asked at, however quick the model: the first look strictly
+            # after, so a model quicker than the clock's resolution is not a second sooner.
+            may_ask_at = next_look_after(answered + check_interval, schedule)
         if isinstance(clock, SkippingClock):
             at, wake_at_change = next_look(
                 clock.now(), end=min(start + timeout, next_reload), may_ask_at=may_ask_at

@@ -47,7 +47,8 @@ def untokened(blocks: list[str]) -> list[str]:
 DUE = re.compile(r'id="sentinel-live"[^>]*data-due="([^"]*)"')
 
 
-WORK_S = 0.05  # simulated seconds each look of the one-second watcher takes
+WORK_S = 0.05  # simulated seconds each look of the one-second watcher takes …
+ANSWER_S = 0.02  # … and each answer of its model
 # The skipping watcher's run crawls between its skips (a twentieth of wall time): its looks take
 # what they take, and on a loaded machine a second of reading the page must still land its next
 # skip on the moment it aimed at, not past it (then it would look a second later than a poller).
@@ -55,14 +56,29 @@ CRAWL = 0.05
 
 
 class WorkingPoller(FakeClock):
-    """test_wait_for's fake clock for a watcher whose every look takes WORK_S (the snapshot,
-    the model's answer), as a real one's does: its rate limit and reloads count from after."""
+    """test_wait_for's fake clock for a watcher whose every look takes WORK_S (the snapshot)
+    and every answer of its model ANSWER_S, as a real one's do."""
+
+    def __init__(self, client: Client, run_id: int):
+        super().__init__(client, run_id)
+        self.spent = WORK_S  # since the look began, at self.time
 
     def now(self) -> float:
-        return self.time + WORK_S  # the look began at self.time
+        return self.time + self.spent
 
     def sleep(self, seconds: float) -> None:
         super().sleep(self.now() + seconds - self.time)
+        self.spent = WORK_S
+
+    def answering(self, judge: RecordingJudge) -> Callable[[str, list[str]], tuple[bool, str]]:
+        """`judge`, taking its model's ANSWER_S of this clock's time."""
+
+        def answer(condition: str, blocks: list[str]) -> tuple[bool, str]:
+            said = judge(condition, blocks)
+            self.spent += ANSWER_S
+            return said
+
+        return answer
 
 
 @dataclass
@@ -118,7 +134,8 @@ def watched(arrivals, timeout: float, *, fast_forward: bool):
         page = InboxPage(client, f"/r/{run['token']}/micromail/", moments)  # type: ignore[arg-type]
     page.clock = moments  # type: ignore[assignment]
     judge = RecordingJudge(moments)  # type: ignore[arg-type]
-    result = wait_for(CONDITION, timeout, page=page, judge=judge, clock=clock)
+    asked = clock.answering(judge) if isinstance(clock, WorkingPoller) else judge
+    result = wait_for(CONDITION, timeout, page=page, judge=asked, clock=clock)
     skips = Event.objects.filter(run_id=run["id"], type="skip").count()
     return result, judge.calls, page.reloads, skips
 

@@ -19,7 +19,7 @@ from tests.conftest import browser  # noqa: F401
 
 pytestmark = pytest.mark.browser
 
-ARRIVES_AT = 20.0  # simulated seconds; 5 wall seconds at speed factor 4
+ARRIVES_AT = 20.0  # simulated seconds; 5 wall seconds at speed factor 4 after the clock starts
 SPEED_FACTOR = 4.0
 URGENT = "urg-gabriel-09"
 
@@ -59,16 +59,24 @@ def chat_row(page: Page, name: str):
 
 def test_a_user_sees_a_message_arrive_live_and_reads_and_likes_it(live_site, browser):  # noqa: F811
     story = BrowserStory.start(
-        live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
+        live_site,
+        browser,
+        scenario(),
+        open_task=False,
+        clock_mode="live",
+        speed_factor=SPEED_FACTOR,
     )
     page = story.page
+    story.open_before_the_clock()
 
-    # The task URL starts the clock and lands in the chat list, Gabriel's chat already read.
+    # The chat list, Gabriel's chat already read.
     expect(page.get_by_role("heading", level=1, name="Chat")).to_be_visible()
     expect(chat_row(page, "Gabriel Nwosu")).not_to_have_accessible_name(re.compile("^Unread:"))
 
-    # The urgent message arrives: the row turns unread in place, without a reload.
+    # The task URL starts the clock; the urgent message arrives: the row turns unread in place,
+    # without a reload.
     story.watch_for_reload()
+    story.start_clock()
     expect(chat_row(page, "Gabriel Nwosu")).to_have_accessible_name(
         re.compile(r"^Unread: Gabriel Nwosu.*card payments are failing"), timeout=TIMEOUT_MS
     )

@@ -15,7 +15,7 @@ from tests.microgram.cast import DESK, PRELOAD
 
 pytestmark = pytest.mark.browser
 
-ARRIVES_AT = 20.0  # simulated seconds; 5 wall seconds at speed factor 4
+ARRIVES_AT = 20.0  # simulated seconds; 5 wall seconds at speed factor 4 after the clock starts
 SPEED_FACTOR = 4.0
 
 
@@ -39,16 +39,24 @@ def scenario() -> dict:
 
 def test_a_post_arrives_live_and_is_liked_with_the_heart(live_site, browser):
     story = BrowserStory.start(
-        live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
+        live_site,
+        browser,
+        scenario(),
+        open_task=False,
+        clock_mode="live",
+        speed_factor=SPEED_FACTOR,
     )
     page = story.page
+    story.open_before_the_clock()
 
     feed = page.get_by_role("main", name="Home")
     expect(feed.get_by_role("article", name="Post by nhaddad")).to_be_visible()
     expect(feed.get_by_role("article", name="Post by mbellini")).to_have_count(0)
 
-    # The post arrives: it is pushed into the feed, on top, without a reload.
+    # The task URL starts the clock; the post arrives: it is pushed into the feed, on top,
+    # without a reload.
     story.watch_for_reload()
+    story.start_clock()
     marco = feed.get_by_role("article", name="Post by mbellini")
     expect(marco).to_be_visible()
     expect(feed.get_by_role("article").first).to_have_accessible_name("Post by mbellini")
