@@ -8,7 +8,9 @@
  * doing: window and region scroll positions, focus, checked rows, chosen options and the menus
  * and sections (`<details>`) it opened or closed, matched by place and label; a region
  * holding a field being typed in, or typed text not sent yet, is swapped only once the user
- * leaves it. Config: <div id="sentinel-live" data-socket data-seq data-due data-poll-ms>.
+ * leaves it. A page's own answer to a boosted form or link keeps the menus the person opened or
+ * closed while it was on its way (after a push had already shown the change, say) when it
+ * redraws the same page. Config: <div id="sentinel-live" data-socket data-seq data-due data-poll-ms>.
  */
 (function () {
   "use strict";
@@ -35,6 +37,39 @@
     return summary ? summary.textContent.trim() + "|" + (summary.getAttribute("aria-label") || "") : "";
   }
 
+  function menuStates(root) {
+    return Array.prototype.map.call(root.querySelectorAll("details"), function (d) {
+      return [summaryOf(d), d.open];
+    });
+  }
+  function restoreMenus(root, menus) {  // the same menu, by place and label
+    root.querySelectorAll("details").forEach(function (d, i) {
+      if (menus[i] && menus[i][0] === summaryOf(d) && menus[i][1] !== null) d.open = menus[i][1];
+    });
+  }
+
+  // A boosted request answers with the whole page, drawn as the server left it. The menus the
+  // person toggled while it travelled (a push may have shown the change already) are theirs:
+  // kept when the answer redraws the same page, as a push keeps them. A menu untouched meanwhile
+  // takes the answer's state, so one whose item was chosen closes.
+  var asked = null, toggled = null;  // [page URL, menu states] as the request left; what changed
+  document.addEventListener("htmx:beforeRequest", function () {
+    asked = [pageUrl(), menuStates(document)];
+  });
+  document.addEventListener("htmx:beforeSwap", function () {
+    toggled = asked && menuStates(document).map(function (menu, i) {
+      var was = asked[1][i];
+      return was && was[0] === menu[0] && was[1] !== menu[1] ? menu : [menu[0], null];
+    });
+  });
+  document.addEventListener("htmx:afterSwap", function (event) {
+    var xhr = event.detail && event.detail.xhr, was = asked, menus = toggled;
+    asked = toggled = null;
+    if (!was || !menus || !xhr || !xhr.responseURL) return;
+    var answered = new URL(xhr.responseURL);
+    if (answered.pathname + answered.search === was[0]) restoreMenus(document, menus);
+  });
+
   function csrfToken() {  // the page's own token (pushed forms come with blank ones)
     try { return JSON.parse(document.body.getAttribute("hx-headers") || "{}")["X-CSRFToken"] || ""; }
     catch (e) { return ""; }
@@ -50,9 +85,7 @@
     [old].concat(Array.prototype.slice.call(old.querySelectorAll("[id]"))).forEach(function (el) {
       if (el.scrollTop || el.scrollLeft) scrolled.push([el.id, el.scrollTop, el.scrollLeft]);
     });
-    var menus = Array.prototype.map.call(old.querySelectorAll("details"), function (d) {
-      return [summaryOf(d), d.open];
-    });
+    var menus = menuStates(old);
     old.querySelectorAll("input[id], select[id]").forEach(function (f) {
       if ((f.type === "checkbox" || f.type === "radio") && f.checked !== f.defaultChecked) chosen.push([f.id, "checked", f.checked]);
       if (f.tagName === "SELECT" && f.selectedOptions.length && !f.selectedOptions[0].defaultSelected) chosen.push([f.id, "value", f.value]);
@@ -62,9 +95,7 @@
     fresh.querySelectorAll("input[name=csrfmiddlewaretoken]").forEach(function (f) { if (!f.value) f.value = token; });
     old.replaceWith(fresh);
     chosen.forEach(function (c) { var f = document.getElementById(c[0]); if (f) f[c[1]] = c[2]; });
-    fresh.querySelectorAll("details").forEach(function (d, i) {  // the same menu, by place and label
-      if (menus[i] && menus[i][0] === summaryOf(d)) d.open = menus[i][1];
-    });
+    restoreMenus(fresh, menus);
     scrolled.forEach(function (s) { var el = document.getElementById(s[0]); if (el) { el.scrollTop = s[1]; el.scrollLeft = s[2]; } });
     if (window.htmx) window.htmx.process(fresh);
     if (focused && document.getElementById(focused)) document.getElementById(focused).focus({ preventScroll: true });
