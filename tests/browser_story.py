@@ -56,12 +56,15 @@ class BrowserStory:
     def api(self, method: str, path: str, body: dict | None = None):
         return control_api.call(self.site, method, path, body)
 
-    def open_before_the_clock(self) -> None:
-        """Open the run's start page without starting its clock. What a page shows before
-        anything has arrived can then be checked on any machine: a live clock started by the
-        task URL delivered first whenever a loaded machine took longer to render the page than
-        the scenario took to its first arrival."""
-        self.page.goto(f"{self.site}/r/{self.run['token']}/{self.run['environment']}")
+    @classmethod
+    def before_the_clock(cls, site: str, browser, scenario: str | dict, **run: Any) -> BrowserStory:
+        """A run of `scenario` with its start page open and its clock not started (`start_clock`
+        starts it). What a page shows before anything has arrived can then be checked on any
+        machine: a live clock started by the task URL delivered first whenever a loaded machine
+        took longer to render the page than the scenario took to its first arrival."""
+        story = cls.start(site, browser, scenario, open_task=False, **run)
+        story.page.goto(f"{site}/r/{story.run['token']}/{story.run['environment']}")
+        return story
 
     def start_clock(self) -> None:
         """Start the run's clock as the agent's first visit does — a GET of its task URL — but

@@ -58,16 +58,10 @@ def chat_row(page: Page, name: str):
 
 
 def test_a_user_sees_a_message_arrive_live_and_reads_and_likes_it(live_site, browser):  # noqa: F811
-    story = BrowserStory.start(
-        live_site,
-        browser,
-        scenario(),
-        open_task=False,
-        clock_mode="live",
-        speed_factor=SPEED_FACTOR,
+    story = BrowserStory.before_the_clock(
+        live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
     page = story.page
-    story.open_before_the_clock()
 
     # The chat list, Gabriel's chat already read.
     expect(page.get_by_role("heading", level=1, name="Chat")).to_be_visible()

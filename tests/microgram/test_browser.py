@@ -38,16 +38,10 @@ def scenario() -> dict:
 
 
 def test_a_post_arrives_live_and_is_liked_with_the_heart(live_site, browser):
-    story = BrowserStory.start(
-        live_site,
-        browser,
-        scenario(),
-        open_task=False,
-        clock_mode="live",
-        speed_factor=SPEED_FACTOR,
+    story = BrowserStory.before_the_clock(
+        live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
     page = story.page
-    story.open_before_the_clock()
 
     feed = page.get_by_role("main", name="Home")
     expect(feed.get_by_role("article", name="Post by nhaddad")).to_be_visible()

@@ -24,7 +24,7 @@ from tests.conftest import browser  # noqa: F401
 pytestmark = pytest.mark.browser
 
 # Simulated seconds; 6 wall seconds at speed factor 4 after the clock starts, which the test does
-# once it has checked the inbox without the mail (BrowserStory.open_before_the_clock).
+# once it has checked the inbox without the mail (BrowserStory.before_the_clock).
 ARRIVES_AT = 24.0
 SPEED_FACTOR = 4.0
 
@@ -86,16 +86,10 @@ def row(page: Page, subject: str):
 
 
 def test_a_user_reads_replies_and_files_mail_delivered_by_the_live_clock(live_site, browser):  # noqa: F811
-    story = BrowserStory.start(
-        live_site,
-        browser,
-        scenario(),
-        open_task=False,
-        clock_mode="live",
-        speed_factor=SPEED_FACTOR,
+    story = BrowserStory.before_the_clock(
+        live_site, browser, scenario(), clock_mode="live", speed_factor=SPEED_FACTOR
     )
     page = story.page
-    story.open_before_the_clock()
 
     # The inbox: folders, rows, one unread.
     expect(page.get_by_role("heading", level=1, name="Inbox")).to_be_visible()
