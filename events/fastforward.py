@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from django.db import transaction
 
 from events import notifications
-from events.clock import CLOCK_FIELDS, sim_now, wall_now
+from events.clock import CLOCK_FIELDS, sim_now, wall_due, wall_now
 from events.lifecycle import CONTACT_GET, CONTACT_POST, LifecycleError
 from events.models import ClockMode, Event, EventKind, Run, RunStatus
 from events.scheduler import fire_due, fire_through
@@ -80,6 +80,14 @@ class Wait:
             value = getattr(self, name)
             if value is not None and not (math.isfinite(value) and value >= 0):
                 raise ValueError(f"{name} must be a finite number of seconds ≥ 0, got {value!r}")
+
+    def anchored(self, now: float) -> Wait:
+        """This wait as asked at simulated second `now`, in moments instead of lengths: taken
+        later (a server that paces its agents held it back), it ends where it would have."""
+        if not self.until_change:
+            return Wait(to=self.to if self.seconds is None else now + self.seconds)
+        to = self.to if self.timeout is None else now + self.timeout
+        return Wait(until_change=True, to=to, since=now if self.since is None else self.since)
 
 
 @dataclass(frozen=True)
@@ -142,10 +150,17 @@ def refusal(run: Run) -> WaitRefused | None:
     return None
 
 
-def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
+def skip(
+    run: Run, wait: Wait, *, wall: float | None = None, asked_at: float | None = None
+) -> Skipped:
     """Take `wait` on `run` at wall time `wall` (default now; read once): move the clock, log the
-    skip and fire what it passed. Raises WaitRefused when the run cannot wait."""
+    skip and fire what it passed. `asked_at`: the wall time the agent asked for it, when that
+    was earlier (the wait was held back) — its lengths count from then. Raises WaitRefused when
+    the run cannot wait."""
     wall = wall_now() if wall is None else wall
+    if asked_at is not None:
+        run.reread(*CLOCK_FIELDS)
+        wait = wait.anchored(max(sim_now(run, asked_at), _last_skip_end(run)))
     for _ in range(MAX_ATTEMPTS):
         run.reread(*CLOCK_FIELDS, "closed_at")
         refused = refusal(run)
@@ -180,6 +195,15 @@ def skip(run: Run, wait: Wait, *, wall: float | None = None) -> Skipped:
         notifications.clock_moved(run.pk)  # open pages re-render what the new time changes
         return Skipped(now, to, why, fired)
     raise LifecycleError("the run kept changing while the wait was applied; wait again")
+
+
+def natural_end(run: Run, wait: Wait, *, wall: float) -> float | None:
+    """The wall time at which `wait`, read at wall time `wall`, would end if the clock ran on
+    instead of skipping (None: not started). A server that holds a wait back (it paces its
+    agents: sentinel_site/pacing.py) lets it go by then, so it never lands later than it would
+    have."""
+    now = max(sim_now(run, wall), _last_skip_end(run))
+    return wall_due(run, target(run, wait, now)[0])
 
 
 def _last_skip_end(run: Run) -> float:

@@ -36,6 +36,7 @@ from collections import OrderedDict, deque
 from concurrent.futures import ThreadPoolExecutor
 
 from asgiref.sync import ThreadSensitiveContext, sync_to_async
+from django.conf import settings
 from django.core import signals
 from django.core.exceptions import RequestAborted
 from django.core.handlers import base
@@ -46,6 +47,7 @@ from django.http.response import HttpResponseBase
 from django.urls import set_script_prefix
 
 from apps.kit.pages import ARRIVAL
+from sentinel_site.pacing import Pacer
 from sentinel_site.urls import RUN_PREFIX
 
 # Two: while one request waits on the database (SQLite's busy timeout, a PostgreSQL row lock),
@@ -264,6 +266,9 @@ def django_http_application():
     """The HTTP application Daphne serves (Django must already be set up)."""
     handler = SyncChainHandler()
     return Lanes(
-        RequestThreads(handler, size=REQUEST_THREADS, name="agent"),
+        Pacer(
+            RequestThreads(handler, size=REQUEST_THREADS, name="agent"),
+            places=settings.SENTINEL_FAST_FORWARD_AWAKE,
+        ),
         RequestThreads(handler, size=CONTROL_THREADS, name="control"),
     )

@@ -146,6 +146,10 @@ SENTINEL_RUN_CREATION_RATE = env_rate("SENTINEL_RUN_CREATION_RATE", "1000/min")
 # The proxies in front of the server (addresses or networks) whose X-Forwarded-For is believed:
 # none by default, so a client is its connection's address and no header can change it.
 SENTINEL_TRUSTED_PROXIES = env_networks("SENTINEL_TRUSTED_PROXIES")
+# Fast-forward agents working at once (per web process); the others' waits are held back while
+# their clocks run (sentinel_site/pacing.py). 0, the default: no pacing — agents that wait on a
+# remote model would only queue for places they do not load; `bench run --awake` sets it.
+SENTINEL_FAST_FORWARD_AWAKE = env_int("SENTINEL_FAST_FORWARD_AWAKE", 0)
 # Entries an agent may add to its run's log (actions and page views; events/commands.py).
 SENTINEL_AGENT_LOG_BUDGET = env_int("SENTINEL_AGENT_LOG_BUDGET", 20_000, minimum=1)
 # Bytes of payload (JSON) the agent may store in its run's log, over all its entries.

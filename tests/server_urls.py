@@ -12,7 +12,7 @@ test suite with SENTINEL_TEST_SHARED_SERVER=1 (tests/settings.py) has this URL.
 from __future__ import annotations
 
 from django.contrib.contenttypes.models import ContentType
-from django.http import HttpRequest, HttpResponse
+from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.urls import path
 from django.views.decorators.csrf import csrf_exempt
 from django.views.decorators.http import require_POST
@@ -21,9 +21,11 @@ from apps.kit import live, screen_cache
 from apps.scenarios import library
 from events import models, projection, scheduler
 from events.ticker import ticker
+from sentinel_site import pacing
 from sentinel_site.urls import urlpatterns as site_urlpatterns
 
 FORGET_PATH = "__tests__/forget"
+PACING_PATH = "__tests__/pacing"
 
 
 @csrf_exempt
@@ -37,8 +39,14 @@ def forget(request: HttpRequest) -> HttpResponse:
     models._spec_cache.clear()
     library._libraries.clear()
     ContentType.objects.clear_cache()
+    pacing.forget_all()
     ticker.wake()  # re-read the live runs now, not up to a second later
     return HttpResponse(status=204)
 
 
-urlpatterns = [path(FORGET_PATH, forget), *site_urlpatterns]
+def pacing_status(request: HttpRequest) -> JsonResponse:
+    """Which runs the server's pacer has awake and which it holds back (a test waits on it)."""
+    return JsonResponse(pacing.status())
+
+
+urlpatterns = [path(FORGET_PATH, forget), path(PACING_PATH, pacing_status), *site_urlpatterns]

@@ -116,6 +116,39 @@ class TestOneSkip:
         assert len(skips(run)) == 1  # an empty skip is not logged
         assert run.status == "running_auto"  # the clock still runs on to the timeline end
 
+    def test_a_wait_held_back_counts_its_lengths_from_when_it_was_asked(self, pings_spec):
+        # Asked at 2 s, let go at 5 s by a server that paces its agents: the entry at 10 s is
+        # still the next change, and a timeout of 20 s still ends at 22 s, not at 25 s.
+        run = fast_forward_run(pings_spec)
+        done = skip(run, Wait(seconds=20.0), wall=START + 5.0, asked_at=START + 2.0)
+        assert (done.start, done.end, done.why) == (5.0, 22.0, SLEPT)
+        changed = skip(
+            run, Wait(until_change=True, timeout=30.0), wall=START + 5.5, asked_at=START + 5.2
+        )
+        assert (changed.start, changed.end, changed.why) == (22.5, 30.0, CHANGE)
+        timed_out = skip(
+            run, Wait(until_change=True, timeout=4.0), wall=START + 6.0, asked_at=START + 5.6
+        )
+        # Asked at 30.1 s (the clock ran 0.1 s since the last skip): ends at 34.1, not 34.5.
+        assert timed_out.start == pytest.approx(30.5)
+        assert (timed_out.end, timed_out.why) == (pytest.approx(34.1), TIMEOUT)
+
+    @pytest.mark.parametrize(
+        ("wait", "anchored"),
+        [
+            (Wait(seconds=5.0), Wait(to=15.0)),
+            (Wait(to=12.0), Wait(to=12.0)),
+            (Wait(until_change=True), Wait(until_change=True, since=10.0)),
+            (Wait(until_change=True, timeout=7.0), Wait(until_change=True, to=17.0, since=10.0)),
+            (
+                Wait(until_change=True, to=30.0, since=4.0),
+                Wait(until_change=True, to=30.0, since=4.0),
+            ),
+        ],
+    )
+    def test_a_wait_anchored_at_a_moment_names_moments_not_lengths(self, wait, anchored):
+        assert wait.anchored(10.0) == anchored
+
     def test_a_zero_second_sleep_reads_the_clock_and_logs_nothing(self, pings_spec):
         run = fast_forward_run(pings_spec)
         done = skip(run, Wait(seconds=0.0), wall=START + 4.0)

@@ -3,7 +3,9 @@
 Upstream keys: `server_url`, `frontend_url`, `speed_factor`, `agent_subprocess` (a list: raw
 substring substitution, no shell; a string: `shlex.quote`d substitution, run with a shell).
 Ours: `parallel`, `prices`, `reaction_window`, `grace`, `control_token`, `http_timeout`,
-`clock` (`live`, or `fast_forward`: the agent's declared waits skip the run's clock), and
+`clock` (`live`, or `fast_forward`: the agent's declared waits skip the run's clock), `awake`
+(fast-forward agents working at once on the embedded server, the others' waits held back: 0,
+the default, for no pacing; sentinel_site/pacing.py), and
 `agent` — one of the built-in reference agents (`apps.browser_agent`) instead of
 `agent_subprocess`: `{kind: wait_for | sleep, model, base_url, api_key_env, max_steps,
 max_tokens, max_wall}`.
@@ -42,6 +44,7 @@ KNOWN_KEYS = (
     "api_url",
     "agent",
     "clock",
+    "awake",
 )
 # Clocks a benchmark's runs can play on; the command line spells fast_forward fast-forward too.
 BENCH_CLOCKS = ("live", "fast_forward")
@@ -100,6 +103,7 @@ class BenchConfig:
     control_token: str = ""
     http_timeout: float = 30.0
     clock: str = "live"  # one of BENCH_CLOCKS
+    awake: int = 0  # the embedded server's SENTINEL_FAST_FORWARD_AWAKE (0: no pacing)
     noop_rule: str = "paper"  # one of outcomes.NOOP_RULES (--noop-rule)
     jitter: float = 0.0  # authored seconds a run's timeline may be shifted by (--jitter)
     seed: int = 0  # of the shifts (--seed)
@@ -156,15 +160,19 @@ def output_tokens(costs: dict[str, Any]) -> int | None:
     return value if isinstance(value, (int, float)) and not isinstance(value, bool) else None
 
 
-def _positive(data: dict, key: str, default: float, source: str, *, integer: bool = False) -> Any:
+def _positive(
+    data: dict, key: str, default: float, source: str, *, integer: bool = False, zero: bool = False
+) -> Any:
+    """`key`'s value: a positive number (an integer), or 0 too when `zero`."""
     value = data.get(key, default)
     if value is None:
         return default
     ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
     if integer:
         ok = ok and float(value).is_integer()
-    if not ok or (value <= 0 and key != "grace") or value < 0:
+    if not ok or (value <= 0 and not zero) or value < 0:
         kind = "a positive integer" if integer else "a positive number"
+        kind = f"0 or {kind}" if zero else kind
         raise ConfigError(f"{source}: {key}: must be {kind}, got {value!r}")
     return int(value) if integer else float(value)
 
@@ -292,10 +300,11 @@ def parse_config(data: Any, *, source: str = "config", require_agent: bool = Tru
         parallel=_positive(data, "parallel", 1, source, integer=True),
         prices=_prices(data, source),
         reaction_window=_positive(data, "reaction_window", REACTION_WINDOW, source),
-        grace=_positive(data, "grace", DEFAULT_GRACE, source),
+        grace=_positive(data, "grace", DEFAULT_GRACE, source, zero=True),
         control_token=token,
         http_timeout=_positive(data, "http_timeout", 30.0, source),
         clock=bench_clock(data.get("clock", "live"), f"{source}: clock"),
+        awake=_positive(data, "awake", 0, source, integer=True, zero=True),
         raw=dict(data),
     )
 

@@ -16,7 +16,7 @@ from django.shortcuts import render
 from django.views.decorators.csrf import csrf_exempt
 from django.views.decorators.http import require_http_methods, require_POST
 
-from apps.control import slot
+from apps.control import pace, slot
 from apps.control.parsers import BadBody, body_limit, read_json
 from apps.kit.links import contact_path, start_page_path
 from apps.kit.live import last_live_seq
@@ -25,7 +25,7 @@ from apps.kit.pages import arrival_wall, run_for_token
 from events import fastforward, lifecycle
 from events.clock import TICKING
 from events.commands import current_folded, perform_action
-from events.models import Run, RunStatus
+from events.models import ClockMode, Run, RunStatus
 from events.registry import ActionRejected
 from events.schemas import PayloadError, validate_payload
 
@@ -35,6 +35,8 @@ def task_start(request: HttpRequest, token: str) -> HttpResponse:
     """Start the run's clock (first visit) and go to its start page; reloading is harmless."""
     run = run_for_token(token)
     if run.clock_mode in TICKING and run.status in lifecycle.CLOCK_STARTABLE:
+        if run.clock_mode == ClockMode.FAST_FORWARD and pace.asked(request):
+            return pace.hold_until(None)  # its clock starts when its turn comes
         # A concurrent first visit may have started it: then just go to the page.
         with contextlib.suppress(lifecycle.LifecycleError):
             run = lifecycle.start_clock(run)
@@ -165,8 +167,15 @@ def run_wait(request: HttpRequest, token: str) -> JsonResponse:
         return JsonResponse({"detail": str(exc)}, status=400)
     except RequestDataTooBig:
         return JsonResponse({"detail": f"body is larger than {body_limit()} bytes"}, status=400)
+    if pace.asked(request):  # every awake place is taken: hold the wait back, if it is one
+        refused = fastforward.refusal(run)
+        if refused is not None:
+            return JsonResponse({"detail": str(refused)}, status=refused.status)
+        return pace.hold_until(fastforward.natural_end(run, wait, wall=arrival_wall(request)))
     try:
-        skipped = fastforward.skip(run, wait, wall=arrival_wall(request))
+        skipped = fastforward.skip(
+            run, wait, wall=arrival_wall(request), asked_at=pace.asked_at(request)
+        )
     except lifecycle.LifecycleError as exc:
         return JsonResponse({"detail": str(exc)}, status=exc.status)
     return JsonResponse(

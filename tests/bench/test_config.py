@@ -48,6 +48,8 @@ def test_a_string_command_quotes_each_value_and_uses_a_shell():
             "speed_factor: speed_factor must be positive",
         ),
         ({"agent_subprocess": ["a"], "parallel": 0}, "parallel: must be a positive integer"),
+        ({"agent_subprocess": ["a"], "awake": -1}, "awake: must be 0 or a positive integer"),
+        ({"agent_subprocess": ["a"], "awake": 1.5}, "awake: must be 0 or a positive integer"),
         (
             {"agent_subprocess": ["a"], "prices": {"m": {"input": -1}}},
             "prices.m.input: must be a number >= 0",
@@ -66,6 +68,11 @@ def test_a_string_command_quotes_each_value_and_uses_a_shell():
 def test_bad_values_are_named_with_what_is_allowed(data, message):
     with pytest.raises(ConfigError, match=message.replace(".", r"\.")):
         parse_config(data, source="eval_config.yaml")
+
+
+def test_awake_is_off_unless_asked_for():
+    assert parse_config({"agent_subprocess": ["a"]}, source="c").awake == 0
+    assert parse_config({"agent_subprocess": ["a"], "awake": 2}, source="c").awake == 2
 
 
 def test_an_empty_file_is_an_empty_mapping_and_bad_yaml_names_the_line(tmp_path):

@@ -169,3 +169,20 @@ def test_an_unreachable_server_stops_at_preflight(tmp_path):
     server = f"http://127.0.0.1:{free_port()}"
     line = stopped_at_preflight(bench_run(tmp_path, config, "--server-url", server), tmp_path)
     assert line.startswith(f"CommandError: preflight: server_url: {server}: not reachable (")
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("--awake", "-1"), "CommandError: --awake must be >= 0 (0: no pacing), got -1"),
+        (
+            ("--awake", "2", "--server-url", "http://127.0.0.1:9"),
+            "CommandError: awake paces the embedded server; a server of your own (server_url) "
+            "paces by its own SENTINEL_FAST_FORWARD_AWAKE",
+        ),
+    ],
+)
+def test_a_pace_the_harness_cannot_set_is_refused_before_anything_runs(tmp_path, args, message):
+    (tmp_path / "my_agent.py").write_text("print('hi')\n")
+    config = {"agent_subprocess": ["python", "my_agent.py", "__TASK_URL__"]}
+    assert stopped_at_preflight(bench_run(tmp_path, config, *args), tmp_path) == message

@@ -117,6 +117,8 @@ def config_as_used(cfg: BenchConfig, agent: str | None, trials: int) -> dict:
     )
     if cfg.jitter > 0:
         used.update(jitter=cfg.jitter, seed=cfg.seed)
+    if cfg.awake:  # the embedded server paced its fast-forward agents
+        used["awake"] = cfg.awake
     if cfg.server_url:
         used["server_url"] = cfg.server_url
     if agent:
@@ -260,6 +262,14 @@ class Command(BaseCommand):
             "when the agent declares a wait (its wait URL) instead of it sleeping",
         )
         run.add_argument(
+            "--awake",
+            type=int,
+            metavar="N",
+            help="fast-forward agents working at once on the embedded server, the others' waits "
+            "held back while their clocks run (config: awake; default 0: no pacing). For agents "
+            "whose work is this machine's (a scripted or local model): its cores",
+        )
+        run.add_argument(
             "--retry-errors", action="store_true", help="rerun tasks that have error.txt"
         )
         run.add_argument(
@@ -380,7 +390,12 @@ class Command(BaseCommand):
 
     @contextlib.contextmanager
     def server(
-        self, server_url: str | None, token: str = "", *, external_is_preflight: bool = False
+        self,
+        server_url: str | None,
+        token: str = "",
+        *,
+        external_is_preflight: bool = False,
+        awake: int = 0,
     ):
         """The server to run against and its control token: `server_url` with `token` (or the
         configured one), else an embedded server of our own. That one runs with a fresh random
@@ -397,7 +412,11 @@ class Command(BaseCommand):
         if executor.migration_plan(executor.loader.graph.leaf_nodes()):
             call_command("migrate", interactive=False, verbosity=0)
         token = secrets.token_urlsafe(32)
-        sealed = {"SENTINEL_CONTROL_TOKEN": token, "SENTINEL_FLAT_ENDPOINTS": "0"}
+        sealed = {
+            "SENTINEL_CONTROL_TOKEN": token,
+            "SENTINEL_FLAT_ENDPOINTS": "0",
+            "SENTINEL_FAST_FORWARD_AWAKE": str(awake),
+        }
         try:
             with site_server(
                 log_path=Path(settings.VAR_DIR) / "bench-server.log", extra_env=sealed
@@ -426,6 +445,7 @@ class Command(BaseCommand):
         model,
         model_url,
         clock,
+        awake,
         retry_errors,
         results_dir,
         trials,
@@ -454,6 +474,10 @@ class Command(BaseCommand):
             changes["server_url"] = server_url.rstrip("/")
         if clock is not None:
             changes["clock"] = bench_clock(clock, "--clock")
+        if awake is not None:
+            if awake < 0:
+                raise _usage(f"--awake must be >= 0 (0: no pacing), got {awake}")
+            changes["awake"] = awake
         if trials < 1:
             raise _usage(f"--trials must be >= 1, got {trials}")
         if not 0 <= jitter <= MAX_CONDITION_AT:  # also rejects NaN
@@ -462,6 +486,11 @@ class Command(BaseCommand):
             )
         changes.update(noop_rule=noop_rule, jitter=jitter, seed=seed)
         cfg = dataclasses.replace(cfg, **changes)
+        if cfg.awake and cfg.server_url:
+            raise _usage(
+                "awake paces the embedded server; a server of your own (server_url) paces by its "
+                "own SENTINEL_FAST_FORWARD_AWAKE"
+            )
         base_dir = Path(settings.BASE_DIR)
         # Before any server or task: a setup that cannot work runs nothing (preflight.py).
         problems = [] if agent else preflight.command_problems(cfg, base_dir)
@@ -471,7 +500,9 @@ class Command(BaseCommand):
         run_dir = Path(results_dir) / name
         started_at = timezone.now()
         began = time.monotonic()
-        with self.server(cfg.server_url, cfg.control_token, external_is_preflight=True) as (
+        with self.server(
+            cfg.server_url, cfg.control_token, external_is_preflight=True, awake=cfg.awake
+        ) as (
             url,
             token,
         ):

@@ -5,6 +5,9 @@
 fast-forward`; with `--compare`, the subset again on live clocks at speed 1, and the two graded
 task by task: the same verdict, reaction times within `--tolerance` simulated seconds, the same
 number of model calls. Prints one `bench_fast_forward:` line per run and one per comparison.
+The fast-forward runs are paced (`--awake`, default the machine's cores: sentinel_site/pacing.py):
+the scripted model costs nothing, so the agents' work is all this machine's, and unpaced ten of
+them on two cores each work at a fifth of its speed, in simulated seconds as a live agent would.
 
 The script: `wait_for` watches the start page until the task's change (its judge says yes on
 a change adding a phrase of any scenario's condition entry: the subject, title or text its
@@ -17,6 +20,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import tempfile
 import time
 from pathlib import Path
@@ -167,14 +171,23 @@ class Command(BaseCommand):
             action="store_true",
             help="also the subset on live clocks at speed 1, compared task by task",
         )
+        parser.add_argument(
+            "--awake",
+            type=int,
+            default=os.cpu_count() or 2,
+            help="fast-forward agents working at once (bench run --awake; default: the "
+            "machine's cores; 0: no pacing)",
+        )
         parser.add_argument("--tolerance", type=float, default=1.0, help="simulated seconds")
         parser.add_argument("--results-dir", default=None, help="default: a temporary folder")
 
-    def handle(self, *args, kind, parallel, subset_only, with_live, tolerance, **options):
+    def handle(self, *args, kind, parallel, subset_only, with_live, tolerance, awake, **options):
         live_parallel = options["live_parallel"] or parallel
         for flag, value in (("--parallel", parallel), ("--live-parallel", live_parallel)):
             if value < 1:
                 raise CommandError(f"{flag} must be >= 1, got {value}")
+        if awake < 0:
+            raise CommandError(f"--awake must be >= 0 (0: no pacing), got {awake}")
         library = scenario_library()
         scenarios = [library[name].to_run_spec() for name in sorted(library)]
         few = two_per_environment(scenarios)
@@ -194,13 +207,13 @@ class Command(BaseCommand):
                 )
             )
             fast = f"{kind}-fast-forward-{stamp}"
-            wall = self.run(fast, config, root, parallel, picked, "fast_forward")
-            self.line(fast, root, wall, "fast_forward", len(picked), parallel)
+            wall = self.run(fast, config, root, parallel, picked, "fast_forward", awake)
+            self.line(fast, root, wall, "fast_forward", len(picked), parallel, awake)
             if not with_live:
                 return
             live = f"{kind}-live-{stamp}"
-            wall_live = self.run(live, config, root, live_parallel, few, "live")
-            self.line(live, root, wall_live, "live", len(few), live_parallel)
+            wall_live = self.run(live, config, root, live_parallel, few, "live", 0)
+            self.line(live, root, wall_live, "live", len(few), live_parallel, 0)
         result = comparison(task_outcomes(root / fast), task_outcomes(root / live), tolerance)
         self.stdout.write(
             f"bench_fast_forward: compare kind={kind} tasks={result['tasks']} "
@@ -210,9 +223,9 @@ class Command(BaseCommand):
             f"differing={','.join(result['differing']) or '-'}"
         )
 
-    def run(self, name, config, root, parallel, tasks, clock) -> float:
+    def run(self, name, config, root, parallel, tasks, clock, awake: int) -> float:
         argv = ["run", name, "--config", str(config), "--results-dir", str(root)]
-        argv += ["--parallel", str(parallel), "--clock", clock]
+        argv += ["--parallel", str(parallel), "--clock", clock, "--awake", str(awake)]
         for task in tasks:
             argv += ["--task", task]
         began = time.monotonic()
@@ -223,12 +236,14 @@ class Command(BaseCommand):
             (root / f"{name}.log").write_text(out.getvalue())
         return time.monotonic() - began
 
-    def line(self, name, root, wall: float, clock: str, count: int, parallel: int) -> None:
+    def line(
+        self, name, root, wall: float, clock: str, count: int, parallel: int, awake: int
+    ) -> None:
         outcomes = task_outcomes(root / name)
         passed = sum(o["success"] for o in outcomes.values())
         calls = sum(o["calls"] or 0 for o in outcomes.values())
         self.stdout.write(
             f"bench_fast_forward: run={name} clock={clock} tasks={count} parallel={parallel} "
-            f"passed={passed} "
+            f"awake={awake} passed={passed} "
             f"model_calls={calls} wall_s={wall:.1f} results={root / name}"
         )
