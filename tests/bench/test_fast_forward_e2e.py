@@ -103,9 +103,12 @@ def test_the_wait_for_agent_skips_to_the_email_and_passes_both_tasks(paper_scena
             str(root),
             "--clock",
             "fast-forward",
+            "--awake",
+            "1",  # paced: one agent works while the other's waits are held (pacing.py)
         )
     print(log)
     assert "(clock: fast_forward)" in log and "ran=2 passed=2 failed=0 errors=0" in log
+    assert json.loads((root / "ff" / "manifest.json").read_text())["config"]["awake"] == 1
     outcome = results(root, "ff")
     assert {r["clock"] for r in outcome.values()} == {"fast_forward"}
     passive = outcome["ref-passive"]
