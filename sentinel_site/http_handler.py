@@ -48,14 +48,14 @@ from django.urls import set_script_prefix
 
 from apps.kit.pages import ARRIVAL
 from sentinel_site.pacing import Pacer
-from sentinel_site.urls import RUN_PREFIX
+from sentinel_site.urls import RUN_PATHS
 
 # Two: while one request waits on the database (SQLite's busy timeout, a PostgreSQL row lock),
 # the other keeps pages moving. More only slice the GIL finer and stretch every request:
 # bench_pages p95 went from 35 ms with two threads to 48 with three, 50 with four.
 REQUEST_THREADS = 2
 CONTROL_THREADS = 2  # the control API, evaluation, the admin: never on an agent's thread
-AGENT_PATHS = "/" + RUN_PREFIX.split("<", 1)[0]  # "/r/": everything under a run's prefix
+AGENT_PATHS = RUN_PATHS  # everything under a run's prefix
 
 
 class SyncChainHandler(ASGIHandler):

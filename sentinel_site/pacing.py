@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 
 from apps.control.pace import ADMITTED, ASK, ASKED_AT, HELD_HEADER, HOLD_HEADER, SCOPE_KEY
 from apps.kit.pages import ARRIVAL
-from sentinel_site.urls import RUN_PREFIX
+from sentinel_site.urls import RUN_PATHS
 
 AWAKE_LAPSE_S = 10.0  # an awake run that has neither waited nor contacted since counts no more
 # No request is held longer, whatever is awake: an agent's HTTP client would give up (30 s, the
@@ -48,7 +48,6 @@ AWAKE_LAPSE_S = 10.0  # an awake run that has neither waited nor contacted since
 MAX_HOLD_S = 10.0
 EARLY_S = 0.2  # a wait is let go this long before it would have ended (the time to answer it)
 
-AGENT_PATHS = "/" + RUN_PREFIX.split("<", 1)[0]  # "/r/"
 WAIT, START, CONTACT = "wait", "start", "contact"
 _PACED = {(WAIT, "POST"), (START, "GET"), (CONTACT, "GET"), (CONTACT, "POST")}
 _HOLD = HOLD_HEADER.lower().encode()
@@ -61,9 +60,9 @@ _pacers: weakref.WeakSet[Pacer] = weakref.WeakSet()
 def paced_request(scope) -> tuple[str, str] | None:
     """(run token, wait | start | contact) of a request the pacer looks at; None otherwise."""
     path = scope.get("path", "")
-    if not path.startswith(AGENT_PATHS):
+    if not path.startswith(RUN_PATHS):
         return None
-    token, _, rest = path[len(AGENT_PATHS) :].partition("/")
+    token, _, rest = path[len(RUN_PATHS) :].partition("/")
     what = rest.rstrip("/")
     return (token, what) if (what, scope.get("method")) in _PACED else None
 

@@ -9,6 +9,7 @@ from events.registry import all_environments
 
 # The one spelling of a run's URL prefix: every run URL is reverse()d from the patterns below.
 RUN_PREFIX = "r/<str:token>/"
+RUN_PATHS = "/" + RUN_PREFIX.split("<", 1)[0]  # "/r/": every path under a run's prefix starts so
 
 urlpatterns = [
     path("favicon.ico", RedirectView.as_view(url=static("site/favicon.svg"), permanent=True)),
