@@ -76,7 +76,10 @@ def calendar_grid(query: CalendarQuery, today: date, meetings: tuple) -> Grid:
         days = _days(anchor, 1, today, anchor.month, meetings)
         title = f"{anchor:%A} {anchor.day} {anchor:%B %Y}"
     elif query.view == "week":
-        monday = anchor - timedelta(days=anchor.weekday())
+        # On a Saturday or Sunday the work week shown is the coming one, where the catalog puts
+        # the meetings of a run started at a weekend (working_day's day 0).
+        first = working_day(anchor, 0)
+        monday = first - timedelta(days=first.weekday())
         days = _days(monday, WORK_WEEK, today, anchor.month, meetings)
         friday = monday + timedelta(days=WORK_WEEK - 1)
         title = f"{monday.day} {monday:%b} – {friday.day} {friday:%b %Y}"

@@ -97,6 +97,16 @@ def test_a_thursday_runs_design_review_is_on_next_weeks_calendar():
     assert "Design Review: Share Sheet" not in this_week
 
 
+def test_a_weekend_runs_work_week_is_the_coming_one_with_its_first_meetings():
+    """Regression: on a Saturday the work week shown was the one just past, and the meetings the
+    catalog puts from the Monday after (day 0) were on no page the calendar opened on."""
+    dev, chat = dev_workspace()
+    saturday = THURSDAY + timedelta(days=2)
+    run = probe_run("microchat", dev.to_run_spec(), day_zero=saturday)
+    shown = render_probe(run, chat, 0, "calendar?view=week")
+    assert "30 Nov – 4 Dec 2026" in shown and "Sharing Sprint Planning" in shown
+
+
 def test_no_catalog_message_names_a_weekday_or_a_date():
     """Regression (issue #28): "Weekly Product Review on Thursday" when it is tomorrow, "taco
     Friday" on a Wednesday. Times are relative to the run's start, so texts must be too."""
