@@ -55,7 +55,6 @@ from sentinel_site.urls import RUN_PATHS
 # bench_pages p95 went from 35 ms with two threads to 48 with three, 50 with four.
 REQUEST_THREADS = 2
 CONTROL_THREADS = 2  # the control API, evaluation, the admin: never on an agent's thread
-AGENT_PATHS = RUN_PATHS  # everything under a run's prefix
 
 
 class SyncChainHandler(ASGIHandler):
@@ -190,9 +189,9 @@ class Tenants:
 def run_token(scope) -> str | None:
     """The run token a request's path is under, if any."""
     path = scope.get("path", "")
-    if not path.startswith(AGENT_PATHS):
+    if not path.startswith(RUN_PATHS):
         return None
-    return path[len(AGENT_PATHS) :].split("/", 1)[0] or None
+    return path[len(RUN_PATHS) :].split("/", 1)[0] or None
 
 
 class RequestThreads:
@@ -252,7 +251,7 @@ class Lanes:
 
     async def __call__(self, scope, receive, send):
         scope = {**scope, ARRIVAL: time.time()}
-        if scope.get("path", "").startswith(AGENT_PATHS):
+        if scope.get("path", "").startswith(RUN_PATHS):
             await self.agent(scope, receive, send)
         else:
             await self.control(scope, receive, send)

@@ -109,8 +109,7 @@ class Pacer:
         if what == CONTACT:
             await self.app(scope, receive, send)
             return
-        if what == WAIT and not self.held and self._room():
-            self.awake[token] = self._loop.time()  # its place, taken before it is answered
+        if what == WAIT and self._take_place(token):  # taken before it is answered
             await self._answer(token, scope, receive, send, held_ms=None)
             return
         body = Replayed(receive)
@@ -149,8 +148,7 @@ class Pacer:
         loop = self._loop
         assert loop is not None
         began = loop.time()
-        if not self.held and self._room():
-            self.awake[token] = began
+        if self._take_place(token):
             return 0.0
         held = Held(token, loop.create_future())
         held.timer = loop.call_later(max(0.0, until - time.time()), self._let_go, held)
@@ -183,6 +181,14 @@ class Pacer:
         finally:
             if status >= 400:
                 self._sleep(token)  # refused (or failed): it did not wake
+
+    def _take_place(self, token: str) -> bool:
+        """Wake the run now if a place is free and nobody is held before it."""
+        if self.held or not self._room():
+            return False
+        assert self._loop is not None
+        self.awake[token] = self._loop.time()
+        return True
 
     def _room(self) -> bool:
         assert self._loop is not None
