@@ -11,7 +11,8 @@ live runs. Paced, only `places` agents work at once, each at a quiet machine's s
 machine is no less busy.
 
 How: a run is awake from when its clock starts or a wait of its is answered until its next
-wait or its contact (or for AWAKE_LAPSE_S: an agent that never waits, or went away). A wait
+wait, its contact or its close (or for AWAKE_LAPSE_S: an agent that never waits, or went away
+without its run being closed: two tasks in five of the benchmark end without a contact). A wait
 that comes while `places` runs are awake is held — on the event loop, holding no thread — and
 let go first come, first served when one of them goes to sleep, or at the latest just before
 the moment it would have ended had the clock run on (the view works that moment out:
@@ -40,9 +41,11 @@ from dataclasses import dataclass, field
 
 from apps.control.pace import ADMITTED, ASK, ASKED_AT, HELD_HEADER, HOLD_HEADER, SCOPE_KEY
 from apps.kit.pages import ARRIVAL
+from events.models import Run
+from events.notifications import run_closed_signal
 from sentinel_site.urls import RUN_PATHS
 
-AWAKE_LAPSE_S = 10.0  # an awake run that has neither waited nor contacted since counts no more
+AWAKE_LAPSE_S = 10.0  # an awake run that has not waited, contacted or closed since counts no more
 # No request is held longer, whatever is awake: an agent's HTTP client would give up (30 s, the
 # reference agents'), and a held wait is a sleep whose clock runs — nothing is lost by it.
 MAX_HOLD_S = 10.0
@@ -235,6 +238,12 @@ class Pacer:
             self._let_go(self.held[0])
         self._watch_lapses()
 
+    def call(self, method, *args) -> None:
+        """`method(*args)` on the pacer's event loop, from any thread (a loop gone: nothing)."""
+        loop = self._loop
+        if loop is not None and not loop.is_closed():
+            loop.call_soon_threadsafe(method, *args)
+
     def shutdown(self) -> None:
         self.app.shutdown()
 
@@ -269,7 +278,27 @@ def status() -> dict[str, list[str]]:
 
 def forget_all() -> None:
     """Every pacer of this process forgets (from any thread: each on its own loop)."""
-    for pacer in list(_pacers):
-        loop = pacer._loop
-        if loop is not None and not loop.is_closed():
-            loop.call_soon_threadsafe(pacer.forget)
+    for pacer in _pacing():
+        pacer.call(pacer.forget)
+
+
+def run_closed(token: str) -> None:
+    """The run is closed: its place, if it held one, is free now rather than at its lapse (from
+    any thread). An agent that ends without contacting — a no-op task watched to its end, a
+    wait that timed out — sends no last wait; its harness closes the run as soon as it exits."""
+    for pacer in _pacing():
+        pacer.call(pacer._sleep, token)
+
+
+def _pacing() -> list[Pacer]:
+    return [pacer for pacer in list(_pacers) if pacer.places and pacer._loop is not None]
+
+
+def _on_run_closed(sender, run_id: int, **details) -> None:
+    if _pacing():  # the run's token only where a pacer may hold its place
+        token = Run.objects.filter(pk=run_id).values_list("token", flat=True).first()
+        if token is not None:
+            run_closed(token)
+
+
+run_closed_signal.connect(_on_run_closed, dispatch_uid="site.pacing.run_closed")

@@ -16,6 +16,7 @@ import pytest
 from apps.tally.environment import tally_scenario
 from events.clock import sim_now
 from events.models import Run
+from sentinel_site.pacing import AWAKE_LAPSE_S
 from sentinel_site.site_server import site_server
 from tests import control_api
 from tests.server_urls import FORGET_PATH, PACING_PATH
@@ -89,3 +90,18 @@ def test_a_live_runs_task_url_is_answered_while_every_place_is_taken(paced_site)
         opened = agent.get(live["task_url"])
     assert opened.status_code == 302 and HELD not in opened.headers
     assert held_tokens(paced_site) == []
+
+
+def test_a_closed_runs_place_is_free_at_once(paced_site):
+    # An agent that ends without contacting (a no-op task watched to its end) sends no last
+    # wait: the harness's close of its run frees its place, not the 10-s lapse.
+    ended, next_up = new_run(paced_site), new_run(paced_site)
+    with httpx.Client(timeout=CEILING_S) as agent, ThreadPoolExecutor(1) as other_agent:
+        assert agent.get(ended["task_url"]).status_code == 302
+        next_opens = other_agent.submit(agent.get, next_up["task_url"])
+        until(lambda: next_up["token"] in held_tokens(paced_site), "the next visit is held")
+        control_api.post(paced_site, f"/api/runs/{ended['id']}/close/")
+        opened = next_opens.result(timeout=CEILING_S)
+    assert opened.status_code == 302
+    # Held until the close, which came at once: far from the lapse's (and longest hold's) 10 s.
+    assert float(opened.headers[HELD]) < AWAKE_LAPSE_S * 1000 / 2

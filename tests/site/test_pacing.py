@@ -7,13 +7,14 @@ from __future__ import annotations
 
 import asyncio
 import json
+import threading
 import time
 
 import pytest
 
 from apps.control.pace import ADMITTED, ASK, HOLD_HEADER, SCOPE_KEY
 from apps.kit.pages import ARRIVAL
-from sentinel_site.pacing import Pacer, paced_request
+from sentinel_site.pacing import Pacer, paced_request, run_closed
 
 CEILING_S = 30  # a ceiling, not a wait: every awaited answer comes as soon as its turn does
 
@@ -257,3 +258,19 @@ def test_without_places_nothing_is_asked_or_held():
 )
 def test_the_pacer_looks_at_waits_first_visits_and_contacts_only(method, path, paced):
     assert paced_request({"method": method, "path": path}) == paced
+
+
+def test_a_closed_runs_place_goes_to_the_next_in_line_at_once():
+    async def scenario(pacer, views):
+        await Client(pacer, "GET", "/r/a/start").answered()
+        b = Client(pacer, "GET", "/r/b/start")
+        await settled()
+        assert [held.token for held in pacer.held] == ["b"]
+        # From another thread, as the close's notice comes (a request thread of the server).
+        closer = threading.Thread(target=run_closed, args=("a",))
+        closer.start()
+        closer.join()
+        assert (await b.answered()).status == 200
+        assert list(pacer.awake) == ["b"]
+
+    play(scenario, places=1, lapse_s=CEILING_S, max_hold_s=CEILING_S)
