@@ -141,8 +141,9 @@ _MARK_ELEMENTS = """({attribute, limit}) => {
     const r = el.getBoundingClientRect();
     if (r.width < 1 || r.height < 1 || r.bottom <= 0 || r.right <= 0
         || r.top >= innerHeight || r.left >= innerWidth) continue;
-    const style = getComputedStyle(el);
-    if (style.visibility === "hidden" || style.display === "none") continue;
+    // Not rendered for a person: display none, visibility hidden, or inside a closed
+    // <details> (its content is laid out but skipped, content-visibility, so it has a box).
+    if (!el.checkVisibility({contentVisibilityAuto: true, visibilityProperty: true})) continue;
     if (marks.length >= limit) { hidden += 1; continue; }
     const number = marks.length + 1;
     el.setAttribute(attribute, String(number));

@@ -2,8 +2,9 @@
 
 wait_for diffs two snapshots line by line, so a snapshot must hold only what a person could
 read and must come out the same for two renders of the same state: scripts, styles, inline
-SVG (icons and pictures as path data), unrendered templates and `hidden` elements are
-dropped, the `<head>` too (none of it is on the page), and runs of blank lines are collapsed
+SVG (icons and pictures as path data), unrendered templates, `hidden` elements and what a
+closed `<details>` folds away (a menu's items, until its summary is clicked) are dropped, the
+`<head>` too (none of it is on the page), and runs of blank lines are collapsed
 so whitespace in the markup never reads as a change.
 """
 
@@ -26,14 +27,18 @@ _CONVERTER = MarkdownConverter(heading_style=ATX, bullets="-")
 
 
 def html_to_markdown(html: str) -> str:
-    """The page's visible text as markdown: no scripts, styles, SVG, templates or hidden
-    elements; trailing spaces stripped and blank lines collapsed, so the same state always
+    """The page's visible text as markdown: no scripts, styles, SVG, templates, hidden
+    elements or closed `<details>` content; trailing spaces stripped and blank lines collapsed, so the same state always
     gives the same text."""
     soup = BeautifulSoup(html, "html.parser")
     for element in soup.find_all(INVISIBLE_TAGS):
         element.decompose()
     for element in soup.find_all(hidden=True):
         element.decompose()
+    for closed in soup.find_all("details", open=False):
+        for folded in list(closed.contents):  # its text too, not only its elements
+            if folded.name != "summary":
+                folded.extract()
     markdown = _CONVERTER.convert_soup(soup)
     lines = (line.rstrip() for line in markdown.splitlines())
     return _BLANK_RUNS.sub("\n\n", "\n".join(lines)).strip() + "\n"

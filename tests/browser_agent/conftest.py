@@ -33,6 +33,8 @@ SHOP = """<!DOCTYPE html><html><head><title>Shop</title></head><body>
 <button onclick="document.getElementById('out').textContent = 'Pressed!'">Press me</button>
 <label for="q">Search</label><input id="q" name="q">
 <select name="colour" aria-label="Colour"><option>Red</option><option>Blue</option></select>
+<details><summary>More</summary><button>Gift wrap</button></details>
+<button style="visibility: hidden">Secret</button>
 <p id="out">Nothing yet</p>
 </body></html>"""
 OTHER = "<!DOCTYPE html><html><head><title>Other</title></head><body><h1>Other</h1></body></html>"

@@ -106,3 +106,12 @@ def test_a_block_pushed_down_by_an_insertion_above_is_the_same_block():
     [alone] = unified_diff_blocks(base, changed)
     pushed_down = changed.replace("- Message 2:", "- Message new: from Kevin Lee\n- Message 2:")
     assert alone in unified_diff_blocks(base, pushed_down)
+
+
+def test_a_closed_menu_shows_its_summary_only_an_open_one_everything():
+    menu = "<details{}><summary>Move to</summary>loose words<ul><li>Archive</li></ul></details>"
+    closed = html_to_markdown(menu.format(""))
+    assert "Move to" in closed
+    assert "Archive" not in closed and "loose words" not in closed
+    opened = html_to_markdown(menu.format(" open"))
+    assert "Archive" in opened and "loose words" in opened
