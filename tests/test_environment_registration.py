@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import sys
 from dataclasses import replace
 from importlib import import_module
 from types import ModuleType
@@ -12,7 +13,7 @@ from django.apps import apps
 from django.core.exceptions import ImproperlyConfigured
 from django.utils.module_loading import module_has_submodule
 
-from apps.kit.environments import declared
+from apps.kit.environments import PARTS, declare, declared
 from events.registry import environment_names, get_environment
 
 
@@ -38,4 +39,39 @@ def test_a_module_that_declares_none_or_two_is_refused_by_name(count):
     assert str(refused.value) == (
         "apps.broken.environment must declare exactly one events.registry.Environment; "
         f"it declares {count}"
+    )
+
+
+@pytest.fixture
+def environment_module(monkeypatch):
+    """An environment module `apps.microbroken.environment` part-way through its body, bound in
+    `sys.modules` as Python binds a module while it runs."""
+    module = ModuleType("apps.microbroken.environment")
+    monkeypatch.setitem(sys.modules, module.__name__, module)
+    return module
+
+
+def test_a_declaration_takes_the_modules_parts_its_name_and_its_pages_by_convention(
+    environment_module,
+):
+    mail = get_environment("micromail")
+    for field, name in PARTS.items():
+        setattr(environment_module, name, getattr(mail, field))
+    declared_here = declare(environment_module.__name__, title="Broken", initial_state=dict)
+    assert (declared_here.name, declared_here.title) == ("microbroken", "Broken")
+    assert declared_here.urlconf == "apps.microbroken.urls"
+    assert declared_here.actions is mail.actions and declared_here.event_types is mail.event_types
+    assert declared_here.implicit_actions == ()  # IMPLICIT_ACTIONS is the one part left out
+    environment_module.IMPLICIT_ACTIONS = mail.implicit_actions
+    assert declare(environment_module.__name__, title="B", initial_state=dict).implicit_actions
+
+
+def test_a_declaration_missing_parts_names_them(environment_module):
+    environment_module.EVENT_TYPES = {}
+    environment_module.ACTIONS = {}
+    with pytest.raises(ImproperlyConfigured) as refused:
+        declare(environment_module.__name__, title="Broken", initial_state=dict)
+    assert str(refused.value) == (
+        "apps.microbroken.environment must bind BASELINES, materialize, sample_pages, "
+        "SHOWN_COUNTS before it declares its environment (apps.kit.environments.PARTS)"
     )

@@ -7,7 +7,7 @@ where anything the log must remember is chosen. These helpers read the state and
 
     marks = marking(PaperId, decide_on_paper, "paper_states", "paper_id", page=paper_page)
     ACTIONS = {"save": marks(saved=True, help="Add a paper to My library."), …}
-    implicit_actions=(opening("mailbox", "email", "open_email", "email_id", applies=unread),)
+    IMPLICIT_ACTIONS = (opening("mailbox", "email", "open_email", "email_id", applies=unread),)
 """
 
 from __future__ import annotations

@@ -11,14 +11,15 @@ from pydantic import Field
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.counts import ShownCount, untimed
 from apps.kit.deciding import opening
+from apps.kit.environments import declare
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.microchat import state as chats
-from apps.microchat.actions import ACTIONS
-from apps.microchat.bench import sample_pages
+from apps.microchat.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.microchat.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microchat.catalog import catalog_message, make_call, make_conversation, make_team
 from apps.microchat.state import ENVIRONMENT, Chat, Message, with_messages
-from events.registry import Environment, counted
+from events.registry import counted
 from events.schemas import Payload
 
 BASELINES = counted(
@@ -190,19 +191,10 @@ SHOWN_COUNTS = (
 )
 
 
-MICROCHAT = Environment(
-    name=ENVIRONMENT,
-    title="MicroChat",
-    initial_state=Chat.of,
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microchat.urls",
-    implicit_actions=(
-        # Opening a chat marks what is unread in it read, as clicking its row does in Teams.
-        opening("chat", "conversation", "open_conversation", "conversation_id", applies=has_unread),
-    ),
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
+IMPLICIT_ACTIONS = (
+    # Opening a chat marks what is unread in it read, as clicking its row does in Teams.
+    opening("chat", "conversation", "open_conversation", "conversation_id", applies=has_unread),
 )
+
+
+MICROCHAT = declare(__name__, title="MicroChat", initial_state=Chat.of)

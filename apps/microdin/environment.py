@@ -22,15 +22,16 @@ from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount, untimed
+from apps.kit.environments import declare
 from apps.kit.feeds import opening, posts_table
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import Table, item_states, tables
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
-from apps.microdin.actions import ACTIONS
-from apps.microdin.bench import sample_pages
+from apps.microdin.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.microdin.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microdin.state import ENVIRONMENT, JobState, Network, PostState, ProfileStats
-from events.registry import Environment, counted
+from events.registry import counted
 from events.schemas import Payload
 
 # Counted right after the preload, by the core (the original's names: baseline_<name>).
@@ -264,21 +265,14 @@ materialize = tables(
 )
 
 
-MICRODIN = Environment(
-    name=ENVIRONMENT,
+IMPLICIT_ACTIONS = (
+    # Opening a thread marks its messages read, as clicking it in the original does.
+    opening("messaging", "conversation", "open_conversation", _opens_unread, key="conversation_id"),
+)
+
+
+MICRODIN = declare(
+    __name__,
     title="MicroDin",
     initial_state=lambda catalog: Network(catalog, me=records.MEMBERS.me(catalog)),
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microdin.urls",
-    implicit_actions=(
-        # Opening a thread marks its messages read, as clicking it in the original does.
-        opening(
-            "messaging", "conversation", "open_conversation", _opens_unread, key="conversation_id"
-        ),
-    ),
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
 )

@@ -22,17 +22,18 @@ from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
+from apps.kit.environments import declare
 from apps.kit.retractions import retraction, window
 from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
 from apps.microfy import screens
 from apps.microfy import state as lib
-from apps.microfy.actions import ACTIONS
-from apps.microfy.bench import sample_pages
+from apps.microfy.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.microfy.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microfy.catalog import artists, catalog_mood, catalog_playlist, catalog_track
 from apps.microfy.state import ENVIRONMENT, Music, TrackState, empty_music, with_followed
-from events.registry import Environment, counted
+from events.registry import counted
 from events.schemas import Payload
 
 # The original's names: eval_sql reads session_meta `baseline_<name>`.
@@ -191,15 +192,4 @@ SHOWN_COUNTS = (
 )
 
 
-MICROFY = Environment(
-    name=ENVIRONMENT,
-    title="MicroFy",
-    initial_state=empty_music,
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microfy.urls",
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
-)
+MICROFY = declare(__name__, title="MicroFy", initial_state=empty_music)

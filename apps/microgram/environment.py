@@ -20,6 +20,7 @@ from pydantic import Field
 
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount, untimed
+from apps.kit.environments import declare
 from apps.kit.feeds import opening, posts_table
 from apps.kit.retractions import retraction, still_there, window
 from apps.kit.social import Comment
@@ -27,10 +28,10 @@ from apps.kit.state import with_changed, with_items
 from apps.kit.tables import KEY, VALUE, Keyed, Table, item_states, named, tables
 from apps.microgram import catalog as records
 from apps.microgram import state as gram_state
-from apps.microgram.actions import ACTIONS
-from apps.microgram.bench import sample_pages
+from apps.microgram.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.microgram.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microgram.state import ENVIRONMENT, Gram, PostState, comments_of, unread_in
-from events.registry import Environment, counted
+from events.registry import counted
 from events.schemas import Payload
 
 # Counted right after the preload, by the core (the original's names: baseline_<name>).
@@ -255,21 +256,16 @@ SHOWN_COUNTS = (
 )
 
 
-MICROGRAM = Environment(
-    name=ENVIRONMENT,
+IMPLICIT_ACTIONS = (
+    # Opening a post (its comments), a story or a DM thread is what views / reads it.
+    opening("post", "post_id", "view_post", _opens_unviewed_post),
+    opening("story", "story_id", "view_story", _opens_unwatched_story),
+    opening("thread", "conversation_id", "read_conversation", _opens_unread_thread),
+)
+
+
+MICROGRAM = declare(
+    __name__,
     title="MicroGram",
     initial_state=lambda catalog: Gram(catalog, me=records.MEMBERS.me(catalog)),
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microgram.urls",
-    implicit_actions=(
-        # Opening a post (its comments), a story or a DM thread is what views / reads it.
-        opening("post", "post_id", "view_post", _opens_unviewed_post),
-        opening("story", "story_id", "view_story", _opens_unwatched_story),
-        opening("thread", "conversation_id", "read_conversation", _opens_unread_thread),
-    ),
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
 )

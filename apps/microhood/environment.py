@@ -15,16 +15,17 @@ from pydantic import Field
 
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.counts import ShownCount, item_on_screen
+from apps.kit.environments import declare
 from apps.kit.state import with_items
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhood import state as account
-from apps.microhood.actions import ACTIONS
-from apps.microhood.bench import sample_pages
+from apps.microhood.actions import ACTIONS as ORDER_ACTIONS
+from apps.microhood.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microhood.catalog import listing, news_item, starting_price, stock_record, trace
 from apps.microhood.orders import settle
 from apps.microhood.state import DEFAULT_BUYING_POWER, ENVIRONMENT, Holding, Hood, Stock, WatchRow
-from events.registry import Environment, EventType, LoggedEvent, Reducer, counted
+from events.registry import EventType, LoggedEvent, Reducer, counted
 from events.schemas import Payload
 
 
@@ -122,9 +123,10 @@ DECLARED = event_types(
     ),
 )
 
-EVENT_TYPES, SETTLED_ACTIONS = (
+# Every event and action first settles the orders resting until its moment.
+EVENT_TYPES, ACTIONS = (
     MappingProxyType({name: replace(e, reduce=settled_first(e.reduce)) for name, e in d.items()})
-    for d in (DECLARED, ACTIONS)
+    for d in (DECLARED, ORDER_ACTIONS)
 )
 
 # The original's metrics (eval_sql reads session_meta `baseline_<name>`), plus `news_count`,
@@ -226,15 +228,4 @@ SHOWN_COUNTS = (
 )
 
 
-MICROHOOD = Environment(
-    name=ENVIRONMENT,
-    title="MicroHood",
-    initial_state=Hood.of,
-    event_types=EVENT_TYPES,
-    actions=SETTLED_ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microhood.urls",
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
-)
+MICROHOOD = declare(__name__, title="MicroHood", initial_state=Hood.of)

@@ -21,14 +21,15 @@ from pydantic import Field, model_validator
 from apps.kit.arrivals import Deliver, Delivery, Stamp, arrival, event_types
 from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
+from apps.kit.environments import declare
 from apps.kit.retractions import retraction, window
 from apps.kit.state import EMPTY
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhub import catalog as records
 from apps.microhub import screens as hub_screens
-from apps.microhub.actions import ACTIONS
-from apps.microhub.bench import sample_pages
+from apps.microhub.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.microhub.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microhub.state import (
     ENVIRONMENT,
     Hub,
@@ -38,7 +39,7 @@ from apps.microhub.state import (
     next_pr_number,
     star_count,
 )
-from events.registry import Environment, EventType, LoggedEvent, counted
+from events.registry import EventType, LoggedEvent, counted
 from events.schemas import Payload
 
 WILDCARD = ["*"]
@@ -413,19 +414,10 @@ SHOWN_COUNTS = (
 )
 
 
-MICROHUB = Environment(
-    name=ENVIRONMENT,
-    title="MicroHub",
-    initial_state=empty_hub,
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microhub.urls",
-    implicit_actions=(
-        # Opening an issue marks it viewed, as the original's issue page did on opening.
-        opening("issue", "issue_id", "view_issue", "issue_id", applies=not_viewed),
-    ),
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
+IMPLICIT_ACTIONS = (
+    # Opening an issue marks it viewed, as the original's issue page did on opening.
+    opening("issue", "issue_id", "view_issue", "issue_id", applies=not_viewed),
 )
+
+
+MICROHUB = declare(__name__, title="MicroHub", initial_state=empty_hub)

@@ -27,15 +27,16 @@ from pydantic import Field
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount, untimed
 from apps.kit.deciding import opening
+from apps.kit.environments import declare
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import Rows, Table, named, tables
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times
-from apps.microlendar.actions import ACTIONS
-from apps.microlendar.bench import sample_pages
+from apps.microlendar.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.microlendar.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microlendar.catalog import catalog_event, catalog_task
 from apps.microlendar.state import ENVIRONMENT, Agenda, empty_agenda
-from events.registry import Environment, counted
+from events.registry import counted
 from events.schemas import Payload
 
 DATE_PATTERN = r"^\d{4}-\d{2}-\d{2}$"
@@ -201,20 +202,11 @@ SHOWN_COUNTS = (
 )
 
 
-MICROLENDAR = Environment(
-    name=ENVIRONMENT,
-    title="MicroLendar",
-    initial_state=empty_agenda,
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microlendar.urls",
-    implicit_actions=(
-        # Opening an event's details marks it viewed (upstream had a /view endpoint its page
-        # never called, §6; the original's "open each event" eval_sql reads isViewed).
-        opening("calendar", "event", "view_event", "event_id", applies=unviewed_invitation),
-    ),
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
+IMPLICIT_ACTIONS = (
+    # Opening an event's details marks it viewed (upstream had a /view endpoint its page
+    # never called, §6; the original's "open each event" eval_sql reads isViewed).
+    opening("calendar", "event", "view_event", "event_id", applies=unviewed_invitation),
 )
+
+
+MICROLENDAR = declare(__name__, title="MicroLendar", initial_state=empty_agenda)

@@ -7,15 +7,16 @@ from apps.kit import feeds
 from apps.kit.arrivals import Delivery, Stamp, arrival, event_types, preload
 from apps.kit.counts import ShownCount, untimed
 from apps.kit.deciding import opening
+from apps.kit.environments import declare
 from apps.kit.records import Record
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, Table, named, tables
 from apps.micromail import state as mailbox
-from apps.micromail.actions import ACTIONS
-from apps.micromail.bench import sample_pages
+from apps.micromail.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.micromail.bench import sample_pages as sample_pages  # a part (declare)
 from apps.micromail.catalog import catalog_email, catalog_state
 from apps.micromail.state import ENVIRONMENT, FOLDER_TITLES, FOLDERS, Email, EmailState, Mail
-from events.registry import Environment, counted
+from events.registry import counted
 
 # Upstream stamps every preloaded mail "five minutes before start", so its list reads "5 min ago"
 # throughout; our catalog dates each message (`ageMinutes`), from minutes to days before.
@@ -121,19 +122,10 @@ SHOWN_COUNTS = (
 )
 
 
-MICROMAIL = Environment(
-    name=ENVIRONMENT,
-    title="MicroMail",
-    initial_state=Mail.of,
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.micromail.urls",
-    implicit_actions=(
-        # Opening an unread message in the mail client marks it read, as a click does.
-        opening("mailbox", "email", "open_email", "email_id", applies=unread),
-    ),
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
+IMPLICIT_ACTIONS = (
+    # Opening an unread message in the mail client marks it read, as a click does.
+    opening("mailbox", "email", "open_email", "email_id", applies=unread),
 )
+
+
+MICROMAIL = declare(__name__, title="MicroMail", initial_state=Mail.of)

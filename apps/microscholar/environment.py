@@ -23,16 +23,17 @@ from collections.abc import Iterable
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount
 from apps.kit.deciding import opening
+from apps.kit.environments import declare
 from apps.kit.retractions import retraction, window
 from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, named, tables
 from apps.microscholar import state as index
-from apps.microscholar.actions import ACTIONS
-from apps.microscholar.bench import sample_pages
+from apps.microscholar.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.microscholar.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microscholar.catalog import catalog_alert, catalog_paper, coauthor_pairs
 from apps.microscholar.state import ENVIRONMENT, PaperState, Scholar, empty_scholar
-from events.registry import Environment, counted
+from events.registry import counted
 
 # The original's metric names (eval_sql reads baseline_<name> from session_meta).
 BASELINES = counted(
@@ -156,19 +157,10 @@ SHOWN_COUNTS = (
 )
 
 
-MICROSCHOLAR = Environment(
-    name=ENVIRONMENT,
-    title="MicroScholar",
-    initial_state=empty_scholar,
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microscholar.urls",
-    implicit_actions=(
-        # Opening the Cite dialog is what records a citation in the original (no confirmation).
-        opening("cite", "paper_id", "cite", "paper_id", applies=not_cited_yet),
-    ),
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
+IMPLICIT_ACTIONS = (
+    # Opening the Cite dialog is what records a citation in the original (no confirmation).
+    opening("cite", "paper_id", "cite", "paper_id", applies=not_cited_yet),
 )
+
+
+MICROSCHOLAR = declare(__name__, title="MicroScholar", initial_state=empty_scholar)

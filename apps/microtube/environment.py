@@ -22,13 +22,14 @@ from typing import Any
 from apps.kit.arrivals import Delivery, arrival, event_types, preload
 from apps.kit.counts import ShownCount, item_on_screen
 from apps.kit.deciding import opening
+from apps.kit.environments import declare
 from apps.kit.retractions import retraction, still_there, window
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, named, tables
 from apps.microtube import screens as tube_screens
 from apps.microtube import state as tube_state
-from apps.microtube.actions import ACTIONS
-from apps.microtube.bench import sample_pages
+from apps.microtube.actions import ACTIONS as ACTIONS  # a part (declare)
+from apps.microtube.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microtube.catalog import (
     catalog_channel,
     catalog_comment,
@@ -44,7 +45,7 @@ from apps.microtube.state import (
     with_subscription,
     with_watched,
 )
-from events.registry import Environment, counted
+from events.registry import counted
 
 # Counted right after the preload, by the core (eval_sql reads baseline_<name>). The original
 # captures the first six; `video_count` is read by its video-total-relative-passive scenario.
@@ -259,20 +260,11 @@ def not_watched_yet(tube: Tube, video_id: str) -> bool:
     return still_there(tube.videos, video_id) and video_id not in tube.watched
 
 
-MICROTUBE = Environment(
-    name=ENVIRONMENT,
-    title="MicroTube",
-    initial_state=empty_tube,
-    event_types=EVENT_TYPES,
-    actions=ACTIONS,
-    baselines=BASELINES,
-    materialize=materialize,
-    urlconf="apps.microtube.urls",
-    implicit_actions=(
-        # Opening a video's watch page is watching it (however the page was reached: the
-        # original counted only clicks inside its own feed).
-        opening("watch", "v", "watch_video", "video_id", applies=not_watched_yet),
-    ),
-    sample_pages=sample_pages,
-    shown_counts=SHOWN_COUNTS,
+IMPLICIT_ACTIONS = (
+    # Opening a video's watch page is watching it (however the page was reached: the
+    # original counted only clicks inside its own feed).
+    opening("watch", "v", "watch_video", "video_id", applies=not_watched_yet),
 )
+
+
+MICROTUBE = declare(__name__, title="MicroTube", initial_state=empty_tube)
