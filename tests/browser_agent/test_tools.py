@@ -79,14 +79,17 @@ def test_the_description_numbers_the_elements_in_view(toolbox):
     assert seen.png[:4] == b"\x89PNG" and seen.jpeg[:2] == b"\xff\xd8"
 
 
+def marked(toolbox) -> list[str]:
+    """The numbered elements of a fresh look, as the model reads them."""
+    return [line for line in toolbox.browser.observe().description.splitlines() if line[:1] == "["]
+
+
 def test_only_what_a_person_can_see_is_numbered(toolbox):
     """A closed menu's items are laid out but not shown, a `visibility: hidden` button neither:
     no number, no mark drawn over the page, until the menu is opened."""
-    marks = [line for line in toolbox.browser.observe().description.splitlines() if line[:1] == "["]
-    assert marks[4:] == ['[5] summary "More"']
+    assert marked(toolbox)[4:] == ['[5] summary "More"']
     toolbox.dispatch("click", {"target": 5})
-    opened = [line for line in toolbox.browser.observe().description.splitlines() if line[:1] == "["]
-    assert opened[4:] == ['[5] summary "More"', '[6] button "Gift wrap"']
+    assert marked(toolbox)[4:] == ['[5] summary "More"', '[6] button "Gift wrap"']
 
 
 def test_the_tools_act_on_numbered_elements(toolbox):
