@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 
-from bs4 import BeautifulSoup
+from bs4 import BeautifulSoup, Tag
 from markdownify import ATX, MarkdownConverter
 
 # Never on screen: code, styling, vector data, inert templates, and what only a browser
@@ -37,7 +37,7 @@ def html_to_markdown(html: str) -> str:
         element.decompose()
     for closed in soup.find_all("details", open=False):
         for folded in list(closed.contents):  # its text too, not only its elements
-            if folded.name != "summary":
+            if not (isinstance(folded, Tag) and folded.name == "summary"):
                 folded.extract()
     markdown = _CONVERTER.convert_soup(soup)
     lines = (line.rstrip() for line in markdown.splitlines())
