@@ -55,7 +55,7 @@ def test_a_declaration_takes_the_modules_parts_its_name_and_its_pages_by_convent
     environment_module,
 ):
     mail = get_environment("micromail")
-    for field, name in PARTS.items():
+    for field, (name, _) in PARTS.items():
         setattr(environment_module, name, getattr(mail, field))
     declared_here = declare(environment_module.__name__, title="Broken", initial_state=dict)
     assert (declared_here.name, declared_here.title) == ("microbroken", "Broken")
@@ -72,6 +72,17 @@ def test_a_declaration_missing_parts_names_them(environment_module):
     with pytest.raises(ImproperlyConfigured) as refused:
         declare(environment_module.__name__, title="Broken", initial_state=dict)
     assert str(refused.value) == (
-        "apps.microbroken.environment must bind BASELINES, materialize, sample_pages, "
-        "SHOWN_COUNTS before it declares its environment (apps.kit.environments.PARTS)"
+        "apps.microbroken.environment declares its environment without BASELINES, materialize, "
+        "sample_pages, SHOWN_COUNTS (bound in the module, or ACTIONS in its app's actions.py and "
+        "sample_pages in its bench.py: apps.kit.environments.PARTS)"
     )
+
+
+def test_a_declaration_takes_actions_and_sample_pages_from_their_modules():
+    mail = get_environment("micromail")
+    assert mail.actions is import_module("apps.micromail.actions").ACTIONS
+    assert mail.sample_pages is import_module("apps.micromail.bench").sample_pages
+    assert (
+        get_environment("microhood").actions
+        is vars(import_module("apps.microhood.environment"))["ACTIONS"]
+    )  # bound by the environment module itself: settled first

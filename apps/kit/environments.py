@@ -27,39 +27,6 @@ from events.registry import Environment, register
 
 MODULE = "environment"  # the module an environment app declares its Environment in
 
-# Environment field → the name the environment module binds it to (`ACTIONS` and `sample_pages`
-# imported from actions.py and bench.py; the rest its own). `IMPLICIT_ACTIONS` may be left out.
-PARTS = {
-    "event_types": "EVENT_TYPES",
-    "actions": "ACTIONS",
-    "baselines": "BASELINES",
-    "materialize": "materialize",
-    "sample_pages": "sample_pages",
-    "shown_counts": "SHOWN_COUNTS",
-}
-
-
-def declare(module: str, *, title: str, initial_state: Callable[[Any], Any]) -> Environment:
-    """The `Environment` of the environment module `module` (its `__name__`, called at its end):
-    its parts are the module's names in `PARTS`, its name the app's, its pages the app's
-    `urls.py`. A part the module does not bind is named in the error."""
-    names = vars(sys.modules[module])
-    missing = [name for name in PARTS.values() if name not in names]
-    if missing:
-        raise ImproperlyConfigured(
-            f"{module} must bind {', '.join(missing)} before it declares its environment "
-            "(apps.kit.environments.PARTS)"
-        )
-    app = module.rpartition(".")[0]
-    return Environment(
-        name=app.rpartition(".")[2],
-        title=title,
-        initial_state=initial_state,
-        urlconf=f"{app}.urls",
-        implicit_actions=names.get("IMPLICIT_ACTIONS", ()),
-        **{field: names[name] for field, name in PARTS.items()},
-    )
-
 
 def declared(module: ModuleType) -> Environment:
     """The one `Environment` bound in `module` (defined or imported alike: environments import none)."""
@@ -70,6 +37,56 @@ def declared(module: ModuleType) -> Environment:
             f"it declares {len(found)}"
         )
     return found[0]
+
+
+# Environment field → (the name its part is bound to, the app module it lives in). A part the
+# environment module binds itself wins (MicroHood wraps its actions); `IMPLICIT_ACTIONS` may be
+# left out.
+_MISSING = object()
+PARTS = {
+    "event_types": ("EVENT_TYPES", MODULE),
+    "actions": ("ACTIONS", "actions"),
+    "baselines": ("BASELINES", MODULE),
+    "materialize": ("materialize", MODULE),
+    "sample_pages": ("sample_pages", "bench"),
+    "shown_counts": ("SHOWN_COUNTS", MODULE),
+}
+
+
+def declare(module: str, *, title: str, initial_state: Callable[[Any], Any]) -> Environment:
+    """The `Environment` of the environment module `module` (its `__name__`, called at its end):
+    its parts are the names in `PARTS`, its name the app's, its pages the app's `urls.py`. The
+    parts that are not where `PARTS` says are named in the error."""
+    app = module.rpartition(".")[0]
+    names = vars(sys.modules[module])
+
+    def find(name: str, home: str) -> Any:
+        if name in names or home == MODULE:
+            return names.get(name, _MISSING)
+        path = f"{app}.{home}"
+        try:
+            return getattr(import_module(path), name, _MISSING)
+        except ModuleNotFoundError as absent:
+            if not f"{path}.".startswith(f"{absent.name}."):
+                raise  # not the module itself: something it imports is missing
+            return _MISSING
+
+    parts = {field: find(*where) for field, where in PARTS.items()}
+    missing = [PARTS[field][0] for field, value in parts.items() if value is _MISSING]
+    if missing:
+        raise ImproperlyConfigured(
+            f"{module} declares its environment without {', '.join(missing)} "
+            "(bound in the module, or ACTIONS in its app's actions.py and sample_pages in its "
+            "bench.py: apps.kit.environments.PARTS)"
+        )
+    return Environment(
+        name=app.rpartition(".")[2],
+        title=title,
+        initial_state=initial_state,
+        urlconf=f"{app}.urls",
+        implicit_actions=names.get("IMPLICIT_ACTIONS", ()),
+        **parts,
+    )
 
 
 def register_installed() -> None:

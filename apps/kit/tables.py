@@ -5,7 +5,7 @@ original `eval_sql` runs unchanged. A table is declared as its name, where its r
 and `{column definition: getter}`: the DDL, the INSERT and every row are derived from that one
 mapping, so a column can never be added to the DDL and forgotten (or misplaced) in the rows.
 
-    EMAILS = Table("emails", lambda mail, now: mail.emails.values(), {
+    EMAILS = Table("emails", lambda mail, now: mail.emails.values(), {  # or Table.items("emails", {…})
         "id TEXT PRIMARY KEY": "id",                  # an attribute of the row
         "attachment_name TEXT": "attachment_names",
         "isRead INTEGER": lambda e: e.read,           # or a function of the row
@@ -14,8 +14,7 @@ mapping, so a column can never be added to the DDL and forgotten (or misplaced) 
         "email_id TEXT PRIMARY KEY": KEY,             # the mapping's key
         "isRead INTEGER": "is_read",                  # attributes of the value (or VALUE)
     })
-    ISSUES = Table("issues", lambda hub, now: hub.issues.values(),
-                   {**named("id TEXT", "title TEXT"), "parentId TEXT": "parent_id"})
+    ISSUES = Table.items("issues", {**named("id TEXT", "title TEXT"), "parentId TEXT": "parent_id"})
     materialize = tables(EMAILS, EMAIL_STATES)
 """
 
@@ -82,6 +81,13 @@ class Table(Generic[S]):
             compute = mapping
             return cls(name, lambda state, now: _entries(compute(state, now)), value_columns)
         return cls(name, lambda state, now: _entries(getattr(state, mapping)), value_columns)
+
+    @classmethod
+    def items(cls, name: str, columns: Mapping[str, Getter], mapping: str = "") -> Table[S]:
+        """A table of one row per item of the state's mapping `mapping` (id → item; by
+        default the table's own name): `Table.items("issues", named("id TEXT", "title TEXT"))`."""
+        read = attrgetter(mapping or name)
+        return cls(name, lambda state, now: read(state).values(), columns)
 
     @cached_property
     def _getters(self) -> tuple[Callable[[Any], Any], ...]:

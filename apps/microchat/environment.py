@@ -15,8 +15,6 @@ from apps.kit.environments import declare
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.microchat import state as chats
-from apps.microchat.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.microchat.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microchat.catalog import catalog_message, make_call, make_conversation, make_team
 from apps.microchat.state import ENVIRONMENT, Chat, Message, with_messages
 from events.registry import counted
@@ -126,9 +124,8 @@ materialize = tables(
         lambda chat, now: {m.id: chat.read[m.id] for m in received(chat, now)},
         {"message_id TEXT PRIMARY KEY": KEY, "isRead INTEGER": VALUE},
     ),
-    Table(
+    Table.items(
         "conversations",
-        lambda chat, now: chat.conversations.values(),
         {**named("id TEXT PRIMARY KEY", "name TEXT", "type TEXT"), "teamId TEXT": "team_id"},
     ),
     Table.keyed(
@@ -140,14 +137,9 @@ materialize = tables(
             "isMuted INTEGER": "is_muted",
         },
     ),
-    Table(
-        "teams",
-        lambda chat, now: chat.teams.values(),
-        named("id TEXT PRIMARY KEY", "name TEXT"),
-    ),
-    Table(
+    Table.items("teams", named("id TEXT PRIMARY KEY", "name TEXT")),
+    Table.items(
         "calls",
-        lambda chat, now: chat.calls.values(),
         {
             "id TEXT PRIMARY KEY": "id",
             "callerId TEXT": "caller_id",

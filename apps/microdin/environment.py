@@ -28,8 +28,6 @@ from apps.kit.retractions import retraction, window
 from apps.kit.tables import Table, item_states, tables
 from apps.microdin import catalog as records
 from apps.microdin import state as network_state
-from apps.microdin.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.microdin.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microdin.state import ENVIRONMENT, JobState, Network, PostState, ProfileStats
 from events.registry import counted
 from events.schemas import Payload
@@ -217,9 +215,8 @@ EVENT_TYPES = event_types(
 materialize = tables(
     posts_table(("content TEXT", "post.content"), ("shares INTEGER", "post.shares")),
     item_states("post", {"isLiked INTEGER": "is_liked"}),
-    Table(
+    Table.items(
         "connections",
-        lambda network, now: network.connections.values(),
         {
             "id TEXT PRIMARY KEY": "id",
             "userId TEXT": "person.id",
@@ -228,9 +225,8 @@ materialize = tables(
         },
     ),
     item_states("connection", {"status TEXT": "status"}),
-    Table(
+    Table.items(
         "messages",
-        lambda network, now: network.messages.values(),
         {
             "id TEXT PRIMARY KEY": "id",
             "conversationId TEXT": "conversation_id",
@@ -239,9 +235,8 @@ materialize = tables(
         },
     ),
     item_states("message", {"isRead INTEGER": "is_read"}),
-    Table(
+    Table.items(
         "notifications",
-        lambda network, now: network.notifications.values(),
         {
             "id TEXT PRIMARY KEY": "id",
             "type TEXT": "type",
@@ -250,9 +245,8 @@ materialize = tables(
         },
     ),
     item_states("notification", {"isRead INTEGER": "is_read"}),
-    Table(
+    Table.items(
         "jobs",
-        lambda network, now: network.jobs.values(),
         {
             "id TEXT PRIMARY KEY": "id",
             "title TEXT": "title",

@@ -29,8 +29,6 @@ from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, tables
 from apps.microfy import screens
 from apps.microfy import state as lib
-from apps.microfy.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.microfy.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microfy.catalog import artists, catalog_mood, catalog_playlist, catalog_track
 from apps.microfy.state import ENVIRONMENT, Music, TrackState, empty_music, with_followed
 from events.registry import counted
@@ -156,18 +154,12 @@ materialize = tables(
             "userPlayCount INTEGER": "user_play_count",
         },
     ),
-    Table(
-        "playlists",
-        lambda music, now: music.playlists.values(),
-        {**ID_AND_NAME, "data TEXT": "data"},
-    ),
-    Table(
-        "user_created_playlists",
-        lambda music, now: music.user_playlists.values(),
-        {**ID_AND_NAME, "data TEXT": user_playlist_data},
+    Table.items("playlists", {**ID_AND_NAME, "data TEXT": "data"}),
+    Table.items(
+        "user_created_playlists", {**ID_AND_NAME, "data TEXT": user_playlist_data}, "user_playlists"
     ),
     Table("followed_artists", lambda music, now: music.followed, {"artist_id TEXT": lambda a: a}),
-    Table("moods", lambda music, now: music.moods.values(), ID_AND_NAME),
+    Table.items("moods", ID_AND_NAME),
     Table(
         "artists",
         read_at(screens.top_artists),

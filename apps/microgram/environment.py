@@ -28,8 +28,6 @@ from apps.kit.state import with_changed, with_items
 from apps.kit.tables import KEY, VALUE, Keyed, Table, item_states, named, tables
 from apps.microgram import catalog as records
 from apps.microgram import state as gram_state
-from apps.microgram.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.microgram.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microgram.state import ENVIRONMENT, Gram, PostState, comments_of, unread_in
 from events.registry import counted
 from events.schemas import Payload
@@ -191,9 +189,8 @@ materialize = tables(
             "likes INTEGER": "comment.likes",
         },
     ),
-    Table(
+    Table.items(
         "stories",
-        lambda gram, now: gram.stories.values(),
         {
             "id TEXT PRIMARY KEY": "id",
             "authorId TEXT": "author.id",
@@ -204,16 +201,12 @@ materialize = tables(
     Table(
         "story_states", story_states, {"story_id TEXT PRIMARY KEY": KEY, "isViewed INTEGER": VALUE}
     ),
-    Table("messages", lambda gram, now: gram.conversations.values(), named(ID, "data TEXT")),
+    Table.items("messages", named(ID, "data TEXT"), "conversations"),
     item_states("message", {"isRead INTEGER": VALUE}, "read_messages"),
     Table(
         "sent_messages", lambda gram, now: gram.sent, named(ID, "conversation_id TEXT", "text TEXT")
     ),
-    Table(
-        "activity",
-        lambda gram, now: gram.activity.values(),
-        {**named(ID, "type TEXT"), "actorId TEXT": "actor.id"},
-    ),
+    Table.items("activity", {**named(ID, "type TEXT"), "actorId TEXT": "actor.id"}),
     item_states("activity", {"isRead INTEGER": VALUE}, "read_activity"),
     Table(
         "followed_users",

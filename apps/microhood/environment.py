@@ -21,7 +21,6 @@ from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhood import state as account
 from apps.microhood.actions import ACTIONS as ORDER_ACTIONS
-from apps.microhood.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microhood.catalog import listing, news_item, starting_price, stock_record, trace
 from apps.microhood.orders import settle
 from apps.microhood.state import DEFAULT_BUYING_POWER, ENVIRONMENT, Holding, Hood, Stock, WatchRow
@@ -152,9 +151,8 @@ BASELINES = MappingProxyType(
 # --- evaluation tables (the original's names, columns and encodings) ---------------------------
 
 write_tables = tables(
-    Table(
+    Table.items(
         "stocks",
-        lambda hood, now: hood.stocks.values(),
         {**named("symbol TEXT", "name TEXT", "color TEXT"), "avgCost REAL": "catalog_avg_cost"},
     ),
     Table.keyed(
@@ -162,22 +160,13 @@ write_tables = tables(
         "holdings",
         {"symbol TEXT": KEY, "shares INTEGER": "shares", "avgCost REAL": "avg_cost"},
     ),
-    Table(
-        "watchlist",
-        lambda hood, now: hood.watchlist.values(),
-        {"symbol TEXT": "symbol", "data TEXT": lambda row: json.dumps(dict(row.data))},
+    Table.items(
+        "watchlist", {"symbol TEXT": "symbol", "data TEXT": lambda row: json.dumps(dict(row.data))}
     ),
-    Table(
-        "watchlist_states",
-        lambda hood, now: hood.watchlist.values(),
-        {"symbol TEXT": "symbol", "inWatchlist INTEGER": "on"},
+    Table.items(
+        "watchlist_states", {"symbol TEXT": "symbol", "inWatchlist INTEGER": "on"}, "watchlist"
     ),
-    Table(
-        "news",
-        lambda hood, now: hood.news.values(),
-        # Ours: when it was published, so eval_sql can ask for an order placed after a story.
-        {**named("id TEXT", "data TEXT"), "publishedAt REAL": "published_at"},
-    ),
+    Table.items("news", {**named("id TEXT", "data TEXT"), "publishedAt REAL": "published_at"}),
     # Fills only: the original had no other orders.
     Table(
         "orders",

@@ -14,7 +14,7 @@ import json
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 from types import MappingProxyType
-from typing import Annotated, Any
+from typing import Annotated, Any, TypeVar
 
 from pydantic import Field, model_validator
 
@@ -28,11 +28,10 @@ from apps.kit.tables import KEY, VALUE, Table, named, tables
 from apps.kit.waypoints import Waypoints
 from apps.microhub import catalog as records
 from apps.microhub import screens as hub_screens
-from apps.microhub.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.microhub.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microhub.state import (
     ENVIRONMENT,
     Hub,
+    Issue,
     IssueState,
     PullRequest,
     next_issue_number,
@@ -44,6 +43,7 @@ from events.schemas import Payload
 
 WILDCARD = ["*"]
 IdList = list[str]
+Item = TypeVar("Item", Issue, PullRequest)
 
 
 def empty_hub(catalog: Any) -> Hub:
@@ -75,25 +75,22 @@ def showing(hub: Hub, repo: Mapping[str, Any]) -> Hub:
 # --- catalog items arriving: preloaded (dated by their catalog order), or during the task ------
 
 
+def numbered(
+    item: Item | None, hub: Hub, stamp: Stamp, next_number: Callable[[Hub], int]
+) -> Item | None:
+    """A preloaded issue or pull request keeps its catalog number; one opened during the task is
+    numbered after every one so far, so it sorts to the top (the original's rule)."""
+    return item if item is None or stamp.preloaded else replace(item, number=next_number(hub))
+
+
 def make_issue(hub: Hub, issue_id: str, stamp: Stamp) -> tuple[Any, IssueState] | None:
-    """A preloaded issue keeps its catalog number; one filed during the task is numbered after
-    every issue so far, so it sorts to the top (the original's rule)."""
-    issue = records.issue(hub, issue_id, stamp)
-    if issue is None:
-        return None
-    if not stamp.preloaded:
-        issue = replace(issue, number=next_issue_number(hub))
-    return issue, IssueState(state=issue.state)
+    issue = numbered(records.issue(hub, issue_id, stamp), hub, stamp, next_issue_number)
+    return None if issue is None else (issue, IssueState(state=issue.state))
 
 
 def make_pr(hub: Hub, pr_id: str, stamp: Stamp) -> tuple[PullRequest, str] | None:
-    """Numbered after every issue and pull request so far when opened during the task."""
-    pr = records.pull_request(hub, pr_id, stamp)
-    if pr is None:
-        return None
-    if not stamp.preloaded:
-        pr = replace(pr, number=next_pr_number(hub))
-    return pr, "merged" if pr_id in hub.merged else pr.state
+    pr = numbered(records.pull_request(hub, pr_id, stamp), hub, stamp, next_pr_number)
+    return None if pr is None else (pr, "merged" if pr_id in hub.merged else pr.state)
 
 
 deliver_issues = Delivery("issues", make_issue, states="issue_states")
@@ -327,14 +324,12 @@ materialize = tables(
     Table.keyed(
         "repository", "repo", {"key TEXT": KEY, "value TEXT": lambda row: _text(row.value)}
     ),
-    Table(
+    Table.items(
         "files",
-        lambda hub, now: hub.files.values(),
         {**named("id TEXT", "name TEXT", "path TEXT", "type TEXT"), "parentId TEXT": "parent_id"},
     ),
-    Table(
+    Table.items(
         "issues",
-        lambda hub, now: hub.issues.values(),
         named("id TEXT", "number INTEGER", "title TEXT", "body TEXT", "state TEXT", "author TEXT"),
     ),
     # `isViewed`: the original kept it in the session without exporting it, yet its scenarios'
@@ -344,9 +339,8 @@ materialize = tables(
         lambda hub, now: {i: s for i, s in hub.issue_states.items() if i in hub.issues},
         {"issue_id TEXT": KEY, "state TEXT": "state", "isViewed INTEGER": "viewed"},
     ),
-    Table(
+    Table.items(
         "prs",
-        lambda hub, now: hub.prs.values(),
         {
             **named("id TEXT", "number INTEGER", "title TEXT", "state TEXT", "author TEXT"),
             **window("opened_at"),
@@ -357,21 +351,13 @@ materialize = tables(
         lambda hub, now: {pr_id: hub.pr_state(pr_id) for pr_id in hub.prs},
         {"pr_id TEXT": KEY, "state TEXT": VALUE},
     ),
-    Table(
-        "commits",
-        lambda hub, now: hub.commits.values(),
-        named("id TEXT", "sha TEXT", "message TEXT", "author TEXT"),
-    ),
+    Table.items("commits", named("id TEXT", "sha TEXT", "message TEXT", "author TEXT")),
     Table(
         "user_created_comments",
         lambda hub, now: hub.user_comments,
         named("id TEXT", "target_type TEXT", "target_id TEXT", "body TEXT"),
     ),
-    Table(
-        "user_created_issues",
-        lambda hub, now: hub.user_issues.values(),
-        named("id TEXT", "title TEXT", "body TEXT"),
-    ),
+    Table.items("user_created_issues", named("id TEXT", "title TEXT", "body TEXT"), "user_issues"),
     # The original had no way to create a pull request either: always empty.
     Table("user_created_prs", lambda hub, now: (), named("id TEXT", "title TEXT", "body TEXT")),
     Table("merged_prs", lambda hub, now: hub.merged, {"pr_id TEXT": str}),

@@ -32,8 +32,6 @@ from apps.kit.retractions import retraction, window
 from apps.kit.tables import Rows, Table, named, tables
 from apps.microlendar import state as agenda_state
 from apps.microlendar import times
-from apps.microlendar.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.microlendar.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microlendar.catalog import catalog_event, catalog_task
 from apps.microlendar.state import ENVIRONMENT, Agenda, empty_agenda
 from events.registry import counted

@@ -12,8 +12,6 @@ from apps.kit.records import Record
 from apps.kit.retractions import retraction, window
 from apps.kit.tables import KEY, Table, named, tables
 from apps.micromail import state as mailbox
-from apps.micromail.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.micromail.bench import sample_pages as sample_pages  # a part (declare)
 from apps.micromail.catalog import catalog_email, catalog_state
 from apps.micromail.state import ENVIRONMENT, FOLDER_TITLES, FOLDERS, Email, EmailState, Mail
 from events.registry import counted
@@ -73,9 +71,8 @@ EVENT_TYPES = event_types(
 # Nothing in a mailbox moves between events: `now` is unused. All attachment names in one column.
 
 materialize = tables(
-    Table(
+    Table.items(
         "emails",
-        lambda mail, now: mail.emails.values(),
         {
             **named("id TEXT PRIMARY KEY", "subject TEXT", "sender_name TEXT", "sender_email TEXT"),
             "hasAttachment INTEGER": "has_attachment",

@@ -29,8 +29,6 @@ from apps.kit.state import with_changed
 from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, named, tables
 from apps.microscholar import state as index
-from apps.microscholar.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.microscholar.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microscholar.catalog import catalog_alert, catalog_paper, coauthor_pairs
 from apps.microscholar.state import ENVIRONMENT, PaperState, Scholar, empty_scholar
 from events.registry import counted
@@ -112,9 +110,8 @@ materialize = tables(
         "paper_states",
         {"paper_id TEXT PRIMARY KEY": KEY, "isSaved INTEGER": "saved", "isCited INTEGER": "cited"},
     ),
-    Table(
+    Table.items(
         "alerts",
-        lambda scholar, now: scholar.alerts.values(),
         {
             **named("id TEXT PRIMARY KEY", "type TEXT", "title TEXT", "description TEXT"),
             "relatedPaperId TEXT": "related_paper_id",

@@ -28,8 +28,6 @@ from apps.kit.streaming import read_at
 from apps.kit.tables import KEY, Table, named, tables
 from apps.microtube import screens as tube_screens
 from apps.microtube import state as tube_state
-from apps.microtube.actions import ACTIONS as ACTIONS  # a part (declare)
-from apps.microtube.bench import sample_pages as sample_pages  # a part (declare)
 from apps.microtube.catalog import (
     catalog_channel,
     catalog_comment,
@@ -183,16 +181,14 @@ materialize = tables(
         "channel_states",
         {"channel_id TEXT PRIMARY KEY": KEY, "isSubscribed INTEGER": "subscribed"},
     ),
-    Table(
+    Table.items(
         "comments",
-        lambda tube, now: tube.comments.values(),
         named(
             "id TEXT PRIMARY KEY", "video_id TEXT", "user_id TEXT", "content TEXT", "likes INTEGER"
         ),
     ),
-    Table(
+    Table.items(
         "notifications",
-        lambda tube, now: tube.notifications.values(),
         {
             **named("id TEXT PRIMARY KEY", "type TEXT"),
             "channel_id TEXT": lambda n: n.channel_id or None,
@@ -208,15 +204,15 @@ materialize = tables(
             "isRead INTEGER": "read",
         },
     ),
-    Table(
+    Table.items(
         "user_created_comments",
-        lambda tube, now: tube.user_comments.values(),
         named("id TEXT PRIMARY KEY", "video_id TEXT", "content TEXT"),
+        "user_comments",
     ),
-    Table(
+    Table.items(
         "user_created_playlists",
-        lambda tube, now: tube.playlists.values(),
         named("id TEXT PRIMARY KEY", "name TEXT", "data TEXT"),
+        "playlists",
     ),
     Table(
         "watched_videos", lambda tube, now: tube.watched, {"video_id TEXT PRIMARY KEY": lambda v: v}
