@@ -19,9 +19,10 @@ urlpatterns = [
     path("media/", include("apps.media.urls")),  # generated avatars, logos, pictures (no run)
     path(RUN_PREFIX, include(run_urlpatterns)),
     path(RUN_PREFIX, include("apps.kit.urls")),  # the run's home, live pages' polling
-    # Each environment's pages, under its run: /r/<token>/<environment>/…
+    # Each environment's pages, under its run: /r/<token>/<environment>/…, named
+    # `<environment>:<page>` (its urls.py need not say its own name).
     *[
-        path(f"{RUN_PREFIX}{environment.name}/", include(environment.urlconf))
+        path(f"{RUN_PREFIX}{environment.name}/", include((environment.urlconf, environment.name)))
         for environment in all_environments()
         if environment.urlconf
     ],

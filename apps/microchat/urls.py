@@ -15,8 +15,6 @@ from django.urls import path
 
 from apps.microchat import views
 
-app_name = "microchat"
-
 urlpatterns = [
     path("", views.chat, name="chat"),
     path("search", views.search, name="search"),

@@ -19,8 +19,6 @@ from django.urls import path
 
 from apps.microdin import views
 
-app_name = "microdin"
-
 urlpatterns = [
     path("", views.feed, name="feed"),
     path("feed/update/<str:post_id>/", views.post, name="post"),

@@ -14,8 +14,6 @@ from django.urls import path
 
 from apps.microfy import views
 
-app_name = "microfy"
-
 urlpatterns = [
     path("", views.home, name="home"),
     path("search", views.search, name="search"),

@@ -23,8 +23,6 @@ from django.urls import path
 
 from apps.microgram import views
 
-app_name = "microgram"
-
 urlpatterns = [
     path("", views.feed, name="feed"),
     path("p/<str:post_id>/", views.post, name="post"),

@@ -4,8 +4,6 @@ from django.urls import path
 
 from apps.microhood import views
 
-app_name = "microhood"
-
 urlpatterns = [
     path("", views.home, name="home"),
     path("stocks/<str:symbol>", views.stock, name="stock"),

@@ -16,8 +16,6 @@ from django.urls import path
 
 from apps.microhub import views
 
-app_name = "microhub"
-
 urlpatterns = [
     path("", views.code, name="code"),
     path("tree/<path:path>", views.code, name="tree"),

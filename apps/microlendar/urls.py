@@ -13,8 +13,6 @@ from django.urls import path
 
 from apps.microlendar import views
 
-app_name = "microlendar"
-
 urlpatterns = [
     path("", views.calendar, name="calendar"),
     path("events/new", views.new_event, name="new-event"),

@@ -15,8 +15,6 @@ from django.urls import path
 
 from apps.micromail import views
 
-app_name = "micromail"
-
 urlpatterns = [
     path("", views.mailbox, name="mailbox"),
     path("compose", views.compose, name="compose"),

@@ -15,8 +15,6 @@ from django.urls import path
 
 from apps.microscholar import views
 
-app_name = "microscholar"
-
 urlpatterns = [
     path("", views.search, name="search"),
     path("papers/<str:paper_id>", views.paper, name="paper"),

@@ -21,8 +21,6 @@ from django.urls import path
 
 from apps.microtube import views
 
-app_name = "microtube"
-
 urlpatterns = [
     path("", views.home, name="home"),
     path("feed/subscriptions", views.subscriptions, name="subscriptions"),

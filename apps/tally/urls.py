@@ -8,8 +8,6 @@ from django.urls import path
 
 from apps.tally import views
 
-app_name = "tally"
-
 urlpatterns = [
     path("", views.tally, name="tally"),
     path("poke", views.poke, name="poke"),
