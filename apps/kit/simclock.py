@@ -84,40 +84,41 @@ def relative(at: float, now: float, zero: date) -> str:
 
 
 # Elapsed-time units, largest first, as social products count them (no months: a week count
-# keeps growing, "12w", as they do).
-_UNITS = (("week", 7 * DAY_S), ("day", DAY_S), ("hour", 3600), ("minute", 60))
+# keeps growing, "12w", as they do). A product that counts months passes its own.
+UNITS = (("week", 7 * DAY_S), ("day", DAY_S), ("hour", 3600), ("minute", 60))
+Units = tuple[tuple[str, int], ...]
 
 
-def _whole_units(at: float, now: float) -> tuple[str, int, int] | None:
+def _whole_units(at: float, now: float, units: Units) -> tuple[str, int, int] | None:
     """(unit, its size, how many) of the largest unit that fits in `now - at`; None under a
     minute."""
     # A microsecond of slack: `at + n * size` minus `at` can fall a hair short of `n * size` in
     # floating point, and the text must move at exactly the moment `units_changes_at` names.
     elapsed = max(0.0, now - at) + 1e-6
-    for unit, size in _UNITS:
+    for unit, size in units:
         if elapsed >= size:
             return unit, size, int(elapsed // size)
     return None
 
 
-def units_changes_at(at: float, now: float) -> float:
+def units_changes_at(at: float, now: float, units: Units = UNITS) -> float:
     """When `compact_ago` / `long_ago` next read differently: the next whole unit."""
-    whole = _whole_units(at, now)
+    whole = _whole_units(at, now, units)
     size, count = (whole[1], whole[2]) if whole else (60, 0)
     return at + (count + 1) * size
 
 
 def compact_ago(at: float, now: float) -> str:
     """How long ago, as feeds write it: "now", "5m", "2h", "3d", "1w"."""
-    whole = _whole_units(at, now)
+    whole = _whole_units(at, now, UNITS)
     return f"{whole[2]}{whole[0][0]}" if whole else "now"
 
 
-def long_ago(at: float, now: float) -> str:
+def long_ago(at: float, now: float, units: Units = UNITS, *, just_now: str = "just now") -> str:
     """How long ago, in words: "just now", "1 minute ago", "3 hours ago", "2 weeks ago"."""
-    whole = _whole_units(at, now)
+    whole = _whole_units(at, now, units)
     if whole is None:
-        return "just now"
+        return just_now
     unit, _, count = whole
     return f"{count} {unit}{'' if count == 1 else 's'} ago"
 

@@ -31,9 +31,9 @@ from apps.microdin.state import (
     SECTION_TYPES,
     Conversation,
     Message,
-    MessageState,
     Network,
     ProfileSection,
+    ReadState,
     status,
     unread_messages,
 )
@@ -109,15 +109,13 @@ def reduce_send(network: Network, event: LoggedEvent) -> Network:
     network = reduce_open(network, event)
     message = Message(p["id"], p["conversation_id"], network.me, p["content"], event.at, 0)
     network = with_items(network, "messages", [(message.id, message)])
-    return with_items(network, "message_states", [(message.id, MessageState(is_read=True))])
+    return with_items(network, "message_states", [(message.id, ReadState(is_read=True))])
 
 
 def reduce_open(network: Network, event: LoggedEvent) -> Network:
     """Every message of the thread is read."""
     unread = unread_messages(network, event.payload["conversation_id"])
-    return with_items(
-        network, "message_states", [(m.id, MessageState(is_read=True)) for m in unread]
-    )
+    return with_items(network, "message_states", [(m.id, ReadState(is_read=True)) for m in unread])
 
 
 def decide_start(network: Network, payload: dict) -> dict:

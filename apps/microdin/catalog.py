@@ -28,12 +28,11 @@ from apps.microdin.state import (
     Conversation,
     Job,
     Message,
-    MessageState,
     Network,
     Notification,
-    NotificationState,
     Person,
     Post,
+    ReadState,
 )
 
 PRELOAD_AGE_S = 300.0
@@ -151,7 +150,7 @@ def catalog_connection(
 @from_catalog(ENVIRONMENT, "notifications")
 def catalog_notification(
     network: Network, notification_id: str, record: Record, stamp: Stamp
-) -> tuple[Notification, NotificationState]:
+) -> tuple[Notification, ReadState]:
     """A notification: preloaded, with the catalog's read flag; arriving later, unread."""
     catalog = network.catalog
     kind = str(record.get("type") or "other")
@@ -166,7 +165,7 @@ def catalog_notification(
         order=place(catalog, record, stamp),
     )
     read_flag = bool(record.get("isRead", False)) and stamp.preloaded
-    return notification, NotificationState(is_read=read_flag)
+    return notification, ReadState(is_read=read_flag)
 
 
 catalog_job = reader(
@@ -207,7 +206,7 @@ def message_records(catalog: Any, conversation_id: str) -> list[Mapping[str, Any
 
 def catalog_message(
     network: Network, message_id: str, stamp: Stamp
-) -> tuple[Message, MessageState] | None:
+) -> tuple[Message, ReadState] | None:
     """A message in its thread: preloaded, with the catalog's read flag; arriving later, unread."""
     found = network.catalog.index(message_index).get(message_id)
     if found is None:
@@ -224,7 +223,7 @@ def catalog_message(
         order=place(catalog, record, stamp),
     )
     read_flag = stamp.preloaded and preloaded_read(catalog, conversation_id, record)
-    return message, MessageState(is_read=read_flag)
+    return message, ReadState(is_read=read_flag)
 
 
 def preloaded_read(catalog: Any, conversation_id: str, message: Mapping[str, Any]) -> bool:

@@ -105,7 +105,9 @@ class Message:
 
 
 @dataclass(frozen=True)
-class MessageState:
+class ReadState:
+    """A message's or a notification's own state: whether the user has read it."""
+
     is_read: bool = False
 
 
@@ -120,11 +122,6 @@ class Notification:
     target_post_id: str | None = from_catalog(raw("targetPostId"), default=None)
     # a job notification's employer: its logo, not a person's face
     company: str = from_catalog(text_or("company"), default="")
-
-
-@dataclass(frozen=True)
-class NotificationState:
-    is_read: bool = False
 
 
 @dataclass(frozen=True)
@@ -190,9 +187,9 @@ class Network(CatalogState):
     connection_states: Mapping[str, ConnectionState] = field(default_factory=lambda: EMPTY)
     conversations: Mapping[str, Conversation] = field(default_factory=lambda: EMPTY)
     messages: Mapping[str, Message] = field(default_factory=lambda: EMPTY)
-    message_states: Mapping[str, MessageState] = field(default_factory=lambda: EMPTY)
+    message_states: Mapping[str, ReadState] = field(default_factory=lambda: EMPTY)
     notifications: Mapping[str, Notification] = field(default_factory=lambda: EMPTY)
-    notification_states: Mapping[str, NotificationState] = field(default_factory=lambda: EMPTY)
+    notification_states: Mapping[str, ReadState] = field(default_factory=lambda: EMPTY)
     jobs: Mapping[str, Job] = field(default_factory=lambda: EMPTY)
     job_states: Mapping[str, JobState] = field(default_factory=lambda: EMPTY)
     stats: ProfileStats = ProfileStats()

@@ -11,19 +11,14 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from apps.kit import simclock
+from apps.kit.simclock import DAY_S
 from apps.kit.streaming import COUNT_REFRESH_S, showing, shown_count
 from apps.kit.waypoints import Waypoints
 
 UNITS = ((1_000_000_000, "B"), (1_000_000, "M"), (1_000, "K"))
-MINUTE, HOUR, DAY, WEEK, MONTH, YEAR = 60, 3600, 86400, 7 * 86400, 30 * 86400, 365 * 86400
-AGE_UNITS = (
-    (YEAR, "year"),
-    (MONTH, "month"),
-    (WEEK, "week"),
-    (DAY, "day"),
-    (HOUR, "hour"),
-    (MINUTE, "minute"),
-)
+# YouTube counts months and years too: "3 months ago", "1 year ago".
+AGE_UNITS = (("year", 365 * DAY_S), ("month", 30 * DAY_S), *simclock.UNITS)
 
 
 def count_step(value: float, *, digits: int | None = None) -> int:
@@ -52,10 +47,6 @@ def compact(value: float, *, digits: int | None = None) -> str:
     return text + suffix
 
 
-def plural(n: int, word: str) -> str:
-    return f"{n} {word}" if n == 1 else f"{n} {word}s"
-
-
 def views_text(value: float) -> str:
     """From the raw (unrounded) value, so the text changes where `moving_change` says."""
     return "1 view" if shown_count(value) == 1 else f"{compact(value)} views"
@@ -75,15 +66,9 @@ def moving(page: Any, series: Waypoints, *, digits: int | None = None) -> float:
 
 
 def ago(at: float, now: float) -> str:
-    elapsed = max(0.0, now - at)
-    for size, unit in AGE_UNITS:
-        if elapsed >= size:
-            return plural(int(elapsed // size), unit) + " ago"
-    return "Just now"
+    return simclock.long_ago(at, now, AGE_UNITS, just_now="Just now")
 
 
 def ago_changes_at(at: float, now: float) -> float:
     """When `ago(at, now)` next reads differently: the next whole unit."""
-    elapsed = max(0.0, now - at)
-    size = next((s for s, _ in AGE_UNITS if elapsed >= s), MINUTE)
-    return at + (elapsed // size + 1) * size
+    return simclock.units_changes_at(at, now, AGE_UNITS)

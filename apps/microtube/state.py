@@ -152,10 +152,10 @@ class Tube(SelfUserState):
         state = self.channel_states.get(channel_id)
         return state is not None and state.subscribed
 
-    def shown_subscribers(self, channel_id: str, now: float) -> int:
-        """The count the pages show: the drifting catalog count plus the user's own +1."""
-        channel, state = self.channels[channel_id], self.channel_states[channel_id]
-        return max(0, channel.subscriber_count(now) + state.adjustment)
+    def own_subscription(self, channel_id: str) -> int:
+        """What the user adds to a channel's shown count (+1 subscribed); not in its table."""
+        state = self.channel_states.get(channel_id)
+        return state.adjustment if state is not None else 0
 
 
 empty_tube = Tube.of  # catalog → the empty site, its self user in place

@@ -20,7 +20,7 @@ from apps.kit.fragments import render_fragment
 from apps.kit.streaming import shown_count
 from apps.media.templatetags import media
 from apps.microtube import display
-from apps.microtube.state import Channel, Tube, Video
+from apps.microtube.state import Channel, Video
 
 register = template.Library()
 
@@ -46,12 +46,9 @@ def subscribers(context: template.Context, channel: Channel) -> str:
     """The shown count: the drifting catalog number, rounded for display, plus the user's own
     subscription (+1), as the original's channel page showed it."""
     page = context["page"]
-    tube: Tube = page.state
     value = display.moving(page, channel.subscribers, digits=3)
     drifted = shown_count(value, display.count_step(value, digits=3))
-    state = tube.channel_states.get(channel.id)
-    adjustment = state.adjustment if state is not None else 0
-    return display.subscribers_text(max(0, drifted + adjustment))
+    return display.subscribers_text(max(0, drifted + page.state.own_subscription(channel.id)))
 
 
 @register.simple_tag(takes_context=True)
