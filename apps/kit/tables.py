@@ -5,7 +5,7 @@ original `eval_sql` runs unchanged. A table is declared as its name, where its r
 and `{column definition: getter}`: the DDL, the INSERT and every row are derived from that one
 mapping, so a column can never be added to the DDL and forgotten (or misplaced) in the rows.
 
-    EMAILS = Table("emails", lambda mail, now: mail.emails.values(), {  # or Table.items("emails", {…})
+    EMAILS = Table.items("emails", {                  # a row per item of `state.emails`
         "id TEXT PRIMARY KEY": "id",                  # an attribute of the row
         "attachment_name TEXT": "attachment_names",
         "isRead INTEGER": lambda e: e.read,           # or a function of the row
@@ -14,8 +14,8 @@ mapping, so a column can never be added to the DDL and forgotten (or misplaced) 
         "email_id TEXT PRIMARY KEY": KEY,             # the mapping's key
         "isRead INTEGER": "is_read",                  # attributes of the value (or VALUE)
     })
-    ISSUES = Table.items("issues", {**named("id TEXT", "title TEXT"), "parentId TEXT": "parent_id"})
-    materialize = tables(EMAILS, EMAIL_STATES)
+    SENT = Table("sent", lambda mail, now: mail.sent, named("id TEXT", "subject TEXT"))  # any rows
+    materialize = tables(EMAILS, EMAIL_STATES, SENT)
 """
 
 from __future__ import annotations
