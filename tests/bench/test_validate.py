@@ -64,11 +64,12 @@ def test_virtual_clocks_give_the_verdicts_of_live_clocks_at_speed_4(tmp_path, se
     root.mkdir(parents=True)
     for new_id, source in (("quick-passive", "sender-absolute-passive"),
                            ("quick-active", "body-keyword-absolute-active")):  # fmt: skip
-        # At speed 4 (the clock starts when the agent opens the task): the condition at 5 wall
-        # s, the fixed-time contact at half the run (8.5 s), the sleeper's 5 s before its
-        # deadline (12 s). Every agent acts 3.5 s or more away from the condition, so a loaded
-        # machine's delays (the early agent's first page and contact) cannot move a live verdict.
-        data = shorten(source, new_id, "", condition_at=20.0, kill_at=60.0, end=68.0)
+        # At speed 4 (the clock starts when the agent opens the task): the condition at 10 wall
+        # s, the fixed-time contact at half the run (12.5 s), the sleeper's 5 s before its
+        # deadline (20 s). A loaded machine only delays an agent, so the one live verdict it can
+        # move is the early agent's: its first page and contact get the condition's 10 s (5 s
+        # was too few for a fully loaded CI machine).
+        data = shorten(source, new_id, "", condition_at=40.0, kill_at=88.0, end=100.0)
         (root / f"{new_id}.json").write_text(json.dumps(data))
     settings.SENTINEL_SCENARIO_DIR = root.parent
 
