@@ -100,8 +100,10 @@ def site_server(
     extra_env: dict[str, str] | None = None,
     log_path: Path | None = None,
     startup_s: float = 30.0,
+    application: str = "sentinel_site.asgi:application",
 ) -> Iterator[str]:
-    """Start Daphne, wait until it answers, yield its base URL (no trailing slash), stop it."""
+    """Start Daphne serving `application` (the site, unless told), wait until it answers, yield
+    its base URL (no trailing slash), stop it."""
     base = Path(settings.BASE_DIR)
     log_path = log_path or Path(settings.VAR_DIR) / "site-server.log"
     log_path.parent.mkdir(parents=True, exist_ok=True)
@@ -117,7 +119,7 @@ def site_server(
                 "127.0.0.1",
                 "-p",
                 str(port),
-                "sentinel_site.asgi:application",
+                application,
             ],
             cwd=base,
             env=env,

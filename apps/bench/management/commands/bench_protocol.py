@@ -18,8 +18,13 @@ largest preload (its "full preload"):
 - RSS growth: resident memory of the server and its workers before and after 1,000 runs are
   created, opened (task URL, start page) and closed.
 
-Figures per environment go to stderr; stdout ends with exactly one line, the worst environment
-for each figure:
+First, before the site starts, the machine's floor (apps.bench.floor): the median of 1,000
+requests, by the same keep-alive client, to a Daphne with no application work behind it. The
+machines of one kind differ two- to four-fold; the floor says what any request costs on this one
+(a reset is two requests), so figures from different machines can be compared.
+
+Figures per environment and the floor go to stderr; stdout has the floor's line, then ends with
+exactly one line, the worst environment for each figure:
 
     bench_protocol: reset_ms_median=… evaluate_ms_median=… status_ms_p99=… pages_per_s_min=…
     push_cpu_ms=… rss_growth_mib=…
@@ -68,6 +73,7 @@ SUBSCRIBE_S = 60.0  # the watchers' time to subscribe, at most
 # size (31 resets and a still run per environment, then 1,000 runs for the memory figure), past
 # the default 1,000 a minute per client. The limit stays on, so its cost is in every reset timed.
 CREATION_RATE = "10000/min"
+FLOOR_APPLICATION = "apps.bench.floor:application"
 
 
 @dataclass(frozen=True)
@@ -81,10 +87,18 @@ class Sizes:
     watchers: int = 50
     watch_seconds: float = 30.0
     runs: int = 1000
+    floor_requests: int = 1000
 
 
 QUICK = Sizes(
-    resets=3, statuses=50, page_seconds=1.0, page_clients=2, watchers=3, watch_seconds=2, runs=10
+    resets=3,
+    statuses=50,
+    page_seconds=1.0,
+    page_clients=2,
+    watchers=3,
+    watch_seconds=2,
+    runs=10,
+    floor_requests=20,
 )
 
 
@@ -200,20 +214,41 @@ class Command(BaseCommand):
         specs = {name: full_preload_scenario(name) for name in envs}
         log = settings.BASE_DIR / "var" / "bench-protocol.log"
         try:
-            with (
-                measured_database() as database_url,
-                site_server(
+            with measured_database() as database_url:
+                floor = self.floor_ms(database_url, log, sizes.floor_requests)
+                with site_server(
                     database_url=database_url,
                     log_path=log,
                     extra_env={"SENTINEL_RUN_CREATION_RATE": CREATION_RATE},
-                ) as base_url,
-            ):
-                figures = self.measure(base_url, specs, sizes)
+                ) as base_url:
+                    figures = self.measure(base_url, specs, sizes)
         except ServerDidNotStart as exc:
             raise CommandError(str(exc)) from None
+        self.stdout.write(f"bench_protocol: floor_ms_median={floor:.2f}")
         self.stdout.write(
             "bench_protocol: " + " ".join(f"{name}={value:.2f}" for name, value in figures.items())
         )
+
+    def floor_ms(self, database_url: str | None, log: Path, count: int) -> float:
+        """The median time of a request to Daphne with nothing behind it (apps.bench.floor)."""
+        with site_server(
+            database_url=database_url, log_path=log, application=FLOOR_APPLICATION
+        ) as base_url:
+            protocol = Protocol(base_url)
+            try:
+                timings = []
+                for _ in range(count):
+                    started = time.perf_counter()
+                    protocol.call("GET", "/")
+                    timings.append((time.perf_counter() - started) * 1000)
+            finally:
+                protocol.http.close()
+        floor = statistics.median(timings)
+        self.say(
+            f"floor_ms_median={floor:.2f} (a request to a Daphne with nothing behind it; "
+            f"a reset is two requests: {2 * floor:.2f} ms)"
+        )
+        return floor
 
     def say(self, text: str) -> None:
         self.stderr.write(f"bench_protocol: {text}")
