@@ -7,8 +7,8 @@ are not text a watcher compares: the clock changes every minute whatever happens
 
 Pages are read by libxml2's HTML parser (lxml), which calls `_Text` for each tag and run of
 text. It gives the standard library's `html.parser` results to the character on 949 pages of
-the ten environments (text and signature alike) in a third of the time: a live push's
-signature of MicroMail's full inbox (300 KB) is read once per render, in a request thread.
+the ten environments (text and signature alike) in 29 % of the time: a live push's
+signature of MicroMail's full inbox (300 KB) is read once per render, in the render's thread.
 """
 
 from __future__ import annotations

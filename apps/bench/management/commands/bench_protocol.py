@@ -156,6 +156,10 @@ def server_rss_mib() -> float:
     return sum(rss_kib(pid) for pid in descendants(os.getpid())) / 1024
 
 
+def figures_line(figures: dict[str, float]) -> str:
+    return "bench_protocol: " + " ".join(f"{name}={value:.2f}" for name, value in figures.items())
+
+
 class Protocol:
     """The flat endpoints, one keep-alive connection; a non-2xx answer stops the benchmark."""
 
@@ -169,6 +173,15 @@ class Protocol:
                 f"{method} {path} answered {response.status_code}: {response.text[:300]}"
             )
         return response
+
+    def timings_ms(self, path: str, count: int) -> list[float]:
+        """How long each of `count` GETs of `path` took, one after another."""
+        timings = []
+        for _ in range(count):
+            started = time.perf_counter()
+            self.call("GET", path)
+            timings.append((time.perf_counter() - started) * 1000)
+        return timings
 
     def reset(self, spec: dict, **extra) -> None:
         self.call("GET", "/close")
@@ -224,12 +237,8 @@ class Command(BaseCommand):
                     figures = self.measure(base_url, specs, sizes)
         except ServerDidNotStart as exc:
             raise CommandError(str(exc)) from None
-        self.stdout.write(
-            "bench_protocol: " + " ".join(f"{name}={value:.2f}" for name, value in floor.items())
-        )
-        self.stdout.write(
-            "bench_protocol: " + " ".join(f"{name}={value:.2f}" for name, value in figures.items())
-        )
+        self.stdout.write(figures_line(floor))
+        self.stdout.write(figures_line(figures))
 
     def floor(self, database_url: str | None, log: Path, count: int) -> dict[str, float]:
         """The median and p99 time of a request to Daphne with nothing behind it
@@ -239,20 +248,16 @@ class Command(BaseCommand):
         ) as base_url:
             protocol = Protocol(base_url)
             try:
-                timings = []
-                for _ in range(count):
-                    started = time.perf_counter()
-                    protocol.call("GET", "/")
-                    timings.append((time.perf_counter() - started) * 1000)
+                timings = protocol.timings_ms("/", count)
             finally:
                 protocol.http.close()
         floor = {
             "floor_ms_median": statistics.median(timings),
             "floor_ms_p99": percentile(timings, 99),
         }
-        self.say(
-            f"floor_ms_median={floor['floor_ms_median']:.2f} floor_ms_p99={floor['floor_ms_p99']:.2f}"
-            f" (a request to a Daphne with nothing behind it; a reset is two requests)"
+        self.stderr.write(
+            f"{figures_line(floor)} (a request to a Daphne with nothing behind it; "
+            "a reset is two requests)"
         )
         return floor
 
@@ -303,12 +308,7 @@ class Command(BaseCommand):
     def status_p99(self, protocol: Protocol, spec: dict, count: int) -> float:
         protocol.reset(spec)
         protocol.call("GET", "/play")
-        timings = []
-        for _ in range(count):
-            started = time.perf_counter()
-            protocol.call("GET", "/status")
-            timings.append((time.perf_counter() - started) * 1000)
-        return percentile(timings, 99)
+        return percentile(protocol.timings_ms("/status", count), 99)
 
     def pages(self, protocol: Protocol, base_url: str, spec: dict, sizes: Sizes) -> float:
         run_id, page = protocol.still_run(spec)  # a still state: every load is alike
